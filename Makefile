@@ -1,0 +1,190 @@
+# contact -- penalty contact kernels, driver, benchmarks and tests.
+#
+#   make            build libcontact, the driver, the tests
+#   make run        run the showcase
+#   make test       build and run the tests (Criterion)
+#   make bench      build and run the benchmarks (Google Benchmark)
+#   make check      tests under ASan+UBSan, then under ThreadSanitizer
+#   make deps       install missing Debian packages (as root)
+#
+# Variables: CC=gcc|clang, PRECISION=double|single, ARCH=-march=native
+# (ARCH= for portable binaries), BUILD=dir.
+
+ifeq ($(origin CC),default)
+CC = gcc
+endif
+PRECISION ?= double
+ARCH ?= -march=native
+CCNAME := $(notdir $(firstword $(CC)))
+BUILD ?= build/$(CCNAME)-$(PRECISION)$(if $(strip $(ARCH)),,-portable)$(SAN_SUFFIX)
+
+ifeq ($(PRECISION),single)
+PREC_FLAGS = -DCT_SINGLE
+else ifeq ($(PRECISION),double)
+PREC_FLAGS =
+else
+$(error PRECISION must be double or single, not '$(PRECISION)')
+endif
+
+ifneq ($(findstring clang,$(CCNAME)),)
+CXX_FOR_CC = clang++
+else
+CXX_FOR_CC = g++
+endif
+CXX := $(CXX_FOR_CC)
+
+OPT ?= -O3
+WARN = -Wall -Wextra -Werror
+CFLAGS_BASE = -std=c11 $(OPT) $(ARCH) -fopenmp $(WARN) -D_POSIX_C_SOURCE=200809L $(PREC_FLAGS)
+CFLAGS_ALL = $(CFLAGS_BASE) $(SAN_FLAGS) $(EXTRA_CFLAGS)
+GIT_COMMIT := $(shell git rev-parse --short=12 HEAD 2>/dev/null || echo none)$(shell git diff --quiet HEAD 2>/dev/null || echo -dirty)
+PROV = -DCT_BUILD_CFLAGS='"$(strip $(CFLAGS_ALL))"' -DCT_BUILD_COMMIT='"$(GIT_COMMIT)"'
+INC = -Ikernels -Idriver -Ibench
+
+PKGS_CFLAGS = $(shell pkg-config --cflags hwloc libcyaml criterion 2>/dev/null)
+LIBS_HWLOC = $(shell pkg-config --libs hwloc 2>/dev/null || echo -lhwloc)
+LIBS_CYAML = $(shell pkg-config --libs libcyaml 2>/dev/null || echo -lcyaml)
+LIBS_CRIT = $(shell pkg-config --libs criterion 2>/dev/null || echo -lcriterion)
+LIBS_BENCH = -lbenchmark -lpthread
+
+KERNEL_SRC := $(wildcard kernels/*.c)
+DRIVER_SRC := $(filter-out driver/main.c,$(wildcard driver/*.c driver/*/*.c))
+TEST_SRC := $(wildcard tests/*.c)
+BENCH_C_SRC := $(wildcard bench/*.c)
+BENCH_CXX_SRC := $(wildcard bench/*.cc)
+BENCH_PEER_SRC := $(wildcard bench/peers/*.cc)
+
+KERNEL_OBJ := $(KERNEL_SRC:%.c=$(BUILD)/%.o)
+DRIVER_OBJ := $(DRIVER_SRC:%.c=$(BUILD)/%.o)
+TEST_OBJ := $(TEST_SRC:%.c=$(BUILD)/%.o)
+BENCH_OBJ := $(BENCH_C_SRC:%.c=$(BUILD)/%.o) $(BENCH_CXX_SRC:%.cc=$(BUILD)/%.o) \
+             $(BENCH_PEER_SRC:%.cc=$(BUILD)/%.o)
+
+LIBCONTACT := $(BUILD)/libcontact.a
+LIBDRIVER := $(BUILD)/libdriver.a
+CONTACT := $(BUILD)/contact
+TESTS := $(BUILD)/tests
+BENCHBIN := $(BUILD)/bench
+
+# Debian packages the project needs (checked by `make deps`).
+DEB_PKGS = pkg-config libhwloc-dev libbenchmark-dev libcriterion-dev libcyaml-dev \
+           libomp-dev clang libclang-rt-14-dev gnuplot-nox python3
+ifneq ($(filter bench bench-full,$(MAKECMDGOALS)),)
+DEB_PKGS += libnanoflann-dev libcgal-dev libbullet-dev
+endif
+
+.PHONY: all deps run test bench bench-full check check-asan check-tsan clean vecreport lib
+
+all: deps
+	@$(MAKE) --no-print-directory build-all
+
+.PHONY: build-all
+build-all: $(LIBCONTACT) $(CONTACT) $(TESTS)
+
+lib: $(LIBCONTACT)
+
+deps:
+	@missing=""; for p in $(DEB_PKGS); do \
+	  dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q "install ok installed" || missing="$$missing $$p"; \
+	done; \
+	if [ -n "$$missing" ]; then \
+	  if [ "$$(id -u)" = 0 ]; then \
+	    echo "deps: installing$$missing"; \
+	    export DEBIAN_FRONTEND=noninteractive; \
+	    apt-get update -qq && apt-get install -y -qq --no-install-recommends $$missing >/dev/null || \
+	      { echo "deps: apt-get install$$missing failed"; exit 1; }; \
+	  else \
+	    echo "deps: missing Debian packages:$$missing"; \
+	    echo "deps: run:  sudo apt-get install -y$$missing"; exit 1; \
+	  fi; \
+	fi
+
+$(BUILD)/%.o: %.c
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_ALL) $(PROV) $(INC) $(PKGS_CFLAGS) -MMD -MP -c $< -o $@
+
+$(BUILD)/%.o: %.cc
+	@mkdir -p $(dir $@)
+	$(CXX) -std=c++17 $(OPT) $(ARCH) -fopenmp -Wall -Wextra -Werror $(PREC_FLAGS) $(SAN_FLAGS) $(PROV) $(INC) $(PKGS_CFLAGS) -MMD -MP -c $< -o $@
+
+$(LIBCONTACT): $(KERNEL_OBJ)
+	@rm -f $@
+	ar rcs $@ $^
+
+$(LIBDRIVER): $(DRIVER_OBJ)
+	@rm -f $@
+	ar rcs $@ $^
+
+LDLIBS_ALL = $(LIBS_CYAML) $(LIBS_HWLOC) -lm
+
+$(CONTACT): $(BUILD)/driver/main.o $(LIBDRIVER) $(LIBCONTACT)
+	$(CC) $(CFLAGS_ALL) $^ -o $@ $(LDLIBS_ALL)
+
+$(TESTS): $(TEST_OBJ) $(LIBDRIVER) $(LIBCONTACT)
+	$(CC) $(CFLAGS_ALL) $^ -o $@ $(LIBS_CRIT) $(LDLIBS_ALL)
+
+$(BENCHBIN): $(BENCH_OBJ) $(LIBDRIVER) $(LIBCONTACT)
+	$(CXX) $(OPT) $(ARCH) -fopenmp $(SAN_FLAGS) $^ -o $@ $(LIBS_BENCH) $(LDLIBS_ALL)
+
+# ---- User commands ----------------------------------------------------------
+
+SCENE ?=
+run: deps
+	@$(MAKE) --no-print-directory $(CONTACT)
+	$(CONTACT) demo $(SCENE)
+
+# Criterion forks one process per test; tests set their own thread counts.
+TEST_ARGS ?= --jobs 1
+test: deps
+	@$(MAKE) --no-print-directory build-tests run-tests
+
+BENCH_ARGS ?=
+bench: deps
+	@$(MAKE) --no-print-directory $(BENCHBIN)
+	$(BENCHBIN) $(BENCH_ARGS)
+
+bench-full: deps
+	@$(MAKE) --no-print-directory $(BENCHBIN)
+	CT_BENCH_FULL=1 $(BENCHBIN) $(BENCH_ARGS)
+
+# ---- Sanitizers -------------------------------------------------------------
+# ASan+UBSan with gcc. The race check uses clang's ThreadSanitizer with LLVM's
+# OpenMP runtime (libomp) and its Archer tool, which tells TSan about OpenMP's
+# barriers, tasks and reductions, so there are no false reports from the
+# runtime and no suppressions file.
+
+ARCHER := $(firstword $(wildcard /usr/lib/llvm-14/lib/libarcher.so /usr/lib/llvm-*/lib/libarcher.so))
+
+check: deps
+	@$(MAKE) --no-print-directory check-asan
+	@$(MAKE) --no-print-directory check-tsan
+
+check-asan:
+	@$(MAKE) --no-print-directory CC=gcc OPT=-O1 SAN_SUFFIX=-asan \
+	  SAN_FLAGS="-g -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer" \
+	  TEST_ENV="ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 OMP_NUM_THREADS=2 CT_CHECK=1" \
+	  build-tests run-tests
+
+check-tsan:
+	@test -n "$(ARCHER)" || { echo "check-tsan: libarcher.so not found (package libomp-14-dev)"; exit 1; }
+	@$(MAKE) --no-print-directory CC=clang OPT=-O1 SAN_SUFFIX=-tsan SAN_FLAGS="-g -fsanitize=thread" \
+	  TEST_ENV="TSAN_OPTIONS='halt_on_error=1 ignore_noninstrumented_modules=1' OMP_NUM_THREADS=2 OMP_TOOL_LIBRARIES=$(ARCHER) CT_CHECK=1" \
+	  build-tests run-tests
+
+.PHONY: build-tests run-tests
+build-tests: $(TESTS)
+run-tests:
+	$(TEST_ENV) CT_SHARED=$(abspath ../shared) $(TESTS) $(TEST_ARGS)
+
+# Which loops the compiler vectorised, per kernel file.
+vecreport: deps
+	@mkdir -p $(BUILD)/vecreport
+	@for f in $(KERNEL_SRC); do \
+	  echo "== $$f"; \
+	  $(CC) $(CFLAGS_ALL) $(INC) -fopt-info-vec-optimized -c $$f -o /dev/null 2>&1 | grep -o '[a-z_]*\.c:[0-9]*:[0-9]*: optimized: loop vectorized.*' | sort -u; \
+	done
+
+clean:
+	rm -rf build
+
+-include $(shell find build -name '*.d' 2>/dev/null)

@@ -1,0 +1,178 @@
+/*
+ * ct_internal.h -- internal helpers of libcontact (prefix cti_). Not part of
+ * the public API; kernels include it after contact.h.
+ */
+#ifndef CT_INTERNAL_H
+#define CT_INTERNAL_H
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "contact.h"
+
+#ifdef _OPENMP
+#include <omp.h>
+static inline int cti_num_threads(void) { return omp_get_max_threads(); }
+static inline int cti_thread_id(void) { return omp_get_thread_num(); }
+#else
+static inline int cti_num_threads(void) { return 1; }
+static inline int cti_thread_id(void) { return 0; }
+#endif
+
+/* ---- Precision-generic maths ------------------------------------------ */
+
+#ifdef CT_SINGLE
+#define CTI_SQRT sqrtf
+#define CTI_FABS fabsf
+#define CTI_EXP expf
+#define CTI_LOG logf
+#define CTI_LOG1P log1pf
+#define CTI_FMIN fminf
+#define CTI_FMAX fmaxf
+#define CTI_EPS 1.1920929e-07f
+#define CTI_HUGE 3.0e38f
+#else
+#define CTI_SQRT sqrt
+#define CTI_FABS fabs
+#define CTI_EXP exp
+#define CTI_LOG log
+#define CTI_LOG1P log1p
+#define CTI_FMIN fmin
+#define CTI_FMAX fmax
+#define CTI_EPS 2.220446049250313e-16
+#define CTI_HUGE 1.0e300
+#endif
+
+#define CTI_MIN(a, b) ((a) < (b) ? (a) : (b))
+#define CTI_MAX(a, b) ((a) > (b) ? (a) : (b))
+
+/* Fill a ct_diag (when not NULL) and return the code. */
+int cti_fail(ct_diag *d, int code, int64_t index, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 4, 5)))
+#endif
+    ;
+
+/* Grow an aligned array to hold at least `need` elements of `size` bytes,
+ * keeping the first `keep` elements. *cap is in elements. */
+int cti_grow(void **p, size_t *cap, size_t need, size_t size, size_t keep);
+
+/* Exclusive prefix sum of cnt[0..n-1] into off[0..n] (off[n] = total), in
+ * parallel (two passes over per-thread blocks). cnt and off may alias.
+ * The result does not depend on the thread count. Must be called outside a
+ * parallel region. */
+int64_t cti_prefix_sum(const ct_idx *cnt, int64_t *off, int64_t n);
+ct_idx cti_prefix_sum_idx(const ct_idx *cnt, ct_idx *off, ct_idx n);
+
+/* ---- The shared pair predicate ----------------------------------------- */
+
+/* Squared distance from p to triangle a b c (closest point by Voronoi
+ * regions; degenerate triangles fall back to their edges). */
+ct_real cti_dist2_point_triangle(const ct_real p[3], const ct_real a[3],
+                                 const ct_real b[3], const ct_real c[3]);
+
+/* Squared distance from p to segment a b. */
+ct_real cti_dist2_point_edge(const ct_real p[3], const ct_real a[3], const ct_real b[3]);
+
+/* Load the four corners of segment s. */
+static inline void cti_load_seg(const ct_real *restrict x, const ct_real *restrict y,
+                                const ct_real *restrict z, ct_idx i1, ct_idx i2,
+                                ct_idx i3, ct_idx i4, ct_real a[3], ct_real b[3],
+                                ct_real c[3], ct_real d[3])
+{
+    a[0] = x[i1]; a[1] = y[i1]; a[2] = z[i1];
+    b[0] = x[i2]; b[1] = y[i2]; b[2] = z[i2];
+    c[0] = x[i3]; c[1] = y[i3]; c[2] = z[i3];
+    d[0] = x[i4]; d[1] = y[i4]; d[2] = z[i4];
+}
+
+/* The predicate every search applies to every pair it reports, by global
+ * indices. `self` excludes a node's own segments. */
+static inline int cti_pair_test(const ct_real *restrict x, const ct_real *restrict y,
+                                const ct_real *restrict z, ct_idx node, ct_idx i1,
+                                ct_idx i2, ct_idx i3, ct_idx i4, ct_real d, int self)
+{
+    if (self && (node == i1 || node == i2 || node == i3 || node == i4))
+        return 0;
+    ct_real p[3] = {x[node], y[node], z[node]};
+    ct_real a[3], b[3], c[3], e[3];
+    cti_load_seg(x, y, z, i1, i2, i3, i4, a, b, c, e);
+    return ct_pair_may_touch(p, a, b, c, e, d);
+}
+
+/* ---- Candidate collection ---------------------------------------------- */
+
+/*
+ * Searches that visit secondary nodes in an order of their own (cell order,
+ * tree order) store each node's candidate segments, in increasing segment
+ * order, in a per-thread buffer and record where: owner[i] (thread), start[i]
+ * and count[i] for secondary position i. cti_collect_finish() then writes the
+ * canonical pair list (secondary order, then segment) in parallel; the
+ * result does not depend on which thread found what.
+ */
+typedef struct cti_collect {
+    int nthr;           /* buffers in use */
+    int maxthr;         /* buffers allocated */
+    ct_idx **buf;       /* per-thread segment buffers */
+    size_t *len, *cap;  /* per-thread fill and capacity (elements) */
+    ct_idx nsec, seccap;
+    int32_t *owner;     /* per secondary */
+    int64_t *start;     /* per secondary */
+    ct_idx *count;      /* per secondary */
+    int64_t *off;       /* scratch: output offsets (nsec + 1) */
+    int err;            /* set by a thread whose buffer could not grow */
+} cti_collect;
+
+/* Prepare for nsec secondaries and the current thread count (outside a
+ * parallel region). Counts are zeroed. */
+int cti_collect_begin(cti_collect *c, ct_idx nsec);
+
+/* Append a node's candidates from thread t (inside the parallel region).
+ * Returns 0, or CT_ERR_NOMEM after setting c->err. */
+int cti_collect_put(cti_collect *c, int t, ct_idx secpos, const ct_idx *segs, ct_idx n);
+
+/* Write the canonical pairs. */
+int cti_collect_finish(cti_collect *c, const ct_idx *sec, ct_pairs *out);
+
+/* Grow thread t's buffer to hold `extra` more entries (inside the parallel
+ * region; sets c->err on failure). */
+int cti_collect_room(cti_collect *c, int t, size_t extra);
+
+/* Append one segment for thread t, then, after a node's last one, record
+ * that node's list as everything appended since `start` (c->len[t] before
+ * the first push). Segments must be pushed in increasing order. */
+static inline int cti_collect_push(cti_collect *c, int t, ct_idx seg)
+{
+    if (c->len[t] == c->cap[t] && cti_collect_room(c, t, 1) != CT_OK)
+        return CT_ERR_NOMEM;
+    c->buf[t][c->len[t]++] = seg;
+    return CT_OK;
+}
+
+static inline void cti_collect_mark(cti_collect *c, int t, ct_idx secpos, size_t start)
+{
+    c->owner[secpos] = t;
+    c->start[secpos] = (int64_t)start;
+    c->count[secpos] = (ct_idx)(c->len[t] - start);
+}
+
+void cti_collect_free(cti_collect *c);
+size_t cti_collect_memory(const cti_collect *c);
+
+/* ---- Per-algorithm entry points (search.c dispatches) ------------------ */
+
+struct ct_search {
+    ct_search_params p;
+    cti_collect col;
+    void *algo_state; /* owned by the algorithm */
+    void (*algo_free)(void *state);
+    size_t (*algo_memory)(const void *state);
+};
+
+int cti_search_direct(ct_search *s, const ct_search_input *in, ct_pairs *out);
+int cti_search_topo(ct_search *s, const ct_search_input *in, ct_pairs *out);
+int cti_search_bucket(ct_search *s, const ct_search_input *in, ct_pairs *out);
+int cti_search_bsp(ct_search *s, const ct_search_input *in, ct_pairs *out);
+
+#endif /* CT_INTERNAL_H */

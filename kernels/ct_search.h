@@ -1,0 +1,114 @@
+/*
+ * ct_search.h -- candidate search (broad phase), part of contact.h.
+ *
+ * One contract for the four algorithms: given secondary nodes, main
+ * segments, a gap and a margin, return every pair (node, segment) whose
+ * distance can be below gap + margin, in canonical order (by position in the
+ * secondary list, then by segment index), bit-identical for any thread
+ * count. "Can be below" is decided by one predicate shared by all four
+ * (ct_pair_may_touch): the node lies in the segment's box inflated by
+ * gap + margin, and its distance to the convex hull of the segment's nodes
+ * is at most gap + margin. The hull contains the segment's surface for every
+ * projection method (bilinear, 4 triangles, 2 triangles), so the test never
+ * drops a pair that any narrow phase would find within gap + margin.
+ */
+#ifndef CT_SEARCH_H
+#define CT_SEARCH_H
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Candidate pairs, structure of arrays: node[k] is a global node index,
+ * seg[k] an index into the segment arrays the search was given. */
+typedef struct ct_pairs {
+    ct_idx n, cap;
+    ct_idx *node, *seg;
+} ct_pairs;
+
+int ct_pairs_init(ct_pairs *p, ct_idx cap);
+int ct_pairs_reserve(ct_pairs *p, ct_idx cap); /* keeps content */
+void ct_pairs_destroy(ct_pairs *p);
+
+typedef struct ct_search_input {
+    ct_idx nnode;                  /* length of x, y, z */
+    const ct_real *x, *y, *z;      /* current node positions */
+    ct_idx nsec;                   /* secondary nodes ... */
+    const ct_idx *sec;             /* ... as global node indices */
+    ct_idx nseg;                   /* main segments ... */
+    const ct_idx *n1, *n2, *n3, *n4; /* ... by global node indices */
+    ct_real gap, margin;           /* search distance = gap + margin */
+    int self; /* 1: one surface against itself; a node never pairs with a
+                 segment it belongs to */
+} ct_search_input;
+
+typedef enum ct_search_algo {
+    CT_SEARCH_DIRECT = 0, /* all pairs; the reference */
+    CT_SEARCH_TOPO,       /* topologically limited (TYPE3/5 engine) */
+    CT_SEARCH_BUCKET,     /* uniform voxel grid, counting sort */
+    CT_SEARCH_BSP,        /* quick sort: binary space partition */
+    CT_SEARCH_NALGO
+} ct_search_algo;
+
+/* Name ("direct", "topological", "bucket", "bsp") and its inverse (-1 when
+ * the name is unknown). */
+const char *ct_search_algo_name(ct_search_algo a);
+int ct_search_algo_from_name(const char *name);
+
+typedef struct ct_search_params {
+    ct_search_algo algo;
+    /* bucket: cells per unit length = cell_factor * 0.75 *
+     * sqrt(nseg / (LxLy + LyLz + LzLx)) (Radioss sizing; 0 -> 1.0), total
+     * cells capped at max_cells (0 -> 2 * (nsec + nseg) + 1024). */
+    double cell_factor;
+    int64_t max_cells;
+    /* bsp: a box with at most leaf_size nodes or segments, or whose longest
+     * side is below min_box (0 -> gap + margin), is tested all against all
+     * (leaf_size 0 -> 32). */
+    int leaf_size;
+    double min_box;
+} ct_search_params;
+
+/* The defaults above for one algorithm. */
+ct_search_params ct_search_default_params(ct_search_algo algo);
+
+/* An opaque search workspace: scratch arrays grown on demand and kept, and
+ * the topological search's history (closest main node per secondary). */
+typedef struct ct_search ct_search;
+
+int ct_search_init(ct_search **s, const ct_search_params *p);
+void ct_search_destroy(ct_search *s);
+
+/* Run the search; out is grown as needed and overwritten. */
+int ct_search_run(ct_search *s, const ct_search_input *in, ct_pairs *out);
+
+/* Forget the history: the next topological search is a full search. */
+void ct_search_reset(ct_search *s);
+
+/* Bytes of scratch currently held by the workspace. */
+size_t ct_search_memory(const ct_search *s);
+
+/* The shared predicate (see the top of this file): 1 when the point p may
+ * be within d of the segment a b c dd (dd == c for a triangle). */
+int ct_pair_may_touch(const ct_real p[3], const ct_real a[3], const ct_real b[3],
+                      const ct_real c[3], const ct_real dd[3], ct_real d);
+
+/*
+ * Re-sort criterion (DESIGN.md section 5). x0/y0/z0 are the positions at
+ * the last sort, x/y/z the current ones. The largest displacement of a
+ * secondary node plus the largest of a main node bounds how much any
+ * node-segment distance can have shrunk since the sort; while that bound is
+ * at most `margin`, every pair now within `gap` was within gap + margin at
+ * the sort, so the stored candidates are complete. Returns 1 when a re-sort
+ * is needed, 0 when not; *bound (may be NULL) receives the bound.
+ */
+int ct_resort_needed(ct_idx nsec, const ct_idx *sec, ct_idx nmain,
+                     const ct_idx *main_nodes, const ct_real *x0, const ct_real *y0,
+                     const ct_real *z0, const ct_real *x, const ct_real *y,
+                     const ct_real *z, ct_real margin, ct_real *bound);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* CT_SEARCH_H */

@@ -1,0 +1,137 @@
+/*
+ * predicate.c -- the pair predicate shared by all four searches: may node p
+ * be within distance d of a segment? (See ct_search.h for the contract.)
+ *
+ * The test runs from cheap to exact so the common cases cost little:
+ *  1. the node is outside the segment's box inflated by d   -> no;
+ *  2. the Euclidean distance to the segment's box exceeds d -> no;
+ *  3. some corner is within d                               -> yes;
+ *  4. otherwise the exact distance to the convex hull of the corners.
+ * Every step is a true bound of the distance to the hull, so the answer is
+ * that of step 4 up to rounding, and it is the same function for every
+ * search, which is what makes their pair sets identical.
+ */
+#include "ct_internal.h"
+
+static inline ct_real dot3(const ct_real a[3], const ct_real b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+static inline void sub3(ct_real r[3], const ct_real a[3], const ct_real b[3])
+{
+    r[0] = a[0] - b[0];
+    r[1] = a[1] - b[1];
+    r[2] = a[2] - b[2];
+}
+
+ct_real cti_dist2_point_edge(const ct_real p[3], const ct_real a[3], const ct_real b[3])
+{
+    ct_real ab[3], ap[3];
+    sub3(ab, b, a);
+    sub3(ap, p, a);
+    ct_real l2 = dot3(ab, ab), t = 0;
+    if (l2 > 0) {
+        t = dot3(ap, ab) / l2;
+        t = t < 0 ? 0 : (t > 1 ? 1 : t);
+    }
+    ct_real r[3] = {ap[0] - t * ab[0], ap[1] - t * ab[1], ap[2] - t * ab[2]};
+    return dot3(r, r);
+}
+
+/* Closest point of a triangle by its Voronoi regions (vertex, edge, face),
+ * after the classic formulation in Ericson, Real-Time Collision Detection,
+ * section 5.1.5. */
+ct_real cti_dist2_point_triangle(const ct_real p[3], const ct_real a[3],
+                                 const ct_real b[3], const ct_real c[3])
+{
+    ct_real ab[3], ac[3], ap[3], bp[3], cp[3], r[3];
+    sub3(ab, b, a);
+    sub3(ac, c, a);
+    sub3(ap, p, a);
+    ct_real d1 = dot3(ab, ap), d2 = dot3(ac, ap);
+    if (d1 <= 0 && d2 <= 0)
+        return dot3(ap, ap);
+    sub3(bp, p, b);
+    ct_real d3 = dot3(ab, bp), d4 = dot3(ac, bp);
+    if (d3 >= 0 && d4 <= d3)
+        return dot3(bp, bp);
+    sub3(cp, p, c);
+    ct_real d5 = dot3(ab, cp), d6 = dot3(ac, cp);
+    if (d6 >= 0 && d5 <= d6)
+        return dot3(cp, cp);
+    ct_real vc = d1 * d4 - d3 * d2;
+    if (vc <= 0 && d1 >= 0 && d3 <= 0 && d1 - d3 > 0)
+        return cti_dist2_point_edge(p, a, b);
+    ct_real vb = d5 * d2 - d1 * d6;
+    if (vb <= 0 && d2 >= 0 && d6 <= 0 && d2 - d6 > 0)
+        return cti_dist2_point_edge(p, a, c);
+    ct_real va = d3 * d6 - d5 * d4;
+    if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0 && (d4 - d3) + (d5 - d6) > 0)
+        return cti_dist2_point_edge(p, b, c);
+    ct_real den = va + vb + vc;
+    if (!(den > 0)) {
+        /* Degenerate (collinear or coincident corners): the triangle is
+         * covered by its edges. */
+        ct_real e1 = cti_dist2_point_edge(p, a, b);
+        ct_real e2 = cti_dist2_point_edge(p, a, c);
+        ct_real e3 = cti_dist2_point_edge(p, b, c);
+        return CTI_MIN(e1, CTI_MIN(e2, e3));
+    }
+    ct_real v = vb / den, w = vc / den;
+    for (int k = 0; k < 3; k++)
+        r[k] = ap[k] - v * ab[k] - w * ac[k];
+    return dot3(r, r);
+}
+
+/* 6 x signed volume of tetrahedron (a, b, c, p). */
+static inline ct_real orient3(const ct_real a[3], const ct_real b[3], const ct_real c[3],
+                              const ct_real p[3])
+{
+    ct_real ab[3], ac[3], ap[3];
+    sub3(ab, b, a);
+    sub3(ac, c, a);
+    sub3(ap, p, a);
+    return ap[0] * (ab[1] * ac[2] - ab[2] * ac[1]) + ap[1] * (ab[2] * ac[0] - ab[0] * ac[2]) +
+           ap[2] * (ab[0] * ac[1] - ab[1] * ac[0]);
+}
+
+int ct_pair_may_touch(const ct_real p[3], const ct_real a[3], const ct_real b[3],
+                      const ct_real c[3], const ct_real e[3], ct_real d)
+{
+    ct_real d2 = d * d, box2 = 0;
+    for (int k = 0; k < 3; k++) {
+        ct_real lo = CTI_MIN(CTI_MIN(a[k], b[k]), CTI_MIN(c[k], e[k]));
+        ct_real hi = CTI_MAX(CTI_MAX(a[k], b[k]), CTI_MAX(c[k], e[k]));
+        if (p[k] < lo - d || p[k] > hi + d)
+            return 0;
+        ct_real ex = p[k] < lo ? lo - p[k] : (p[k] > hi ? p[k] - hi : 0);
+        box2 += ex * ex;
+    }
+    if (box2 > d2)
+        return 0;
+    ct_real v[3];
+    const ct_real *corner[4] = {a, b, c, e};
+    for (int k = 0; k < 4; k++) {
+        sub3(v, p, corner[k]);
+        if (dot3(v, v) <= d2)
+            return 1;
+    }
+    int tri = (c[0] == e[0] && c[1] == e[1] && c[2] == e[2]);
+    if (tri)
+        return cti_dist2_point_triangle(p, a, b, c) <= d2;
+    /* The hull of four points is the tetrahedron a b c e: inside it the
+     * distance is zero, outside it is the distance to the nearest face. */
+    if (cti_dist2_point_triangle(p, a, b, c) <= d2 || cti_dist2_point_triangle(p, a, c, e) <= d2 ||
+        cti_dist2_point_triangle(p, a, b, e) <= d2 || cti_dist2_point_triangle(p, b, c, e) <= d2)
+        return 1;
+    ct_real vol = orient3(a, b, c, e);
+    if (vol == 0)
+        return 0;
+    ct_real s1 = orient3(a, b, c, p), s2 = orient3(a, c, e, p);
+    ct_real s3 = orient3(a, e, b, p), s4 = orient3(b, e, c, p);
+    /* Faces oriented so that all four are positive inside when vol > 0. */
+    if (vol > 0)
+        return s1 >= 0 && s2 >= 0 && s3 >= 0 && s4 >= 0;
+    return s1 <= 0 && s2 <= 0 && s3 <= 0 && s4 <= 0;
+}

@@ -1,0 +1,166 @@
+/*
+ * search.c -- the search workspace, the dispatcher over the four
+ * algorithms, the direct (all pairs) reference search and the re-sort
+ * criterion.
+ */
+#include <stdlib.h>
+
+#include "ct_internal.h"
+
+static const char *const algo_names[CT_SEARCH_NALGO] = {"direct", "topological", "bucket",
+                                                        "bsp"};
+
+const char *ct_search_algo_name(ct_search_algo a)
+{
+    return (a >= 0 && a < CT_SEARCH_NALGO) ? algo_names[a] : "unknown";
+}
+
+int ct_search_algo_from_name(const char *name)
+{
+    for (int a = 0; name && a < CT_SEARCH_NALGO; a++)
+        if (strcmp(name, algo_names[a]) == 0)
+            return a;
+    if (name && (strcmp(name, "topo") == 0))
+        return CT_SEARCH_TOPO;
+    return -1;
+}
+
+ct_search_params ct_search_default_params(ct_search_algo algo)
+{
+    ct_search_params p;
+    memset(&p, 0, sizeof p);
+    p.algo = algo;
+    p.cell_factor = 1.0;
+    p.max_cells = 0;
+    p.leaf_size = 32;
+    p.min_box = 0;
+    return p;
+}
+
+int ct_search_init(ct_search **s, const ct_search_params *p)
+{
+    if (!s)
+        return CT_ERR_ARG;
+    *s = NULL;
+    if (p && (p->algo < 0 || p->algo >= CT_SEARCH_NALGO || !(p->cell_factor >= 0) ||
+              p->max_cells < 0 || p->leaf_size < 0 || !(p->min_box >= 0)))
+        return CT_ERR_ARG;
+    ct_search *w = calloc(1, sizeof *w);
+    if (!w)
+        return CT_ERR_NOMEM;
+    w->p = p ? *p : ct_search_default_params(CT_SEARCH_BUCKET);
+    *s = w;
+    return CT_OK;
+}
+
+void ct_search_reset(ct_search *s)
+{
+    if (s && s->algo_free && s->algo_state)
+        s->algo_free(s->algo_state);
+    if (s) {
+        s->algo_state = NULL;
+        s->algo_free = NULL;
+        s->algo_memory = NULL;
+    }
+}
+
+void ct_search_destroy(ct_search *s)
+{
+    if (!s)
+        return;
+    ct_search_reset(s);
+    cti_collect_free(&s->col);
+    free(s);
+}
+
+size_t ct_search_memory(const ct_search *s)
+{
+    if (!s)
+        return 0;
+    size_t b = cti_collect_memory(&s->col);
+    if (s->algo_memory && s->algo_state)
+        b += s->algo_memory(s->algo_state);
+    return b;
+}
+
+static int check_input(const ct_search_input *in)
+{
+    if (!in || in->nnode < 0 || in->nsec < 0 || in->nseg < 0)
+        return CT_ERR_ARG;
+    if ((in->nnode > 0 && (!in->x || !in->y || !in->z)) || (in->nsec > 0 && !in->sec) ||
+        (in->nseg > 0 && (!in->n1 || !in->n2 || !in->n3 || !in->n4)))
+        return CT_ERR_ARG;
+    if (!(in->gap >= 0) || !(in->margin >= 0) || !isfinite((double)(in->gap + in->margin)))
+        return CT_ERR_ARG;
+    return CT_OK;
+}
+
+int ct_search_run(ct_search *s, const ct_search_input *in, ct_pairs *out)
+{
+    if (!s || !out)
+        return CT_ERR_ARG;
+    int rc = check_input(in);
+    if (rc)
+        return rc;
+    switch (s->p.algo) {
+    case CT_SEARCH_DIRECT: return cti_search_direct(s, in, out);
+    case CT_SEARCH_TOPO: return cti_search_topo(s, in, out);
+    case CT_SEARCH_BUCKET: return cti_search_bucket(s, in, out);
+    case CT_SEARCH_BSP: return cti_search_bsp(s, in, out);
+    default: return CT_ERR_ARG;
+    }
+}
+
+/* Every secondary node against every segment: O(nsec * nseg). Threads take
+ * contiguous blocks of secondary nodes; the collector restores the order. */
+int cti_search_direct(ct_search *s, const ct_search_input *in, ct_pairs *out)
+{
+    cti_collect *c = &s->col;
+    int rc = cti_collect_begin(c, in->nsec);
+    if (rc)
+        return rc;
+    const ct_real d = in->gap + in->margin;
+#pragma omp parallel
+    {
+        int t = cti_thread_id();
+#pragma omp for schedule(dynamic, 64)
+        for (ct_idx i = 0; i < in->nsec; i++) {
+            ct_idx node = in->sec[i];
+            size_t start = c->len[t];
+            for (ct_idx j = 0; j < in->nseg; j++) {
+                if (cti_pair_test(in->x, in->y, in->z, node, in->n1[j], in->n2[j], in->n3[j],
+                                  in->n4[j], d, in->self) &&
+                    cti_collect_push(c, t, j) != CT_OK)
+                    break;
+            }
+            cti_collect_mark(c, t, i, start);
+        }
+    }
+    return cti_collect_finish(c, in->sec, out);
+}
+
+int ct_resort_needed(ct_idx nsec, const ct_idx *sec, ct_idx nmain, const ct_idx *main_nodes,
+                     const ct_real *x0, const ct_real *y0, const ct_real *z0, const ct_real *x,
+                     const ct_real *y, const ct_real *z, ct_real margin, ct_real *bound)
+{
+    ct_real ms = 0, mm = 0;
+#pragma omp parallel for schedule(static) reduction(max : ms)
+    for (ct_idx i = 0; i < nsec; i++) {
+        ct_idx k = sec[i];
+        ct_real dx = x[k] - x0[k], dy = y[k] - y0[k], dz = z[k] - z0[k];
+        ct_real d2 = dx * dx + dy * dy + dz * dz;
+        /* NaN compares false: a NaN displacement forces a re-sort. */
+        ms = (d2 > ms || d2 != d2) ? (d2 != d2 ? CTI_HUGE : d2) : ms;
+    }
+#pragma omp parallel for schedule(static) reduction(max : mm)
+    for (ct_idx i = 0; i < nmain; i++) {
+        ct_idx k = main_nodes[i];
+        ct_real dx = x[k] - x0[k], dy = y[k] - y0[k], dz = z[k] - z0[k];
+        ct_real d2 = dx * dx + dy * dy + dz * dz;
+        mm = (d2 > mm || d2 != d2) ? (d2 != d2 ? CTI_HUGE : d2) : mm;
+    }
+    ct_real b = CTI_SQRT(ms) + CTI_SQRT(mm);
+    if (bound)
+        *bound = b;
+    return !(b <= margin);
+}

@@ -1,0 +1,10 @@
+/* search_bsp.c -- placeholder until the bsp search lands; always fails. */
+#include "ct_internal.h"
+
+int cti_search_bsp(ct_search *s, const ct_search_input *in, ct_pairs *out)
+{
+    (void)s;
+    (void)in;
+    (void)out;
+    return CT_ERR_ARG;
+}

@@ -1,0 +1,10 @@
+/* search_topo.c -- placeholder until the topo search lands; always fails. */
+#include "ct_internal.h"
+
+int cti_search_topo(ct_search *s, const ct_search_input *in, ct_pairs *out)
+{
+    (void)s;
+    (void)in;
+    (void)out;
+    return CT_ERR_ARG;
+}
