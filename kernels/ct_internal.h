@@ -88,17 +88,28 @@ static inline void cti_load_seg(const ct_real *restrict x, const ct_real *restri
 }
 
 /* The predicate every search applies to every pair it reports, by global
- * indices. `self` excludes a node's own segments. */
-static inline int cti_pair_test(const ct_real *restrict x, const ct_real *restrict y,
-                                const ct_real *restrict z, ct_idx node, ct_idx i1,
-                                ct_idx i2, ct_idx i3, ct_idx i4, ct_real d, int self)
+ * indices. `self` excludes a node's own segments; `filter` is the input's
+ * ct_search_filter. */
+static inline int cti_pair_test_f(const ct_real *restrict x, const ct_real *restrict y,
+                                  const ct_real *restrict z, ct_idx node, ct_idx i1,
+                                  ct_idx i2, ct_idx i3, ct_idx i4, ct_real d, int self,
+                                  int filter)
 {
     if (self && (node == i1 || node == i2 || node == i3 || node == i4))
         return 0;
     ct_real p[3] = {x[node], y[node], z[node]};
     ct_real a[3], b[3], c[3], e[3];
     cti_load_seg(x, y, z, i1, i2, i3, i4, a, b, c, e);
-    return ct_pair_may_touch(p, a, b, c, e, d);
+    return filter == CT_FILTER_BOX ? ct_pair_box_near(p, a, b, c, e, d)
+                                   : ct_pair_may_touch(p, a, b, c, e, d);
+}
+
+/* The hull predicate (kept for callers that do not choose a filter). */
+static inline int cti_pair_test(const ct_real *restrict x, const ct_real *restrict y,
+                                const ct_real *restrict z, ct_idx node, ct_idx i1,
+                                ct_idx i2, ct_idx i3, ct_idx i4, ct_real d, int self)
+{
+    return cti_pair_test_f(x, y, z, node, i1, i2, i3, i4, d, self, CT_FILTER_HULL);
 }
 
 /* ---- Candidate collection ---------------------------------------------- */

@@ -2,11 +2,14 @@
  * predicate.c -- the pair predicate shared by all four searches: may node p
  * be within distance d of a segment? (See ct_search.h for the contract.)
  *
- * The test runs from cheap to exact so the common cases cost little:
+ * The hull test (CT_FILTER_HULL) runs from cheap to exact so the common
+ * cases cost little:
  *  1. the node is outside the segment's box inflated by d   -> no;
  *  2. the Euclidean distance to the segment's box exceeds d -> no;
  *  3. some corner is within d                               -> yes;
  *  4. otherwise the exact distance to the convex hull of the corners.
+ * The box test (CT_FILTER_BOX) stops after step 2: looser (a superset of
+ * the hull set) and several times cheaper.
  * Every step is a true bound of the distance to the hull, so the answer is
  * that of step 4 up to rounding, and it is the same function for every
  * search, which is what makes their pair sets identical.
@@ -94,6 +97,21 @@ static inline ct_real orient3(const ct_real a[3], const ct_real b[3], const ct_r
     sub3(ap, p, a);
     return ap[0] * (ab[1] * ac[2] - ab[2] * ac[1]) + ap[1] * (ab[2] * ac[0] - ab[0] * ac[2]) +
            ap[2] * (ab[0] * ac[1] - ab[1] * ac[0]);
+}
+
+int ct_pair_box_near(const ct_real p[3], const ct_real a[3], const ct_real b[3],
+                     const ct_real c[3], const ct_real e[3], ct_real d)
+{
+    ct_real d2 = d * d, box2 = 0;
+    for (int k = 0; k < 3; k++) {
+        ct_real lo = CTI_MIN(CTI_MIN(a[k], b[k]), CTI_MIN(c[k], e[k]));
+        ct_real hi = CTI_MAX(CTI_MAX(a[k], b[k]), CTI_MAX(c[k], e[k]));
+        if (p[k] < lo - d || p[k] > hi + d)
+            return 0;
+        ct_real ex = p[k] < lo ? lo - p[k] : (p[k] > hi ? p[k] - hi : 0);
+        box2 += ex * ex;
+    }
+    return box2 <= d2;
 }
 
 int ct_pair_may_touch(const ct_real p[3], const ct_real a[3], const ct_real b[3],

@@ -90,6 +90,8 @@ static int check_input(const ct_search_input *in)
     if ((in->nnode > 0 && (!in->x || !in->y || !in->z)) || (in->nsec > 0 && !in->sec) ||
         (in->nseg > 0 && (!in->n1 || !in->n2 || !in->n3 || !in->n4)))
         return CT_ERR_ARG;
+    if (in->filter != CT_FILTER_HULL && in->filter != CT_FILTER_BOX)
+        return CT_ERR_ARG;
     if (!(in->gap >= 0) || !(in->margin >= 0) || !isfinite((double)(in->gap + in->margin)))
         return CT_ERR_ARG;
     return CT_OK;
@@ -128,8 +130,8 @@ int cti_search_direct(ct_search *s, const ct_search_input *in, ct_pairs *out)
             ct_idx node = in->sec[i];
             size_t start = c->len[t];
             for (ct_idx j = 0; j < in->nseg; j++) {
-                if (cti_pair_test(in->x, in->y, in->z, node, in->n1[j], in->n2[j], in->n3[j],
-                                  in->n4[j], d, in->self) &&
+                if (cti_pair_test_f(in->x, in->y, in->z, node, in->n1[j], in->n2[j], in->n3[j],
+                                    in->n4[j], d, in->self, in->filter) &&
                     cti_collect_push(c, t, j) != CT_OK)
                     break;
             }
@@ -150,14 +152,14 @@ int ct_resort_needed(ct_idx nsec, const ct_idx *sec, ct_idx nmain, const ct_idx 
         ct_real dx = x[k] - x0[k], dy = y[k] - y0[k], dz = z[k] - z0[k];
         ct_real d2 = dx * dx + dy * dy + dz * dz;
         /* NaN compares false: a NaN displacement forces a re-sort. */
-        ms = (d2 > ms || d2 != d2) ? (d2 != d2 ? CTI_HUGE : d2) : ms;
+        ms = (d2 > ms || d2 != d2) ? (d2 != d2 ? (ct_real)INFINITY : d2) : ms;
     }
 #pragma omp parallel for schedule(static) reduction(max : mm)
     for (ct_idx i = 0; i < nmain; i++) {
         ct_idx k = main_nodes[i];
         ct_real dx = x[k] - x0[k], dy = y[k] - y0[k], dz = z[k] - z0[k];
         ct_real d2 = dx * dx + dy * dy + dz * dz;
-        mm = (d2 > mm || d2 != d2) ? (d2 != d2 ? CTI_HUGE : d2) : mm;
+        mm = (d2 > mm || d2 != d2) ? (d2 != d2 ? (ct_real)INFINITY : d2) : mm;
     }
     ct_real b = CTI_SQRT(ms) + CTI_SQRT(mm);
     if (bound)

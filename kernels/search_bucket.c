@@ -322,6 +322,7 @@ static int bk_scan(bk_state *st, const ct_search_input *in, const bk_grid *g, in
     const ct_real d2hi = d2 + d2 * (16 * CTI_EPS) + (ct_real)1e-30;
     const ct_idx nx = g->n[0], ny = g->n[1];
     const int self = in->self;
+    const int filter = in->filter;
     int err = 0;
     for (int t = 0; t < st->maxthr; t++)
         st->buf[4 * t].n = 0;
@@ -390,7 +391,8 @@ static int bk_scan(bk_state *st, const ct_search_input *in, const bk_grid *g, in
                                 continue;
                         }
                         ct_real p[3] = {X, Y, Z};
-                        if (!ct_pair_may_touch(p, A, B, C, E, d))
+                        if (filter == CT_FILTER_BOX ? !ct_pair_box_near(p, A, B, C, E, d)
+                                                    : !ct_pair_may_touch(p, A, B, C, E, d))
                             continue;
                         if (b.n == b.cap && bk_room(&b)) {
                             err = 1;

@@ -76,7 +76,7 @@ static double rnd(uint64_t *r)
 static ct_search_input sc_input(const scene *s, double gap, double margin, int self)
 {
     ct_search_input in = {s->nn, s->x, s->y, s->z, s->nsec, s->sec, s->ns, s->n1, s->n2,
-                          s->n3, s->n4, (ct_real)gap, (ct_real)margin, self};
+                          s->n3, s->n4, (ct_real)gap, (ct_real)margin, self, CT_FILTER_HULL};
     return in;
 }
 
