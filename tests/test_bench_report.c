@@ -1,0 +1,110 @@
+/*
+ * test_bench_report.c -- the JSON-to-Markdown script of the benchmarks
+ * (bench/report.py) on a fixed file, tests/data/bench_sample.json: a real
+ * `make bench` output (plates, 1000 and 10000 target nodes, 1 and 2
+ * threads, 3 repetitions), trimmed. The expected numbers are worked out by
+ * hand from the JSON values and written next to each check.
+ *
+ * The tests run the script with python3 from the repository's top
+ * directory (where `make test` runs them).
+ */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "test_util.h"
+
+#define REPORT "bench/report.py"
+#define SAMPLE "tests/data/bench_sample.json"
+
+/* Run `python3 bench/report.py <arg>`; returns its output (free it) and
+ * its exit status in *status. */
+static char *run_report(const char *arg, int *status)
+{
+    cr_assert(access(REPORT, R_OK) == 0,
+              "%s not found: run the tests from the repository's top directory", REPORT);
+    char cmd[512];
+    snprintf(cmd, sizeof cmd, "python3 %s %s 2>&1", REPORT, arg);
+    FILE *p = popen(cmd, "r");
+    cr_assert(p != NULL, "popen(%s) failed", cmd);
+    size_t cap = 1 << 16, len = 0;
+    char *buf = malloc(cap);
+    cr_assert(buf != NULL);
+    size_t got;
+    while ((got = fread(buf + len, 1, cap - 1 - len, p)) > 0) {
+        len += got;
+        if (len + 1 == cap) {
+            cap *= 2;
+            buf = realloc(buf, cap);
+            cr_assert(buf != NULL);
+        }
+    }
+    buf[len] = '\0';
+    int st = pclose(p);
+    *status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+    return buf;
+}
+
+static void expect_line(const char *out, const char *line)
+{
+    cr_expect(strstr(out, line) != NULL, "missing line:\n%s\nin the report:\n%s", line, out);
+}
+
+Test(bench_report, tables_from_sample)
+{
+    cr_assert(access(SAMPLE, R_OK) == 0, "%s not found", SAMPLE);
+    int status = -1;
+    char *out = run_report(SAMPLE, &status);
+    cr_assert_eq(status, 0, "report.py failed:\n%s", out);
+
+    /* Provenance: the context keys the benchmark program stores. */
+    expect_line(out, "- build: compiler=gcc 12.2.0");
+    expect_line(out, "- topology: packages=1 numa=1 cores=2 pus=2");
+    expect_line(out, "- binding: spread (2 threads: t0:PU0 t1:PU1)");
+
+    /* Per family, one row per size / numbering / threads / algorithm. By
+     * hand from the sample: direct, 1 thread, 1000: median real_time
+     * 6597055.29 ns / nsec 1024 = 6442.4 ns/node (the mean row, 11102694.6
+     * ns = 10842.5 ns/node, must not be used); bucket 278054.10 / 1024 =
+     * 271.54 ns/node; ratio 6442.44 / 271.54 = 23.73; bytes/node 36.3125
+     * and 230.65625. */
+    expect_line(out, "| 1000 | natural | 1 | direct | 6.6 ms | 6442 | 23.73 | 3008 | 36.3 | - |  |");
+    expect_line(out, "| 1000 | natural | 1 | bucket | 278 µs | 271.5 | 1.00 | 3008 | 230.7 | - |  |");
+    cr_expect(strstr(out, "10842") == NULL, "the mean was used instead of the median:\n%s", out);
+    /* 2 threads: 14855035.86 / 1024 = 14506.9; 647743.21 / 1024 = 632.56;
+     * ratio 22.93; bytes/node 44.355 and 239.30. */
+    expect_line(out, "| 1000 | natural | 2 | direct | 14.9 ms | 14507 | 22.93 | 3008 | 44.4 | - |  |");
+    expect_line(out, "| 1000 | natural | 2 | bucket | 648 µs | 632.6 | 1.00 | 3008 | 239.3 | - |  |");
+    /* A failed search is shown with its message. */
+    expect_line(out, "| 1000 | natural | 1 | topological | - | - | - | - | - | - | "
+                     "search topological: invalid argument |");
+    /* Direct skipped at 10000 (nsec = nseg = 10000), extrapolated from the
+     * 1000 run: 6597055.29 ns / (1024 * 1024) * 10^8 = 629.1 ms, i.e.
+     * 62914 ns/node. */
+    expect_line(out, "| 10000 | natural | 1 | direct | 629 ms (extrap.) | 62914 (extrap.) | - "
+                     "| - | - | - | skipped: over budget");
+    /* Bucket at 10000: 2471139.17 / 10^4 = 247.11 ns/node, 29800 pairs. */
+    expect_line(out, "| 10000 | natural | 1 | bucket | 2.47 ms | 247.1 | 1.00 | 29800 | 181.1 | - |  |");
+    /* Headline: plates at its largest measured size. */
+    expect_line(out, "## Headline: plates, 10000 nodes");
+    expect_line(out, "| natural | bucket | 1 | 2.47 ms | 247.1 | 29800 |");
+    /* Scaling exponent of bucket with 2 threads: ln(6490199.50 / 647743.21)
+     * / ln(10000 / 1024) = 1.011. */
+    expect_line(out, "| plates | bucket | 1.01 | 1024 – 10000 |");
+    /* Speed-up 1 -> 2 threads at 10000: 2471139.17 / 6490199.50 = 0.381,
+     * efficiency 0.381 / 2 = 19%. */
+    expect_line(out, "| plates | bucket | natural | 10000 | 2.47 ms | 6.49 ms | 0.38 | 19% |");
+
+    free(out);
+}
+
+Test(bench_report, missing_file_fails)
+{
+    int status = 0;
+    char *out = run_report("tests/data/no_such_file.json", &status);
+    cr_expect_neq(status, 0, "report.py accepted a missing file:\n%s", out);
+    cr_expect(strstr(out, "cannot read") != NULL, "no error message:\n%s", out);
+    free(out);
+}
