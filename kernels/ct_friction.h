@@ -1,4 +1,130 @@
-/* ct_friction.h -- part of contact.h (to be filled by its concept). */
+/*
+ * ct_friction.h -- friction laws, the tangential force with return to the
+ * Coulomb cone, the tangential filter, and per-pair history carried across
+ * re-sorts; part of contact.h (DESIGN.md section 7, seeds TYPE5, TYPE24).
+ *
+ * Conventions: v = (vx, vy, vz) is the velocity of the secondary node
+ * relative to the contact point on the main segment; the tangential force
+ * computed here acts on the secondary node (the reaction goes to the segment
+ * nodes through assembly) and opposes the slip. fn is the magnitude of the
+ * normal force (>= 0).
+ */
 #ifndef CT_FRICTION_H
 #define CT_FRICTION_H
+
+#ifdef __cplusplus
+extern "C" {
 #endif
+
+/*
+ * Friction laws mu(p, v), p the contact pressure, v the tangential slip
+ * speed (>= 0). The coefficients are coef[0] = Fric, coef[1..6] = C1..C6
+ * (the TYPE24 card). The result is clamped to mu >= 0 (NaN gives 0).
+ */
+typedef enum ct_fric_law {
+    /* mu = Fric */
+    CT_FRIC_COULOMB = 0,
+    /* Ifric 1, polynomial in pressure and speed:
+     * mu = Fric + C1 p + C2 v + C3 p v + C4 p^2 + C5 v^2 */
+    CT_FRIC_POLY = 1,
+    /* Ifric 2, Darmstad:
+     * mu = C1 e^(C2 v) p^2 + C3 e^(C4 v) p + C5 e^(C6 v) */
+    CT_FRIC_DARMSTAD = 2,
+    /* Ifric 3, Renard, C1 = mu_s, C2 = mu_d, C3 = mu_max, C4 = mu_min,
+     * C5 = Vcr1, C6 = Vcr2 (0 < C5 < C6), xi = (v - C5)/(C6 - C5):
+     *   v <= C5:      mu = C1 + (C3 - C1) (v/C5) (2 - v/C5)
+     *   C5 < v < C6:  mu = C3 + (C4 - C3) xi^2 (3 - 2 xi)
+     *   v >= C6:      mu = C2 - (C2 - C4) / (1 + (C2 - C4) (v - C6)^2)
+     * continuous: mu(C5) = C3 from both sides (v/C5 = 1, xi = 0) and
+     * mu(C6) = C4 from both sides (xi = 1; 1/(1 + 0)). */
+    CT_FRIC_RENARD = 3,
+    /* Ifric 4, exponential decay from static to dynamic friction:
+     * mu = C1 + (Fric - C1) e^(-C2 v), Fric = mu_s, C1 = mu_d, C2 = decay
+     * rate c >= 0 (per unit speed). */
+    CT_FRIC_EXPDECAY = 4,
+    CT_FRIC_NLAW
+} ct_fric_law;
+
+/* Check a law's coefficients: all finite; Renard needs 0 < C5 < C6;
+ * exponential decay needs C2 >= 0. CT_ERR_ARG (diag index: the coefficient,
+ * 0 = Fric) otherwise. */
+int ct_friction_check(int law, const ct_real coef[7], ct_diag *diag);
+
+/* mu for one (pressure, speed); negative speed is taken as its magnitude. */
+ct_real ct_friction_mu1(int law, const ct_real coef[7], ct_real pressure, ct_real speed);
+
+/* mu[k] for every pair; pressure may be NULL for laws that do not use it
+ * (Coulomb, Renard, exponential decay; taken as 0). */
+int ct_friction_mu(ct_idx npair, int law, const ct_real coef[7], const ct_real *pressure,
+                   const ct_real *speed, ct_real *mu);
+
+/*
+ * Filter coefficient alpha of F_t = alpha F_new + (1 - alpha) F_old:
+ * Ifiltr 0: 1 (no filter); 1: Xfreq; 2: 2 pi / Xfreq; 3: 2 pi Xfreq dt.
+ * alpha is kept in (0, 1]: values above 1 become 1; a value that is not
+ * positive (Xfreq <= 0, NaN) disables the filter (alpha = 1); an unknown
+ * ifiltr gives 1 too.
+ */
+ct_real ct_filter_alpha(int ifiltr, ct_real xfreq, ct_real dt);
+
+/*
+ * Tangential force with an elastic predictor and return to the cone, per
+ * pair, on the history arrays ft (in: last step's force; out: the new one):
+ *   1. the old force loses its normal component (the tangent plane turns):
+ *      F_o = F_old - (F_old . n) n;
+ *   2. tangential slip velocity v_t = v - (v . n) n and the elastic trial
+ *      F* = F_o - K_t v_t dt (the brief's F_old + K_t v_t dt with v_t the
+ *      main-relative-to-secondary velocity);
+ *   3. return: |F*| <= mu fn: stick, F = F*; else slip, F = mu fn F* / |F*|;
+ *   4. filter (alpha < 1): F = alpha F + (1 - alpha) F_o, then scaled back
+ *      into the cone if it left it (so |F| <= mu fn always).
+ * dissip[k] = |F| s with s = max(0, |F*| - mu fn) / K_t the slip of the
+ * step: the work of the slipping part (>= 0; mu fn |v_t| dt in steady
+ * sliding). Pairs with fn <= 0 (out of contact) get F = 0, dissip 0.
+ * mu (per pair) may be NULL to use mu0; kt may be NULL to use kt0; dissip
+ * may be NULL. fn, mu, kt NaN or negative count as 0 (no friction force).
+ */
+int ct_friction_step(ct_idx npair, const ct_real *nx, const ct_real *ny, const ct_real *nz,
+                     const ct_real *vx, const ct_real *vy, const ct_real *vz,
+                     const ct_real *fn, const ct_real *mu, ct_real mu0, const ct_real *kt,
+                     ct_real kt0, ct_real dt, ct_real alpha, ct_real *ftx, ct_real *fty,
+                     ct_real *ftz, ct_real *dissip);
+
+/* Total friction dissipation of a step: ct_sum_ordered(npair, dissip)
+ * (bit-identical for any thread count). */
+double ct_friction_dissipation(ct_idx npair, const ct_real *dissip);
+
+/*
+ * Match a new pair list against an old one by the key (node, seg): both
+ * lists strictly ascending by node then seg (the canonical order of the
+ * search when the secondary list is sorted; any key with that order works,
+ * e.g. the secondary position instead of the node). old_of_new[k] receives
+ * the old index of new pair k, or -1. The new list is split into blocks
+ * (one per thread); each block finds its start in the old list by binary
+ * search and merge-walks from there. CT_ERR_ARG when a list is not strictly
+ * ascending (index of the first offender in diag: new list index, or
+ * -1 - old index).
+ */
+int ct_pair_match(ct_idx nold, const ct_idx *old_node, const ct_idx *old_seg, ct_idx nnew,
+                  const ct_idx *new_node, const ct_idx *new_seg, ct_idx *old_of_new,
+                  ct_diag *diag);
+
+/* dst[k] = src[old_of_new[k]], or fill when old_of_new[k] < 0: the gather
+ * that carries any per-pair state (friction history, p_prev, fcap, p0) to
+ * the new list. src and dst must not overlap. */
+int ct_pair_remap(ct_idx nnew, const ct_idx *old_of_new, const ct_real *src, ct_real fill,
+                  ct_real *dst);
+
+/* Friction history across a re-sort: match, then remap the three force
+ * components (pairs not found start at zero). */
+int ct_friction_remap(ct_idx nold, const ct_idx *old_node, const ct_idx *old_seg,
+                      const ct_real *old_fx, const ct_real *old_fy, const ct_real *old_fz,
+                      ct_idx nnew, const ct_idx *new_node, const ct_idx *new_seg,
+                      ct_real *new_fx, ct_real *new_fy, ct_real *new_fz,
+                      ct_idx *old_of_new, ct_diag *diag);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* CT_FRICTION_H */

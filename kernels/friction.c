@@ -1,0 +1,332 @@
+/*
+ * friction.c -- friction coefficient laws, tangential force by elastic
+ * predictor and return to the Coulomb cone, the tangential filter, and the
+ * carrying of per-pair history across re-sorts (DESIGN.md section 7).
+ */
+#include "ct_internal.h"
+
+/* "omp simd" on loops that call sqrt: they vectorise only when sqrt need
+ * not set errno (-fno-math-errno, which defines __NO_MATH_ERRNO__); with
+ * errno semantics gcc and clang cannot vectorise them and clang would warn
+ * that the requested vectorisation failed. */
+#if defined(__NO_MATH_ERRNO__)
+#define CTI_SIMD_SQRT _Pragma("omp simd")
+#else
+#define CTI_SIMD_SQRT
+#endif
+
+/* Loops shorter than this run on one thread. */
+#define CTI_PAR_MIN 8192
+/* Block of new pairs one binary search serves in ct_pair_match. */
+#define CTI_MATCH_BLOCK 4096
+
+#define CTI_TWO_PI ((ct_real)6.283185307179586476925286766559)
+
+int ct_friction_check(int law, const ct_real coef[7], ct_diag *diag)
+{
+    if (law < 0 || law >= CT_FRIC_NLAW || !coef)
+        return cti_fail(diag, CT_ERR_ARG, -1, "Unknown friction law %d.", law);
+    for (int i = 0; i < 7; i++)
+        if (!(CTI_FABS(coef[i]) <= CTI_HUGE))
+            return cti_fail(diag, CT_ERR_ARG, i, "Friction coefficient %d is not finite.", i);
+    if (law == CT_FRIC_RENARD) {
+        if (!(coef[5] > 0))
+            return cti_fail(diag, CT_ERR_ARG, 5, "Renard needs C5 = Vcr1 > 0.");
+        if (!(coef[6] > coef[5]))
+            return cti_fail(diag, CT_ERR_ARG, 6, "Renard needs C6 = Vcr2 > C5 = Vcr1.");
+        if (!(coef[2] >= coef[4]))
+            return cti_fail(diag, CT_ERR_ARG, 4, "Renard needs C4 = mu_min <= C2 = mu_d.");
+    }
+    if (law == CT_FRIC_EXPDECAY && !(coef[2] >= 0))
+        return cti_fail(diag, CT_ERR_ARG, 2, "The decay rate C2 must be >= 0.");
+    return CT_OK;
+}
+
+/* The laws, written once for the scalar and the array entry points. The
+ * denominators are guarded so that unchecked coefficients give a finite
+ * value rather than a NaN. */
+static inline ct_real cti_mu(int law, const ct_real *restrict c, ct_real p, ct_real v)
+{
+    ct_real mu;
+    v = CTI_FABS(v);
+    switch (law) {
+    case CT_FRIC_COULOMB: mu = c[0]; break;
+    case CT_FRIC_POLY:
+        mu = c[0] + c[1] * p + c[2] * v + c[3] * p * v + c[4] * p * p + c[5] * v * v;
+        break;
+    case CT_FRIC_DARMSTAD:
+        mu = c[1] * CTI_EXP(c[2] * v) * p * p + c[3] * CTI_EXP(c[4] * v) * p +
+             c[5] * CTI_EXP(c[6] * v);
+        break;
+    case CT_FRIC_RENARD: {
+        ct_real v1 = c[5] > 0 ? c[5] : 1, w = c[6] - c[5];
+        w = w > 0 ? w : 1;
+        if (v <= c[5]) {
+            ct_real u = v / v1;
+            mu = c[1] + (c[3] - c[1]) * u * ((ct_real)2 - u);
+        } else if (v < c[6]) {
+            ct_real xi = (v - c[5]) / w;
+            mu = c[3] + (c[4] - c[3]) * xi * xi * ((ct_real)3 - (ct_real)2 * xi);
+        } else {
+            ct_real d = v - c[6], a = c[2] - c[4];
+            ct_real den = (ct_real)1 + a * d * d;
+            den = den > 0 ? den : 1;
+            mu = c[2] - a / den;
+        }
+        break;
+    }
+    case CT_FRIC_EXPDECAY: mu = c[1] + (c[0] - c[1]) * CTI_EXP(-c[2] * v); break;
+    default: mu = 0;
+    }
+    return mu > 0 ? mu : 0;
+}
+
+ct_real ct_friction_mu1(int law, const ct_real coef[7], ct_real pressure, ct_real speed)
+{
+    if (!coef)
+        return 0;
+    return cti_mu(law, coef, pressure, speed);
+}
+
+int ct_friction_mu(ct_idx npair, int law, const ct_real coef[7], const ct_real *pressure,
+                   const ct_real *speed, ct_real *mu)
+{
+    if (npair < 0 || !coef || !speed || !mu || law < 0 || law >= CT_FRIC_NLAW ||
+        (!pressure && (law == CT_FRIC_POLY || law == CT_FRIC_DARMSTAD)))
+        return CT_ERR_ARG;
+    ct_real c[7];
+    for (int i = 0; i < 7; i++)
+        c[i] = coef[i];
+#pragma omp parallel for schedule(static) if (npair > CTI_PAR_MIN)
+    for (ct_idx i = 0; i < npair; i++)
+        mu[i] = cti_mu(law, c, pressure ? pressure[i] : 0, speed[i]);
+    return CT_OK;
+}
+
+ct_real ct_filter_alpha(int ifiltr, ct_real xfreq, ct_real dt)
+{
+    ct_real a;
+    switch (ifiltr) {
+    case 1: a = xfreq; break;
+    case 2: a = xfreq > 0 ? CTI_TWO_PI / xfreq : 0; break;
+    case 3: a = CTI_TWO_PI * xfreq * dt; break;
+    default: a = 1;
+    }
+    if (!(a > 0))
+        return 1; /* not positive or NaN: the filter is off */
+    return a < 1 ? a : 1;
+}
+
+/* One block [i0, i1) of ct_friction_step. Inlined with constant has_*
+ * flags so that every variant is a branch-free SIMD loop. */
+static inline __attribute__((always_inline)) void
+cti_friction_block(int64_t i0, int64_t i1, const ct_real *restrict ax,
+                   const ct_real *restrict ay, const ct_real *restrict az,
+                   const ct_real *restrict ux, const ct_real *restrict uy,
+                   const ct_real *restrict uz, const ct_real *restrict f_n,
+                   const ct_real *restrict m_, ct_real mu0, const ct_real *restrict k_,
+                   ct_real kt0, ct_real dt, ct_real alpha, ct_real *restrict hx,
+                   ct_real *restrict hy, ct_real *restrict hz, ct_real *restrict od,
+                   const int has_mu, const int has_kt, const int has_d, const int filt)
+{
+    const ct_real beta = (ct_real)1 - alpha;
+CTI_SIMD_SQRT
+    for (int64_t i = i0; i < i1; i++) {
+        ct_real n0 = ax[i], n1 = ay[i], n2 = az[i];
+        ct_real f = f_n[i] > 0 ? f_n[i] : 0;
+        ct_real m = has_mu ? m_[i] : mu0;
+        m = m > 0 ? m : 0;
+        ct_real k = has_kt ? k_[i] : kt0;
+        k = k > 0 ? k : 0;
+        ct_real lim = m * f;
+        /* Old force, rotated into the current tangent plane by projection. */
+        ct_real o0 = hx[i], o1 = hy[i], o2 = hz[i];
+        ct_real on = o0 * n0 + o1 * n1 + o2 * n2;
+        o0 -= on * n0;
+        o1 -= on * n1;
+        o2 -= on * n2;
+        /* Tangential slip velocity and the elastic trial. */
+        ct_real v0 = ux[i], v1 = uy[i], v2 = uz[i];
+        ct_real vnn = v0 * n0 + v1 * n1 + v2 * n2;
+        ct_real kd = k * dt;
+        ct_real t0 = o0 - kd * (v0 - vnn * n0);
+        ct_real t1 = o1 - kd * (v1 - vnn * n1);
+        ct_real t2 = o2 - kd * (v2 - vnn * n2);
+        ct_real tt = t0 * t0 + t1 * t1 + t2 * t2;
+        /* NaN or overflow anywhere in the trial: no force (below). */
+        int fin = tt <= CTI_HUGE;
+        tt = tt > 0 ? tt : 0; /* lets the compiler drop the errno path of sqrt */
+        ct_real tn = CTI_SQRT(tt);
+        /* Return to the cone along the trial direction. */
+        /* (Divisions are unconditional, on safe denominators, so that the
+         * loop if-converts and vectorises.) */
+        ct_real den = tn > lim ? tn : lim;
+        ct_real rq = lim / (den > 0 ? den : (ct_real)1);
+        ct_real r = den > 0 ? rq : (ct_real)1;
+        ct_real g0 = r * t0, g1 = r * t1, g2 = r * t2;
+        if (filt) {
+            g0 = alpha * g0 + beta * o0;
+            g1 = alpha * g1 + beta * o1;
+            g2 = alpha * g2 + beta * o2;
+            ct_real gg = g0 * g0 + g1 * g1 + g2 * g2;
+            gg = gg > 0 ? gg : 0;
+            ct_real gn = CTI_SQRT(gg);
+            ct_real gd = gn > lim ? gn : lim;
+            ct_real sq = lim / (gd > 0 ? gd : (ct_real)1);
+            ct_real s = gd > 0 ? sq : (ct_real)1;
+            g0 *= s;
+            g1 *= s;
+            g2 *= s;
+        }
+        ct_real slip = tn - lim;
+        ct_real slq = slip / (k > 0 ? k : (ct_real)1);
+        slip = (slip > 0 && k > 0) ? slq : 0;
+        /* Out of contact, or a NaN anywhere in the trial: no force. */
+        int ok = f > 0 && fin;
+        g0 = ok ? g0 : 0;
+        g1 = ok ? g1 : 0;
+        g2 = ok ? g2 : 0;
+        hx[i] = g0;
+        hy[i] = g1;
+        hz[i] = g2;
+        if (has_d) {
+            ct_real gg = g0 * g0 + g1 * g1 + g2 * g2;
+            gg = gg > 0 ? gg : 0;
+            ct_real d = CTI_SQRT(gg) * slip;
+            od[i] = d > 0 ? d : 0;
+        }
+    }
+}
+
+/* Pairs per block of the friction loop. */
+#define CTI_FRIC_BLOCK 2048
+
+int ct_friction_step(ct_idx npair, const ct_real *nx, const ct_real *ny, const ct_real *nz,
+                     const ct_real *vx, const ct_real *vy, const ct_real *vz,
+                     const ct_real *fn, const ct_real *mu, ct_real mu0, const ct_real *kt,
+                     ct_real kt0, ct_real dt, ct_real alpha, ct_real *ftx, ct_real *fty,
+                     ct_real *ftz, ct_real *dissip)
+{
+    if (npair < 0 || !nx || !ny || !nz || !vx || !vy || !vz || !fn || !ftx || !fty || !ftz ||
+        !(dt >= 0) || !(alpha > 0 && alpha <= 1))
+        return CT_ERR_ARG;
+    const int variant = (mu != NULL) | (kt != NULL) << 1 | (dissip != NULL) << 2 |
+                        (alpha < 1) << 3;
+    const int64_t nblk = ((int64_t)npair + CTI_FRIC_BLOCK - 1) / CTI_FRIC_BLOCK;
+#pragma omp parallel for schedule(static) if (npair > CTI_PAR_MIN)
+    for (int64_t b = 0; b < nblk; b++) {
+        int64_t i0 = b * CTI_FRIC_BLOCK, i1 = i0 + CTI_FRIC_BLOCK;
+        i1 = i1 < npair ? i1 : npair;
+#define CTI_FRIC_CASE(V)                                                                   \
+    case V:                                                                                \
+        cti_friction_block(i0, i1, nx, ny, nz, vx, vy, vz, fn, mu, mu0, kt, kt0, dt, alpha, \
+                           ftx, fty, ftz, dissip, (V)&1, ((V) >> 1) & 1, ((V) >> 2) & 1,    \
+                           ((V) >> 3) & 1);                                                \
+        break;
+        switch (variant) {
+            CTI_FRIC_CASE(0) CTI_FRIC_CASE(1) CTI_FRIC_CASE(2) CTI_FRIC_CASE(3)
+            CTI_FRIC_CASE(4) CTI_FRIC_CASE(5) CTI_FRIC_CASE(6) CTI_FRIC_CASE(7)
+            CTI_FRIC_CASE(8) CTI_FRIC_CASE(9) CTI_FRIC_CASE(10) CTI_FRIC_CASE(11)
+            CTI_FRIC_CASE(12) CTI_FRIC_CASE(13) CTI_FRIC_CASE(14) CTI_FRIC_CASE(15)
+        }
+#undef CTI_FRIC_CASE
+    }
+    return CT_OK;
+}
+
+double ct_friction_dissipation(ct_idx npair, const ct_real *dissip)
+{
+    return ct_sum_ordered(npair, dissip);
+}
+
+/* One ordered 64-bit key per (node, seg): node major, seg minor (seg is
+ * shifted so that negative values keep their order). */
+static inline int64_t cti_key(ct_idx node, ct_idx seg)
+{
+    return (int64_t)node * ((int64_t)1 << 32) + ((int64_t)seg + ((int64_t)1 << 31));
+}
+
+int ct_pair_match(ct_idx nold, const ct_idx *old_node, const ct_idx *old_seg, ct_idx nnew,
+                  const ct_idx *new_node, const ct_idx *new_seg, ct_idx *old_of_new,
+                  ct_diag *diag)
+{
+    if (nold < 0 || nnew < 0 || (nold > 0 && (!old_node || !old_seg)) ||
+        (nnew > 0 && (!new_node || !new_seg || !old_of_new)))
+        return cti_fail(diag, CT_ERR_ARG, -1, "Bad pair match arguments.");
+    /* Both lists must be strictly ascending (min-reductions: the first
+     * offender, whatever the thread count). */
+    ct_idx bad_old = nold, bad_new = nnew;
+#pragma omp parallel for schedule(static) reduction(min : bad_old) if (nold > CTI_PAR_MIN)
+    for (ct_idx i = 1; i < nold; i++)
+        if (!(cti_key(old_node[i - 1], old_seg[i - 1]) < cti_key(old_node[i], old_seg[i])))
+            bad_old = i < bad_old ? i : bad_old;
+#pragma omp parallel for schedule(static) reduction(min : bad_new) if (nnew > CTI_PAR_MIN)
+    for (ct_idx i = 1; i < nnew; i++)
+        if (!(cti_key(new_node[i - 1], new_seg[i - 1]) < cti_key(new_node[i], new_seg[i])))
+            bad_new = i < bad_new ? i : bad_new;
+    if (bad_new < nnew)
+        return cti_fail(diag, CT_ERR_ARG, bad_new,
+                        "New pair %ld is not above the previous one in (node, seg) order.",
+                        (long)bad_new);
+    if (bad_old < nold)
+        return cti_fail(diag, CT_ERR_ARG, -1 - (int64_t)bad_old,
+                        "Old pair %ld is not above the previous one in (node, seg) order.",
+                        (long)bad_old);
+    ct_idx nblock = (ct_idx)(((int64_t)nnew + CTI_MATCH_BLOCK - 1) / CTI_MATCH_BLOCK);
+#pragma omp parallel for schedule(static) if (nblock > 1)
+    for (ct_idx b = 0; b < nblock; b++) {
+        int64_t k0 = (int64_t)b * CTI_MATCH_BLOCK, k1 = k0 + CTI_MATCH_BLOCK;
+        k1 = k1 < nnew ? k1 : nnew;
+        /* Lower bound of the block's first key in the old list. */
+        int64_t first = cti_key(new_node[k0], new_seg[k0]);
+        ct_idx lo = 0, hi = nold;
+        while (lo < hi) {
+            ct_idx mid = lo + (hi - lo) / 2;
+            if (cti_key(old_node[mid], old_seg[mid]) < first)
+                lo = mid + 1;
+            else
+                hi = mid;
+        }
+        ct_idx j = lo;
+        for (int64_t k = k0; k < k1; k++) {
+            int64_t key = cti_key(new_node[k], new_seg[k]);
+            while (j < nold && cti_key(old_node[j], old_seg[j]) < key)
+                j++;
+            old_of_new[k] = (j < nold && cti_key(old_node[j], old_seg[j]) == key) ? j : -1;
+        }
+    }
+    return CT_OK;
+}
+
+int ct_pair_remap(ct_idx nnew, const ct_idx *old_of_new, const ct_real *src, ct_real fill,
+                  ct_real *dst)
+{
+    if (nnew < 0 || (nnew > 0 && (!old_of_new || !dst)))
+        return CT_ERR_ARG;
+    const ct_idx *restrict map = old_of_new;
+    const ct_real *restrict s = src;
+    ct_real *restrict d = dst;
+#pragma omp parallel for schedule(static) if (nnew > CTI_PAR_MIN)
+    for (ct_idx k = 0; k < nnew; k++)
+        d[k] = (map[k] >= 0 && s) ? s[map[k]] : fill;
+    return CT_OK;
+}
+
+int ct_friction_remap(ct_idx nold, const ct_idx *old_node, const ct_idx *old_seg,
+                      const ct_real *old_fx, const ct_real *old_fy, const ct_real *old_fz,
+                      ct_idx nnew, const ct_idx *new_node, const ct_idx *new_seg,
+                      ct_real *new_fx, ct_real *new_fy, ct_real *new_fz,
+                      ct_idx *old_of_new, ct_diag *diag)
+{
+    if (nold > 0 && (!old_fx || !old_fy || !old_fz))
+        return cti_fail(diag, CT_ERR_ARG, -1, "Missing old friction history.");
+    if (nnew > 0 && (!new_fx || !new_fy || !new_fz))
+        return cti_fail(diag, CT_ERR_ARG, -1, "Missing new friction history.");
+    int rc = ct_pair_match(nold, old_node, old_seg, nnew, new_node, new_seg, old_of_new, diag);
+    if (rc != CT_OK)
+        return rc;
+    ct_pair_remap(nnew, old_of_new, old_fx, 0, new_fx);
+    ct_pair_remap(nnew, old_of_new, old_fy, 0, new_fy);
+    ct_pair_remap(nnew, old_of_new, old_fz, 0, new_fz);
+    return CT_OK;
+}

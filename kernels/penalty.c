@@ -1,0 +1,424 @@
+/*
+ * penalty.c -- normal contact force laws: linear penalty with TYPE24
+ * stiffness blending and initial-penetration handling, the TYPE7 nonlinear
+ * law, the TYPE6 user curve, normal damping, and the fused linear fast path
+ * (DESIGN.md section 7). The formulas are documented in ct_force.h.
+ */
+#include "ct_internal.h"
+
+/* "omp simd" on loops that call sqrt: they vectorise only when sqrt need
+ * not set errno (-fno-math-errno, which defines __NO_MATH_ERRNO__); with
+ * errno semantics gcc and clang cannot vectorise them and clang would warn
+ * that the requested vectorisation failed. */
+#if defined(__NO_MATH_ERRNO__)
+#define CTI_SIMD_SQRT _Pragma("omp simd")
+#else
+#define CTI_SIMD_SQRT
+#endif
+
+/* Loops shorter than this run on one thread. */
+#define CTI_PAR_MIN 8192
+
+/* Blocks of the deterministic sums (fixed: the order depends on n only). */
+#define CTI_SUM_BLOCKS 64
+
+static double cti_sum_blocks(ct_idx n, const ct_real *restrict a, int positive_only)
+{
+    double part[CTI_SUM_BLOCKS];
+#pragma omp parallel for schedule(static) if (n > CTI_PAR_MIN)
+    for (int b = 0; b < CTI_SUM_BLOCKS; b++) {
+        int64_t lo = (int64_t)n * b / CTI_SUM_BLOCKS, hi = (int64_t)n * (b + 1) / CTI_SUM_BLOCKS;
+        double s = 0;
+        /* The vector reduction order is fixed by the compiled code, not by
+         * the thread count. */
+        if (positive_only) {
+#pragma omp simd reduction(+ : s)
+            for (int64_t i = lo; i < hi; i++)
+                s += a[i] > 0 ? (double)a[i] : 0.0;
+        } else {
+#pragma omp simd reduction(+ : s)
+            for (int64_t i = lo; i < hi; i++)
+                s += (double)a[i];
+        }
+        part[b] = s;
+    }
+    double s = 0;
+    for (int b = 0; b < CTI_SUM_BLOCKS; b++)
+        s += part[b];
+    return s;
+}
+
+double ct_sum_ordered(ct_idx n, const ct_real *a)
+{
+    if (n <= 0 || !a)
+        return 0;
+    return cti_sum_blocks(n, a, 0);
+}
+
+/* ---- Linear law with blending and initial penetration ------------------- */
+
+/* The blended law with cap Fc >= 0 set at the jump penetration qj
+ * (ct_force.h): F = K q up to qc = Fc/K, then Fc up to qj, then
+ * Fc + K (q - qj). Force and stored energy at q >= 0, K > 0; c < 0 means
+ * not blended (F = K q). */
+static inline void cti_blend_law(ct_real q, ct_real K, ct_real c, ct_real qj, ct_real *f,
+                                 ct_real *e)
+{
+    ct_real lin_f = K * q, lin_e = (ct_real)0.5 * K * q * q;
+    ct_real qc = c / K;
+    ct_real ej = c * qj - c * qc * (ct_real)0.5; /* E(qj) = Fc qj - Fc^2/(2K) */
+    ct_real dq = q - qj;
+    if (c < 0 || q <= qc) {
+        *f = lin_f;
+        *e = lin_e;
+    } else if (dq <= 0) {
+        *f = c;
+        *e = c * q - c * qc * (ct_real)0.5;
+    } else {
+        *f = c + K * dq;
+        *e = ej + c * dq + (ct_real)0.5 * K * dq * dq;
+    }
+}
+
+int ct_penalty_linear(ct_idx npair, const ct_real *p, const ct_real *vn, const ct_real *K,
+                      ct_real dt, ct_real *p0, ct_real *p_prev, ct_real *fcap,
+                      ct_real *qjump, ct_real *fel, ct_real *energy)
+{
+    int blend = p_prev != NULL;
+    if (npair < 0 || !p || !K || !fel || (!p_prev) != (!fcap) || (!p_prev) != (!qjump) ||
+        (blend && !vn) || !(dt >= 0))
+        return CT_ERR_ARG;
+    const ct_real *restrict pp_ = p, *restrict v = vn, *restrict kk_ = K;
+    ct_real *restrict q0 = p0, *restrict pprev = p_prev, *restrict fc = fcap,
+                      *restrict qj_ = qjump, *restrict f = fel, *restrict en = energy;
+#pragma omp parallel for schedule(static) if (npair > CTI_PAR_MIN)
+    for (ct_idx i = 0; i < npair; i++) {
+        ct_real kk = kk_[i] > 0 ? kk_[i] : 0; /* NaN or negative: no force */
+        ct_real q = pp_[i] > 0 ? pp_[i] : 0;
+        if (q0) {
+            /* Inacti "subtract": p0 = min(p0, p), force on p - p0. */
+            ct_real a = q0[i] < q ? q0[i] : q;
+            a = a > 0 ? a : 0;
+            q0[i] = a;
+            q -= a;
+        }
+        ct_real fi = kk * q, ei = (ct_real)0.5 * kk * q * q;
+        if (blend) {
+            ct_real c = fc[i], qj = qj_[i], prev = pprev[i] > 0 ? pprev[i] : 0;
+            ct_real d = CTI_FABS(v[i]) * dt;
+            d = d > 0 ? d : 0;
+            if (q > 0 && kk > 0) {
+                if (q - prev > (ct_real)CT_BLEND_SLACK * d) {
+                    /* A jump: the stored energy may not exceed what the law
+                     * held at the motion-explained penetration prev + d. */
+                    ct_real fa, ea;
+                    cti_blend_law(prev + d, kk, c, qj, &fa, &ea);
+                    ct_real rest = q * q - (ct_real)2 * ea / kk;
+                    if (rest > 0) {
+                        c = (ct_real)2 * ea / (q + CTI_SQRT(rest));
+                        qj = q;
+                    } else {
+                        c = CT_BLEND_NONE;
+                    }
+                }
+                if (c >= 0 && kk * q <= c)
+                    c = CT_BLEND_NONE; /* back on the linear branch */
+            } else {
+                c = CT_BLEND_NONE; /* separated: the full stiffness returns */
+            }
+            if (c >= 0)
+                cti_blend_law(q, kk, c, qj, &fi, &ei);
+            fc[i] = c;
+            qj_[i] = c >= 0 ? qj : 0;
+            pprev[i] = q;
+        }
+        f[i] = fi;
+        if (en)
+            en[i] = ei;
+    }
+    return CT_OK;
+}
+
+int ct_initial_penetration(ct_idx npair, int mode, const ct_real *p_init, ct_real pen_max,
+                           ct_real *p0, int32_t *active)
+{
+    if (npair < 0 || !p_init || !p0 || !active ||
+        (mode != CT_INACTI_IGNORE && mode != CT_INACTI_SUBTRACT))
+        return CT_ERR_ARG;
+    int ndead = 0;
+#pragma omp parallel for schedule(static) reduction(+ : ndead) if (npair > CTI_PAR_MIN)
+    for (ct_idx i = 0; i < npair; i++) {
+        ct_real q = p_init[i] > 0 ? p_init[i] : 0;
+        int dead = pen_max > 0 && q > pen_max;
+        active[i] = !dead;
+        p0[i] = (mode == CT_INACTI_SUBTRACT && !dead) ? q : 0;
+        ndead += dead;
+    }
+    return ndead;
+}
+
+/* ---- TYPE7 ---------------------------------------------------------------- */
+
+/* r - 1 - ln r with r = 1 - x, 0 <= x < 1: the series sum_{n>=2} x^n/n for
+ * small x (the closed form cancels there), -x - log1p(-x) otherwise. */
+static inline ct_real cti_type7_phi(ct_real x)
+{
+    if (x < (ct_real)(1.0 / 32)) {
+        ct_real s = (ct_real)(1.0 / 15);
+        for (int k = 14; k >= 2; k--)
+            s = (ct_real)1 / (ct_real)k + x * s;
+        return x * x * s;
+    }
+    return -x - CTI_LOG1P(-x);
+}
+
+ct_real ct_type7_energy(ct_real K0, ct_real g, ct_real p)
+{
+    if (!(K0 > 0) || !(g > 0) || !(p > 0) || !(g <= CTI_HUGE) || !(K0 <= CTI_HUGE))
+        return 0;
+    ct_real x = p / g, xc = (ct_real)1 - (ct_real)CT_TYPE7_RMIN;
+    if (x < xc)
+        return K0 * g * g * cti_type7_phi(x);
+    ct_real fmax = K0 * g * xc / (ct_real)CT_TYPE7_RMIN;
+    ct_real xe = x < 1 ? x : 1;
+    return K0 * g * g * cti_type7_phi(xc) + fmax * g * (xe - xc);
+}
+
+int ct_penalty_type7(ct_idx npair, const ct_real *p, const ct_real *g, const ct_real *K0,
+                     ct_real *fel, ct_real *ktan, ct_real *energy, int32_t *flag)
+{
+    if (npair < 0 || !p || !g || !K0 || !fel)
+        return CT_ERR_ARG;
+    const ct_real xc = (ct_real)1 - (ct_real)CT_TYPE7_RMIN;
+#pragma omp parallel for schedule(static) if (npair > CTI_PAR_MIN)
+    for (ct_idx i = 0; i < npair; i++) {
+        ct_real gi = g[i], k0 = K0[i], q = p[i];
+        int valid = gi > 0 && k0 > 0 && q > 0 && gi < (ct_real)INFINITY &&
+                    k0 < (ct_real)INFINITY;
+        ct_real gs = valid ? gi : 1, ks = valid ? k0 : 0;
+        ct_real x = valid ? q / gs : 0;
+        int dead = x >= xc;
+        ct_real xs = dead ? xc : x, r = (ct_real)1 - xs;
+        ct_real f = ks * gs * xs / r;
+        ct_real e = ks * gs * gs * cti_type7_phi(xs);
+        if (dead)
+            e += f * gs * ((x < 1 ? x : 1) - xc);
+        fel[i] = f;
+        if (ktan)
+            ktan[i] = ks / (r * r);
+        if (energy)
+            energy[i] = e;
+        if (flag)
+            flag[i] = dead;
+    }
+    return CT_OK;
+}
+
+/* ---- TYPE6 user curve ----------------------------------------------------- */
+
+int ct_curve_check(ct_idx n, const ct_real *x, const ct_real *y, ct_diag *diag)
+{
+    if (!x || !y || n < 2)
+        return cti_fail(diag, CT_ERR_ARG, -1, "A curve needs at least 2 points (it has %ld).",
+                        (long)n);
+    for (ct_idx i = 0; i < n; i++) {
+        if (!(CTI_FABS(x[i]) <= CTI_HUGE) || !(CTI_FABS(y[i]) <= CTI_HUGE))
+            return cti_fail(diag, CT_ERR_ARG, i, "Curve point %ld is not finite.", (long)i);
+        if (i > 0 && !(x[i] > x[i - 1]))
+            return cti_fail(diag, CT_ERR_ARG, i,
+                            "Curve abscissa %ld is not above the previous one.", (long)i);
+    }
+    return CT_OK;
+}
+
+ct_real ct_curve_eval(ct_idx n, const ct_real *x, const ct_real *y, ct_real p,
+                      ct_real *slope)
+{
+    if (p != p || n < 2) {
+        if (slope)
+            *slope = 0;
+        return 0;
+    }
+    /* The interval [x[lo], x[lo+1]] with x[lo] <= p < x[lo+1], clamped to
+     * the first and last intervals (extrapolation). */
+    ct_idx lo = 0, hi = n - 1;
+    while (hi - lo > 1) {
+        ct_idx mid = lo + (hi - lo) / 2;
+        if (p >= x[mid])
+            lo = mid;
+        else
+            hi = mid;
+    }
+    ct_real s = (y[lo + 1] - y[lo]) / (x[lo + 1] - x[lo]);
+    if (slope)
+        *slope = s;
+    return y[lo] + s * (p - x[lo]);
+}
+
+int ct_penalty_type6(ct_idx npair, const ct_real *p, ct_idx ncurve, const ct_real *cx,
+                     const ct_real *cy, ct_real *fel, ct_real *pmax, ct_real *ftotal,
+                     ct_real *kcurve, ct_diag *diag)
+{
+    if (npair < 0 || !p || !fel)
+        return cti_fail(diag, CT_ERR_ARG, -1, "Bad TYPE6 arguments.");
+    int rc = ct_curve_check(ncurve, cx, cy, diag);
+    if (rc != CT_OK)
+        return rc;
+    ct_real pm = 0;
+#pragma omp parallel for schedule(static) reduction(max : pm) if (npair > CTI_PAR_MIN)
+    for (ct_idx i = 0; i < npair; i++)
+        pm = p[i] > pm ? p[i] : pm; /* NaN compares false: ignored */
+    ct_real slope = 0, F = 0, kc = 0;
+    if (pm > 0) {
+        F = ct_curve_eval(ncurve, cx, cy, pm, &slope);
+        F = F > 0 ? F : 0;
+        ct_real sec = F / pm;
+        kc = slope > sec ? slope : sec;
+    }
+    double sum = npair > 0 ? cti_sum_blocks(npair, p, 1) : 0;
+    ct_real scale = sum > 0 ? (ct_real)((double)F / sum) : 0;
+#pragma omp parallel for simd schedule(static) if (npair > CTI_PAR_MIN)
+    for (ct_idx i = 0; i < npair; i++)
+        fel[i] = p[i] > 0 ? scale * p[i] : 0;
+    if (pmax)
+        *pmax = pm;
+    if (ftotal)
+        *ftotal = F;
+    if (kcurve)
+        *kcurve = kc;
+    return CT_OK;
+}
+
+/* ---- Damping and the force vector ----------------------------------------- */
+
+static inline ct_real cti_reduced_mass(ct_real ms, ct_real mm)
+{
+    /* Without a segment mass, ms / (1 + ms/inf) = ms (branch-free). */
+    ct_real m2 = mm > 0 ? mm : (ct_real)INFINITY;
+    return ms / ((ct_real)1 + ms / m2);
+}
+
+ct_real ct_damping_coef(ct_real viss, ct_real K, ct_real ms, ct_real mm)
+{
+    ct_real m = cti_reduced_mass(ms, mm);
+    ct_real a = (ct_real)2 * K * m;
+    return (viss > 0 && a > 0) ? viss * CTI_SQRT(a) : 0;
+}
+
+int ct_normal_finish(ct_idx npair, const ct_real *p, const ct_real *fel, const ct_real *kd,
+                     const ct_real *vn, const ct_real *ms, const ct_real *mm, ct_real viss,
+                     ct_real dt, const ct_real *nx, const ct_real *ny, const ct_real *nz,
+                     ct_real *fn, ct_real *fx, ct_real *fy, ct_real *fz, ct_real *dissip)
+{
+    if (npair < 0 || !p || !fel || !kd || !vn || !ms || !nx || !ny || !nz || !fx || !fy ||
+        !fz || !(dt >= 0))
+        return CT_ERR_ARG;
+    const ct_real *restrict pp = p, *restrict fe_ = fel, *restrict k = kd, *restrict v = vn,
+                            *restrict m1 = ms, *restrict m2 = mm, *restrict ax = nx,
+                            *restrict ay = ny, *restrict az = nz;
+    ct_real *restrict ofn = fn, *restrict ox = fx, *restrict oy = fy, *restrict oz = fz,
+                      *restrict od = dissip;
+    const ct_real vs = viss > 0 ? viss : 0;
+#pragma omp parallel for schedule(static) if (npair > CTI_PAR_MIN)
+    for (ct_idx i = 0; i < npair; i++) {
+        int in = pp[i] > 0;
+        ct_real fe = fe_[i] > 0 ? fe_[i] : 0;
+        ct_real m = m2 ? cti_reduced_mass(m1[i], m2[i]) : m1[i];
+        ct_real a = (ct_real)2 * k[i] * m;
+        a = a > 0 ? a : 0;
+        ct_real c = vs * CTI_SQRT(a);
+        ct_real ft = fe - c * v[i];
+        ft = ft > 0 ? ft : 0;
+        ft = in ? ft : 0;
+        fe = in ? fe : 0;
+        ct_real d = (fe - ft) * v[i] * dt;
+        d = d > 0 ? d : 0;
+        if (ofn)
+            ofn[i] = ft;
+        ox[i] = ft * ax[i];
+        oy[i] = ft * ay[i];
+        oz[i] = ft * az[i];
+        if (od)
+            od[i] = d;
+    }
+    return CT_OK;
+}
+
+/* One block [i0, i1) of ct_normal_force, inlined with constant has_* flags
+ * so that every variant is a branch-free SIMD loop. */
+static inline __attribute__((always_inline)) void
+cti_normal_block(int64_t i0, int64_t i1, const ct_real *restrict pp,
+                 const ct_real *restrict ax, const ct_real *restrict ay,
+                 const ct_real *restrict az, const ct_real *restrict v,
+                 const ct_real *restrict kk, ct_real K0, const ct_real *restrict m1,
+                 const ct_real *restrict m2, ct_real vs, ct_real dt, ct_real *restrict ox,
+                 ct_real *restrict oy, ct_real *restrict oz, ct_real *restrict ofn,
+                 ct_real *restrict oe, ct_real *restrict od, const int has_k,
+                 const int has_mm, const int has_fn, const int has_e, const int has_d)
+{
+CTI_SIMD_SQRT
+    for (int64_t i = i0; i < i1; i++) {
+        ct_real q = pp[i] > 0 ? pp[i] : 0;
+        ct_real k = has_k ? kk[i] : K0;
+        k = k > 0 ? k : 0;
+        ct_real fe = k * q;
+        ct_real m = has_mm ? cti_reduced_mass(m1[i], m2[i]) : m1[i];
+        ct_real a = (ct_real)2 * k * m;
+        a = a > 0 ? a : 0;
+        ct_real c = vs * CTI_SQRT(a);
+        ct_real ft = fe - c * v[i];
+        ft = (ft > 0 && q > 0) ? ft : 0;
+        ox[i] = ft * ax[i];
+        oy[i] = ft * ay[i];
+        oz[i] = ft * az[i];
+        if (has_fn)
+            ofn[i] = ft;
+        if (has_e)
+            oe[i] = (ct_real)0.5 * fe * q;
+        if (has_d) {
+            ct_real d = (fe - ft) * v[i] * dt;
+            od[i] = d > 0 ? d : 0;
+        }
+    }
+}
+
+/* Pairs per block of the fused normal-force loop. */
+#define CTI_NORMAL_BLOCK 2048
+
+int ct_normal_force(ct_idx npair, const ct_real *p, const ct_real *nx, const ct_real *ny,
+                    const ct_real *nz, const ct_real *vn, const ct_real *K, ct_real K0,
+                    const ct_real *ms, const ct_real *mm, ct_real viss, ct_real dt,
+                    ct_real *fx, ct_real *fy, ct_real *fz, ct_real *fn, ct_real *energy,
+                    ct_real *dissip)
+{
+    if (npair < 0 || !p || !nx || !ny || !nz || !vn || !ms || !fx || !fy || !fz ||
+        !(dt >= 0))
+        return CT_ERR_ARG;
+    const ct_real vs = viss > 0 ? viss : 0;
+    const int variant = (K != NULL) | (mm != NULL) << 1 | (fn != NULL) << 2 |
+                        (energy != NULL) << 3 | (dissip != NULL) << 4;
+    const int64_t nblk = ((int64_t)npair + CTI_NORMAL_BLOCK - 1) / CTI_NORMAL_BLOCK;
+#pragma omp parallel for schedule(static) if (npair > CTI_PAR_MIN)
+    for (int64_t b = 0; b < nblk; b++) {
+        int64_t i0 = b * CTI_NORMAL_BLOCK, i1 = i0 + CTI_NORMAL_BLOCK;
+        i1 = i1 < npair ? i1 : npair;
+#define CTI_NF_CASE(V)                                                                     \
+    case V:                                                                                \
+        cti_normal_block(i0, i1, p, nx, ny, nz, vn, K, K0, ms, mm, vs, dt, fx, fy, fz, fn,  \
+                         energy, dissip, (V)&1, ((V) >> 1) & 1, ((V) >> 2) & 1,             \
+                         ((V) >> 3) & 1, ((V) >> 4) & 1);                                  \
+        break;
+        switch (variant) {
+            CTI_NF_CASE(0) CTI_NF_CASE(1) CTI_NF_CASE(2) CTI_NF_CASE(3)
+            CTI_NF_CASE(4) CTI_NF_CASE(5) CTI_NF_CASE(6) CTI_NF_CASE(7)
+            CTI_NF_CASE(8) CTI_NF_CASE(9) CTI_NF_CASE(10) CTI_NF_CASE(11)
+            CTI_NF_CASE(12) CTI_NF_CASE(13) CTI_NF_CASE(14) CTI_NF_CASE(15)
+            CTI_NF_CASE(16) CTI_NF_CASE(17) CTI_NF_CASE(18) CTI_NF_CASE(19)
+            CTI_NF_CASE(20) CTI_NF_CASE(21) CTI_NF_CASE(22) CTI_NF_CASE(23)
+            CTI_NF_CASE(24) CTI_NF_CASE(25) CTI_NF_CASE(26) CTI_NF_CASE(27)
+            CTI_NF_CASE(28) CTI_NF_CASE(29) CTI_NF_CASE(30) CTI_NF_CASE(31)
+        }
+#undef CTI_NF_CASE
+    }
+    return CT_OK;
+}

@@ -1,0 +1,102 @@
+/*
+ * test_timestep.c -- contact time steps against hand values; minimum and
+ * its index (ties: the smallest index) for 1 and 2 threads.
+ */
+#include "test_util.h"
+
+#define TOL CTT_TOL(1e-14, 1e-6)
+
+Test(timestep, nodal_hand_values)
+{
+    /* sqrt(2 m/(K_elem + K_contact)): m = 2, 100 + 300: sqrt(4/400) = 0.1;
+     * m = 1, TYPE7 tangent at p = g/2 (K0 = 100: K0/r^2 = 400), no element:
+     * sqrt(2/400) = 0.07071067811865475; entry 2 has no stiffness: no limit. */
+    ct_real m[3] = {2, 1, 5}, ke[3] = {100, 0, 0};
+    ct_real kc[3] = {300, ct_type7_tangent(100, 1, 0.5), 0}, dt[3], dmin;
+    ct_idx imin;
+    cr_assert_eq(ct_dt_nodal(3, NULL, m, ke, kc, dt, &dmin, &imin), CT_OK);
+    cr_assert_leq(ctt_rel(dt[0], 0.1), TOL);
+    cr_assert_leq(ctt_rel(dt[1], 0.07071067811865475), TOL);
+    cr_assert_eq(dt[2], CT_DT_NONE);
+    cr_assert_eq(imin, 1);
+    cr_assert_eq(dmin, dt[1]);
+    /* Per pair through node indices: pairs on nodes 0, 0, 2 with contact
+     * stiffness 300, 700, 10: sqrt(4/400) = 0.1, sqrt(4/800) =
+     * 0.07071067811865475, sqrt(10/10) = 1. */
+    ct_idx idx[3] = {0, 0, 2};
+    ct_real kp[3] = {300, 700, 10};
+    cr_assert_eq(ct_dt_nodal(3, idx, m, ke, kp, dt, &dmin, &imin), CT_OK);
+    cr_assert_leq(ctt_rel(dt[2], 1.0), TOL);
+    cr_assert_eq(imin, 1);
+    cr_assert_leq(ctt_rel(dmin, 0.07071067811865475), TOL);
+    /* Nothing limits: CT_DT_NONE and -1. */
+    ct_real z[3] = {0, 0, 0};
+    cr_assert_eq(ct_dt_nodal(3, NULL, m, NULL, z, NULL, &dmin, &imin), CT_OK);
+    cr_assert(dmin == CT_DT_NONE && imin == -1);
+    /* NaN: error with the smallest index. */
+    ct_real kn[3] = {1, NAN, NAN};
+    cr_assert_eq(ct_dt_nodal(3, NULL, m, NULL, kn, NULL, &dmin, &imin), CT_ERR_NONFINITE);
+    cr_assert_eq(imin, 1);
+}
+
+Test(timestep, type7_kinematic_type6_tunnel)
+{
+    /* (g - p)/(2 (-vn)): g = 1, p = 0.2, vn = -2: 0.8/4 = 0.2; separating
+     * (vn = 1), out of contact (p = 0) and deactivated (p = 0.9995) set no
+     * limit; p = 0.9, vn = -0.1: 0.1/0.2 = 0.5. */
+    ct_real p[5] = {0.2, 0.2, 0, 0.9995, 0.9}, g[5] = {1, 1, 1, 1, 1};
+    ct_real vn[5] = {-2, 1, -5, -5, -0.1}, dt[5], dmin;
+    ct_idx imin;
+    cr_assert_eq(ct_dt_type7_kinematic(5, p, g, vn, dt, &dmin, &imin), CT_OK);
+    cr_assert_leq(ctt_rel(dt[0], 0.2), TOL);
+    cr_assert(dt[1] == CT_DT_NONE && dt[2] == CT_DT_NONE && dt[3] == CT_DT_NONE);
+    cr_assert_leq(ctt_rel(dt[4], 0.5), TOL);
+    cr_assert(imin == 0 && dmin == dt[0]);
+    /* TYPE6: x = {0, 1, 3}, y = {0, 10, 50}, M_min = 4. At p = 2:
+     * K = max(f' = 20, f/p = 15) = 20, 0.1 sqrt(4/20) = 0.044721359549995794;
+     * at p = 0.5: K = max(10, 10), 0.1 sqrt(0.4) = 0.06324555320336758. */
+    ct_real x[3] = {0, 1, 3}, y[3] = {0, 10, 50};
+    cr_assert_leq(ctt_rel(ct_dt_type6(4, 2, 3, x, y), 0.044721359549995794), TOL);
+    cr_assert_leq(ctt_rel(ct_dt_type6(4, 0.5, 3, x, y), 0.06324555320336758), TOL);
+    cr_assert_eq(ct_dt_type6(4, 0, 3, x, y), CT_DT_NONE);
+    /* Tunnelling: 0.9 * 0.01/3 = 0.003 (either sign of v). */
+    cr_assert_leq(ctt_rel(ct_dt_tunnel(0.01, 3), 0.003), TOL);
+    cr_assert_leq(ctt_rel(ct_dt_tunnel(0.01, -3), 0.003), TOL);
+    cr_assert_eq(ct_dt_tunnel(0.01, 0), CT_DT_NONE);
+    cr_assert_eq(ct_dt_tunnel(0, 3), CT_DT_NONE);
+}
+
+Test(timestep, minimum_index_threads_and_ties)
+{
+    const ct_idx n = ctt_checking() ? 40000 : 400000;
+    ct_real *m = malloc(n * sizeof *m), *k = malloc(n * sizeof *k);
+    for (ct_idx i = 0; i < n; i++) {
+        m[i] = (ct_real)(1 + ((int64_t)i * 7919) % 1000);
+        k[i] = 1000;
+    }
+    /* Ties: the smallest mass 1 occurs many times; the first is the answer.
+     * Plant an exact tie far apart (different threads' halves). */
+    ct_idx first = -1;
+    for (ct_idx i = 0; i < n && first < 0; i++)
+        if (m[i] == 1)
+            first = i;
+    ct_real dmin1, dmin2;
+    ct_idx i1, i2;
+    ctt_threads(1);
+    cr_assert_eq(ct_dt_nodal(n, NULL, m, NULL, k, NULL, &dmin1, &i1), CT_OK);
+    ctt_threads(2);
+    cr_assert_eq(ct_dt_nodal(n, NULL, m, NULL, k, NULL, &dmin2, &i2), CT_OK);
+    cr_assert_eq(i1, first);
+    cr_assert_eq(i2, first);
+    cr_assert_eq(dmin1, dmin2);
+    cr_assert_leq(ctt_rel(dmin1, sqrt(2.0 / 1000)), TOL);
+    /* A unique smaller one in the second half wins for both counts. */
+    m[n - 3] = 0.5;
+    ctt_threads(1);
+    ct_dt_nodal(n, NULL, m, NULL, k, NULL, &dmin1, &i1);
+    ctt_threads(2);
+    ct_dt_nodal(n, NULL, m, NULL, k, NULL, &dmin2, &i2);
+    cr_assert(i1 == n - 3 && i2 == n - 3 && dmin1 == dmin2);
+    free(m);
+    free(k);
+}
