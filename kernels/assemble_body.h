@@ -1,0 +1,122 @@
+/*
+ * assemble_body.h -- the per-pair scatter shared by the assembly variants
+ * (private to kernels/assemble*.c).
+ *
+ * Every variant computes one slot's contribution the same way: the weight
+ * times the sign (exact, the sign is +1 or -1), then that product times each
+ * force component, in separate statements so that no compiler fuses the add
+ * into a multiply-add in one variant and not in another.
+ */
+#ifndef CT_ASSEMBLE_BODY_H
+#define CT_ASSEMBLE_BODY_H
+
+#include "ct_internal.h"
+
+/*
+ * Weight modes the inner loops are specialised for (the arithmetic is the
+ * same in every mode; only the NULL tests are skipped):
+ *  0: generic, any w[s] may be NULL;
+ *  1: w[0] == NULL, the others given (node-segment pairs);
+ *  2: every w[s] given (edge-edge pairs).
+ */
+static inline int cti_asm_mode(int nslot, const ct_real *const w[])
+{
+    int given = 0;
+    for (int s = 0; s < nslot; s++)
+        given += w[s] != NULL;
+    if (given == nslot)
+        return 2;
+    if (!w[0] && given == nslot - 1)
+        return 1;
+    return 0;
+}
+
+/* The weight of slot s of pair k, sign included (exact: sign is +-1). */
+static inline __attribute__((always_inline)) ct_real
+cti_asm_weight(const ct_real *const w[], const ct_real *sign, int s, ct_idx k, const int mode)
+{
+    if (mode == 2 || (mode == 1 && s > 0))
+        return w[s][k] * sign[s];
+    if (mode == 1)
+        return sign[0];
+    return w[s] ? w[s][k] * sign[s] : sign[s];
+}
+
+/* Add pair k's contributions to its nodes, slot by slot in slot order. */
+static inline __attribute__((always_inline)) void
+cti_asm_pair(ct_idx k, const int nslot, const int mode, const ct_idx *const slot[],
+             const ct_real *const w[], const ct_real *sign, const ct_real *restrict fx,
+             const ct_real *restrict fy, const ct_real *restrict fz, ct_real *restrict fxn,
+             ct_real *restrict fyn, ct_real *restrict fzn)
+{
+    ct_real f0 = fx[k], f1 = fy[k], f2 = fz[k];
+    for (int s = 0; s < nslot; s++) {
+        ct_idx n = slot[s][k];
+        ct_real ww = cti_asm_weight(w, sign, s, k, mode);
+        ct_real cx = ww * f0, cy = ww * f1, cz = ww * f2;
+        fxn[n] += cx;
+        fyn[n] += cy;
+        fzn[n] += cz;
+    }
+}
+
+/* Pairs lo..hi-1 in order, specialised on (nslot, mode). */
+static inline __attribute__((always_inline)) void
+cti_asm_range_k(ct_idx lo, ct_idx hi, const int nslot, const int mode,
+                const ct_idx *const slot[], const ct_real *const w[], const ct_real *sign,
+                const ct_real *restrict fx, const ct_real *restrict fy,
+                const ct_real *restrict fz, ct_real *restrict fxn, ct_real *restrict fyn,
+                ct_real *restrict fzn)
+{
+    for (ct_idx k = lo; k < hi; k++)
+        cti_asm_pair(k, nslot, mode, slot, w, sign, fx, fy, fz, fxn, fyn, fzn);
+}
+
+static inline void cti_asm_range(ct_idx lo, ct_idx hi, int nslot, int mode,
+                                 const ct_idx *const slot[], const ct_real *const w[],
+                                 const ct_real *sign, const ct_real *restrict fx,
+                                 const ct_real *restrict fy, const ct_real *restrict fz,
+                                 ct_real *restrict fxn, ct_real *restrict fyn,
+                                 ct_real *restrict fzn)
+{
+    if (nslot == 5 && mode == 1)
+        cti_asm_range_k(lo, hi, 5, 1, slot, w, sign, fx, fy, fz, fxn, fyn, fzn);
+    else if (nslot == 4 && mode == 2)
+        cti_asm_range_k(lo, hi, 4, 2, slot, w, sign, fx, fy, fz, fxn, fyn, fzn);
+    else if (nslot == 5 && mode == 2)
+        cti_asm_range_k(lo, hi, 5, 2, slot, w, sign, fx, fy, fz, fxn, fyn, fzn);
+    else
+        cti_asm_range_k(lo, hi, nslot, 0, slot, w, sign, fx, fy, fz, fxn, fyn, fzn);
+}
+
+/* Worksharing loops whose iterations never write the same node: SIMD is
+ * legal. gcc vectorises them (gathers and scatters); clang 14 cannot and
+ * would warn (an error under -Werror), so it gets the plain loop. */
+#ifdef __clang__
+#define CTI_ASM_FOR_SIMD _Pragma("omp for schedule(static)")
+#else
+#define CTI_ASM_FOR_SIMD _Pragma("omp for simd schedule(static)")
+#endif
+
+/* The size of the current team (1 outside OpenMP). */
+static inline int cti_asm_team(void)
+{
+#ifdef _OPENMP
+    return omp_get_num_threads();
+#else
+    return 1;
+#endif
+}
+
+/* Check a map's shape (not its node indices). */
+static inline int cti_asm_map_ok(const ct_asm_map *map)
+{
+    if (!map || map->npair < 0 || map->nslot < 1 || map->nslot > CT_ASM_MAXSLOT)
+        return 0;
+    for (int s = 0; s < map->nslot; s++)
+        if (map->npair > 0 && !map->slot[s])
+            return 0;
+    return 1;
+}
+
+#endif /* CT_ASSEMBLE_BODY_H */
