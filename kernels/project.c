@@ -1,0 +1,173 @@
+/*
+ * project.c -- node-segment narrow phase: the entry point, the work split
+ * and the node-triangle kernel (closest point, clamped barycentric
+ * coordinates). The quadrangle methods live in project_quad.c.
+ *
+ * Work split: pairs are cut into blocks of CTI_NR_BLOCK; blocks are shared
+ * among threads (static schedule). Inside a block, each maximal run of
+ * pairs of one kind (triangle or quadrangle) goes to that kind's kernel, a
+ * `#pragma omp simd` loop. Every pair's arithmetic is the same whichever
+ * lane or thread computes it, so the results do not depend on the thread
+ * count.
+ */
+#include "narrow_internal.h"
+
+const char *ct_quad_method_name(ct_quad_method m)
+{
+    switch (m) {
+    case CT_QUAD_4TRI: return "4tri";
+    case CT_QUAD_NEWTON: return "newton";
+    case CT_QUAD_CLOSED: return "closed";
+    default: return "unknown";
+    }
+}
+
+int ct_quad_method_from_name(const char *name)
+{
+    if (!name)
+        return -1;
+    for (int m = 0; m < CT_QUAD_NMETHOD; m++)
+        if (strcmp(name, ct_quad_method_name((ct_quad_method)m)) == 0)
+            return m;
+    return -1;
+}
+
+void cti_nr_gather(const cti_nr_args *a, ct_idx k0, ct_idx n, cti_nr_blk *b)
+{
+    const ct_idx *restrict node = a->node + k0, *restrict seg = a->seg + k0;
+    const ct_idx *restrict n1 = a->n1, *restrict n2 = a->n2, *restrict n3 = a->n3,
+                           *restrict n4 = a->n4;
+    const ct_real *restrict x = a->x, *restrict y = a->y, *restrict z = a->z;
+    for (ct_idx j = 0; j < n; j++) {
+        ct_idx i = node[j], s = seg[j];
+        ct_idx c[4] = {n1[s], n2[s], n3[s], n4[s]};
+        b->p[0][j] = x[i];
+        b->p[1][j] = y[i];
+        b->p[2][j] = z[i];
+        _Pragma("GCC unroll 4")
+        for (int v = 0; v < 4; v++) {
+            b->X[v][0][j] = x[c[v]];
+            b->X[v][1][j] = y[c[v]];
+            b->X[v][2][j] = z[c[v]];
+        }
+    }
+    const ct_real *restrict gn = a->gap_node, *restrict gs = a->gap_seg;
+    ct_real gap = a->gap, cs = a->gap_max_s, cm = a->gap_max_m;
+    if (!gn && !gs) {
+        for (ct_idx j = 0; j < n; j++)
+            b->g[j] = gap;
+        return;
+    }
+    for (ct_idx j = 0; j < n; j++) {
+        ct_real vs = gn ? gn[node[j]] : 0, vm = gs ? gs[seg[j]] : 0;
+        vs = (cs > 0 && vs > cs) ? cs : vs;
+        vm = (cm > 0 && vm > cm) ? cm : vm;
+        ct_real g = vs + vm;
+        /* A NaN gap stays NaN (and the pair is skipped). */
+        b->g[j] = g < gap ? gap : g;
+    }
+}
+
+/* Node-triangle over a block whose segments are all triangles. */
+void cti_nr_block_tri(const cti_nr_args *a, ct_idx k0, ct_idx n, const cti_nr_blk *b)
+{
+    CTI_NR_OUTPTRS(a, k0);
+    int two = a->two_sided;
+    CTI_NR_SIMD
+    for (ct_idx j = 0; j < n; j++) {
+        ct_real p[3], A[3], B[3], C[3], D[3], g, org[3];
+        ct_real zs = cti_nr_get(b, j, p, A, B, C, D, &g, org);
+        (void)D;
+        int nonfin = cti_nr_nonfinite(zs);
+        ct_real q, u, v, w, nx, ny, nz, nn, l2;
+        int in;
+        cti_nr_tri(B[0] - A[0], B[1] - A[1], B[2] - A[2], C[0] - A[0], C[1] - A[1],
+                   C[2] - A[2], p[0] - A[0], p[1] - A[1], p[2] - A[2], &q, &u, &v, &w, &nx,
+                   &ny, &nz, &nn, &l2, &in);
+        (void)q;
+        /* Area |n|/2 <= tol * l2. */
+        ct_real lim = 2 * CTI_NR_AREA_TOL * l2;
+        int degen = !(nn > lim * lim);
+        int bad = nonfin ? CT_NARROW_NONFINITE : (degen ? CT_NARROW_DEGENERATE : 0);
+        ct_real inv = 1 / CTI_SQRT(nn > 0 ? nn : 1);
+        ct_real cx = A[0] + v * (B[0] - A[0]) + w * (C[0] - A[0]);
+        ct_real cy = A[1] + v * (B[1] - A[1]) + w * (C[1] - A[1]);
+        ct_real cz = A[2] + v * (B[2] - A[2]) + w * (C[2] - A[2]);
+        ct_real dist, pen, mx, my, mz;
+        int flag;
+        cti_nr_finish(p[0], p[1], p[2], cx, cy, cz, nx * inv, ny * inv, nz * inv,
+                      CTI_SQRT(l2), in, g, two, &dist, &pen, &mx, &my, &mz, &flag);
+        CTI_NR_STORE(j, bad, dist, pen, mx, my, mz, cx, cy, cz, u, v, w, 0, g, flag);
+    }
+}
+
+typedef void (*cti_nr_kernel)(const cti_nr_args *, ct_idx, ct_idx, const cti_nr_blk *);
+
+int ct_narrow_node_segment(ct_idx npair, const ct_idx *restrict node,
+                           const ct_idx *restrict seg, const ct_idx *restrict n1,
+                           const ct_idx *restrict n2, const ct_idx *restrict n3,
+                           const ct_idx *restrict n4, const ct_real *restrict x,
+                           const ct_real *restrict y, const ct_real *restrict z,
+                           const ct_real *restrict gap_node, const ct_real *restrict gap_seg,
+                           ct_real gap, ct_real gap_max_s, ct_real gap_max_m,
+                           ct_quad_method method, int two_sided, const ct_contact_geo *out,
+                           ct_narrow_stats *stats)
+{
+    if (npair < 0 || (int)method < 0 || method >= CT_QUAD_NMETHOD || !out)
+        return CT_ERR_ARG;
+    if (stats)
+        memset(stats, 0, sizeof *stats);
+    if (npair == 0)
+        return CT_OK;
+    if (!node || !seg || !n1 || !n2 || !n3 || !n4 || !x || !y || !z || !out->dist ||
+        !out->pen || !out->nx || !out->ny || !out->nz || !out->cx || !out->cy || !out->cz ||
+        !out->h1 || !out->h2 || !out->h3 || !out->h4 || !out->gap || !out->flag)
+        return CT_ERR_ARG;
+    cti_nr_args a = {node, seg, n1, n2, n3, n4, x, y, z, gap_node, gap_seg,
+                     gap, gap_max_s, gap_max_m, two_sided, out};
+    cti_nr_kernel quad = method == CT_QUAD_4TRI     ? cti_nr_block_4tri
+                         : method == CT_QUAD_NEWTON ? cti_nr_block_newton
+                                                    : cti_nr_block_closed;
+    ct_idx nblock = (ct_idx)((npair + CTI_NR_BLOCK - 1) / CTI_NR_BLOCK);
+#pragma omp parallel
+    {
+        /* One gather buffer per thread, on its stack. */
+        cti_nr_blk blk;
+#pragma omp for schedule(static)
+        for (ct_idx bi = 0; bi < nblock; bi++) {
+            ct_idx k0 = bi * CTI_NR_BLOCK;
+            ct_idx k1 = CTI_MIN(npair, k0 + CTI_NR_BLOCK);
+            /* Runs of one segment kind. */
+            while (k0 < k1) {
+                int tri = n3[seg[k0]] == n4[seg[k0]];
+                ct_idx e = k0 + 1;
+                while (e < k1 && (n3[seg[e]] == n4[seg[e]]) == tri)
+                    e++;
+                cti_nr_gather(&a, k0, e - k0, &blk);
+                (tri ? cti_nr_block_tri : quad)(&a, k0, e - k0, &blk);
+                k0 = e;
+            }
+        }
+    }
+    if (stats) {
+        int64_t act = 0, fb = 0, dg = 0, nf = 0, bh = 0, os = 0;
+        const ct_real *restrict pen = out->pen;
+        const uint8_t *restrict fl = out->flag;
+#pragma omp parallel for schedule(static) reduction(+ : act, fb, dg, nf, bh, os)
+        for (ct_idx k = 0; k < npair; k++) {
+            act += pen[k] > 0;
+            fb += (fl[k] & CT_NARROW_FALLBACK) != 0;
+            dg += (fl[k] & CT_NARROW_DEGENERATE) != 0;
+            nf += (fl[k] & CT_NARROW_NONFINITE) != 0;
+            bh += (fl[k] & CT_NARROW_BEHIND) != 0;
+            os += (fl[k] & CT_NARROW_OUTSIDE) != 0;
+        }
+        stats->active = act;
+        stats->fallbacks = fb;
+        stats->degenerate = dg;
+        stats->nonfinite = nf;
+        stats->behind = bh;
+        stats->outside = os;
+    }
+    return CT_OK;
+}

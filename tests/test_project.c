@@ -1,0 +1,609 @@
+/*
+ * test_project.c -- node-segment narrow phase (suite "project") against
+ * independent answers: dense sampling plus a local minimisation written
+ * here (coordinate descent, each 1-D step a bisection on the analytic
+ * derivative), brute-force sampling of triangles, and hand-computed cases.
+ * The reference computations are in double in both builds.
+ */
+#include <stdio.h>
+#include <string.h>
+
+#include "test_util.h"
+
+/* ---- A small harness: one segment set, many pairs ---------------------- */
+
+typedef struct geo {
+    ct_contact_geo g;
+    ct_real *buf;
+    ct_idx n;
+} geo;
+
+static void geo_init(geo *o, ct_idx n)
+{
+    o->n = n;
+    ct_real **f[] = {&o->g.dist, &o->g.pen, &o->g.nx, &o->g.ny, &o->g.nz,
+                     &o->g.cx,   &o->g.cy,  &o->g.cz, &o->g.h1, &o->g.h2,
+                     &o->g.h3,   &o->g.h4,  &o->g.gap};
+    size_t stride = (size_t)n + CT_PAD;
+    o->buf = ct_calloc(stride * 13, sizeof(ct_real));
+    cr_assert_not_null(o->buf);
+    for (int i = 0; i < 13; i++)
+        *f[i] = o->buf + stride * (size_t)i;
+    o->g.flag = ct_calloc((size_t)n, 1);
+}
+
+static void geo_free(geo *o)
+{
+    ct_free(o->buf);
+    ct_free(o->g.flag);
+}
+
+/* One pair: node 0 at p against the segment of nodes 1..4 (a triangle when
+ * tri != 0, using n4 = n3). */
+static void one(ct_quad_method m, int two, const double X[4][3], const double p[3],
+                double gap, int tri, geo *o)
+{
+    ct_real x[5], y[5], z[5];
+    x[0] = (ct_real)p[0]; y[0] = (ct_real)p[1]; z[0] = (ct_real)p[2];
+    for (int i = 0; i < 4; i++) {
+        x[i + 1] = (ct_real)X[i][0];
+        y[i + 1] = (ct_real)X[i][1];
+        z[i + 1] = (ct_real)X[i][2];
+    }
+    ct_idx node = 0, seg = 0, n1 = 1, n2 = 2, n3 = 3, n4 = tri ? 3 : 4;
+    int rc = ct_narrow_node_segment(1, &node, &seg, &n1, &n2, &n3, &n4, x, y, z, NULL, NULL,
+                                    (ct_real)gap, 0, 0, m, two, &o->g, NULL);
+    cr_assert_eq(rc, CT_OK);
+}
+
+static unsigned rng_state = 12345u;
+static double urand(void)
+{
+    rng_state = rng_state * 1664525u + 1013904223u;
+    return (rng_state >> 8) / 16777216.0;
+}
+
+/* ---- Independent reference for the bilinear quad ----------------------- */
+
+static void bil(const double X[4][3], double s, double t, double x[3], double xs[3],
+                double xt[3])
+{
+    double H[4] = {(1 - s) * (1 - t) / 4, (1 + s) * (1 - t) / 4, (1 + s) * (1 + t) / 4,
+                   (1 - s) * (1 + t) / 4};
+    double Hs[4] = {-(1 - t) / 4, (1 - t) / 4, (1 + t) / 4, -(1 + t) / 4};
+    double Ht[4] = {-(1 - s) / 4, -(1 + s) / 4, (1 + s) / 4, (1 - s) / 4};
+    for (int d = 0; d < 3; d++) {
+        x[d] = xs[d] = xt[d] = 0;
+        for (int i = 0; i < 4; i++) {
+            x[d] += H[i] * X[i][d];
+            xs[d] += Hs[i] * X[i][d];
+            xt[d] += Ht[i] * X[i][d];
+        }
+    }
+}
+
+static double f2(const double X[4][3], const double p[3], double s, double t)
+{
+    double x[3], a[3], b[3];
+    bil(X, s, t, x, a, b);
+    return (x[0] - p[0]) * (x[0] - p[0]) + (x[1] - p[1]) * (x[1] - p[1]) +
+           (x[2] - p[2]) * (x[2] - p[2]);
+}
+
+/* d f / d s (dir 0) or d f / d t (dir 1), f = |x - p|^2 / 2. */
+static double df(const double X[4][3], const double p[3], double s, double t, int dir)
+{
+    double x[3], a[3], b[3];
+    bil(X, s, t, x, a, b);
+    const double *e = dir ? b : a;
+    return (x[0] - p[0]) * e[0] + (x[1] - p[1]) * e[1] + (x[2] - p[2]) * e[2];
+}
+
+/* 1-D minimisation on [-1, 1] of f along one coordinate: f is a quadratic
+ * in each coordinate with a positive leading term (a1 + t a3 != 0), so its
+ * derivative is increasing: bisection on the sign of the derivative. */
+static double line_min(const double X[4][3], const double p[3], double s, double t, int dir)
+{
+    double lo = -1, hi = 1;
+    double dlo = df(X, p, dir ? s : lo, dir ? lo : t, dir);
+    double dhi = df(X, p, dir ? s : hi, dir ? hi : t, dir);
+    if (dlo >= 0)
+        return -1;
+    if (dhi <= 0)
+        return 1;
+    for (int it = 0; it < 200 && hi - lo > 0; it++) {
+        double mid = 0.5 * (lo + hi);
+        if (mid <= lo || mid >= hi)
+            break;
+        double dm = df(X, p, dir ? s : mid, dir ? mid : t, dir);
+        if (dm > 0)
+            hi = mid;
+        else
+            lo = mid;
+    }
+    return 0.5 * (lo + hi);
+}
+
+/* Closest point of the bilinear quad: best of a 81 x 81 grid, then
+ * coordinate descent to a fixed point. */
+static void truth_quad(const double X[4][3], const double p[3], double c[3], double *dist)
+{
+    double bs = 0, bt = 0, bf = 1e300;
+    for (int i = 0; i <= 80; i++)
+        for (int j = 0; j <= 80; j++) {
+            double s = -1 + i / 40.0, t = -1 + j / 40.0, f = f2(X, p, s, t);
+            if (f < bf) {
+                bf = f;
+                bs = s;
+                bt = t;
+            }
+        }
+    for (int sweep = 0; sweep < 5000; sweep++) {
+        double s0 = bs, t0 = bt;
+        bs = line_min(X, p, bs, bt, 0);
+        bt = line_min(X, p, bs, bt, 1);
+        if (fabs(bs - s0) + fabs(bt - t0) < 1e-16)
+            break;
+    }
+    double a[3], b[3];
+    bil(X, bs, bt, c, a, b);
+    *dist = sqrt(f2(X, p, bs, bt));
+}
+
+/* A random warped quad around the unit square [-1,1]^2 scaled by L. */
+static void rand_quad(double X[4][3], double warp, double L)
+{
+    double base[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+    for (int i = 0; i < 4; i++) {
+        X[i][0] = L * (base[i][0] + 0.3 * (urand() - 0.5));
+        X[i][1] = L * (base[i][1] + 0.3 * (urand() - 0.5));
+        X[i][2] = L * warp * (i & 1 ? 1 : -1) * (0.5 + 0.5 * urand());
+    }
+}
+
+/* A point near the quad: (s, t) in [-1.6, 1.6]^2, then off the surface
+ * along its normal by h in [-0.4, 0.4] L (above, below, beyond edges and
+ * corners). */
+static void rand_point(const double X[4][3], double L, double p[3])
+{
+    double s = 3.2 * urand() - 1.6, t = 3.2 * urand() - 1.6, x[3], a[3], b[3];
+    bil(X, s, t, x, a, b);
+    double n[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
+                   a[0] * b[1] - a[1] * b[0]};
+    double nl = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    double h = L * (0.8 * urand() - 0.4);
+    for (int d = 0; d < 3; d++)
+        p[d] = x[d] + h * n[d] / nl;
+}
+
+static double dist3(const double a[3], double bx, double by, double bz)
+{
+    return sqrt((a[0] - bx) * (a[0] - bx) + (a[1] - by) * (a[1] - by) +
+                (a[2] - bz) * (a[2] - bz));
+}
+
+/* Outputs always finite, weights summing to 1 and reproducing the point. */
+static void check_consistent(const geo *o, const double X[4][3], const double p[3], int tri)
+{
+    const ct_contact_geo *g = &o->g;
+    double h[4] = {g->h1[0], g->h2[0], g->h3[0], g->h4[0]};
+    cr_assert(isfinite(g->dist[0]) && isfinite(g->pen[0]) && isfinite(g->nx[0]) &&
+              isfinite(g->ny[0]) && isfinite(g->nz[0]));
+    cr_assert_float_eq(h[0] + h[1] + h[2] + h[3], 1.0, CTT_TOL(1e-13, 1e-5));
+    if (tri)
+        cr_assert_eq(h[3], 0);
+    for (int d = 0; d < 3; d++) {
+        double c = h[0] * X[0][d] + h[1] * X[1][d] + h[2] * X[2][d] + h[3] * X[3][d];
+        double cd = d == 0 ? g->cx[0] : (d == 1 ? g->cy[0] : g->cz[0]);
+        cr_assert_float_eq(c, cd, CTT_TOL(1e-12, 1e-5));
+    }
+    double nl = sqrt(g->nx[0] * g->nx[0] + g->ny[0] * g->ny[0] + g->nz[0] * g->nz[0]);
+    cr_assert_float_eq(nl, 1.0, CTT_TOL(1e-13, 1e-6));
+    cr_assert_float_eq(fabs(g->dist[0]), dist3(p, g->cx[0], g->cy[0], g->cz[0]),
+                       CTT_TOL(1e-13, 1e-6));
+}
+
+Test(project, newton_matches_dense_search_on_warped_quads)
+{
+    geo o;
+    geo_init(&o, 1);
+    double err[3] = {0, 0, 0};
+    int nq = ctt_checking() ? 8 : 40, np = 12;
+    for (int q = 0; q < nq; q++) {
+        double X[4][3];
+        rand_quad(X, 0.12, 1.0 + q * 0.1);
+        for (int k = 0; k < np; k++) {
+            double p[3], c[3], d;
+            rand_point(X, 1.0, p);
+            truth_quad(X, p, c, &d);
+            for (int m = 0; m < 3; m++) {
+                one((ct_quad_method)m, 1, X, p, 0.01, 0, &o);
+                check_consistent(&o, X, p, 0);
+                double e = fabs(o.g.dist[0] - d);
+                if (m == CT_QUAD_NEWTON) {
+                    /* Newton: the exact answer (single: the rounding of the
+                     * inputs and of the iteration). */
+                    cr_assert_float_eq(o.g.dist[0], d, CTT_TOL(1e-10, 5e-5), "q %d k %d", q, k);
+                    cr_assert(dist3(c, o.g.cx[0], o.g.cy[0], o.g.cz[0]) <= CTT_TOL(1e-10, 5e-4),
+                              "q %d k %d: point off by %g", q, k,
+                              dist3(c, o.g.cx[0], o.g.cy[0], o.g.cz[0]));
+                    cr_assert_eq(o.g.flag[0] & CT_NARROW_FALLBACK, 0);
+                }
+                /* Every method's surface is never closer than the true one
+                 * by more than the warp allows; the error is reported. */
+                err[m] = fmax(err[m], e);
+            }
+        }
+    }
+    cr_log_info("max |D - D_true| on warped quads (warp 0.12 L): 4tri %.3e newton %.3e closed %.3e",
+                err[0], err[1], err[2]);
+    printf("project: max |D - D_true| on warped quads: 4tri %.3e newton %.3e closed %.3e\n",
+           err[0], err[1], err[2]);
+    cr_assert(isfinite(err[0]) && isfinite(err[2]));
+    geo_free(&o);
+}
+
+Test(project, all_methods_exact_on_flat_parallelograms)
+{
+    geo o;
+    geo_init(&o, 1);
+    for (int q = 0; q < 20; q++) {
+        /* A skewed, rotated, flat parallelogram. */
+        double u[3] = {1 + urand(), 0.3 * urand(), 0.2 * urand()};
+        double v[3] = {0.6 * urand() - 0.3, 0.8 + urand(), 0.3 * urand() - 0.15};
+        double o0[3] = {urand(), urand(), urand()};
+        double X[4][3];
+        for (int d = 0; d < 3; d++) {
+            X[0][d] = o0[d] - u[d] - v[d];
+            X[1][d] = o0[d] + u[d] - v[d];
+            X[2][d] = o0[d] + u[d] + v[d];
+            X[3][d] = o0[d] - u[d] + v[d];
+        }
+        for (int k = 0; k < 15; k++) {
+            double p[3], c[3], d;
+            rand_point(X, 1.0, p);
+            truth_quad(X, p, c, &d);
+            for (int m = 0; m < 3; m++) {
+                one((ct_quad_method)m, 1, X, p, 0.01, 0, &o);
+                cr_assert_float_eq(o.g.dist[0], d, CTT_TOL(1e-12, 2e-5), "m %d q %d k %d", m, q,
+                                   k);
+                cr_assert(dist3(c, o.g.cx[0], o.g.cy[0], o.g.cz[0]) <= CTT_TOL(1e-11, 2e-4),
+                          "m %d q %d k %d: point off by %g", m, q, k,
+                          dist3(c, o.g.cx[0], o.g.cy[0], o.g.cz[0]));
+            }
+        }
+    }
+    geo_free(&o);
+}
+
+Test(project, triangle_against_brute_force_sampling)
+{
+    geo o;
+    geo_init(&o, 1);
+    int N = ctt_checking() ? 150 : 400;
+    for (int q = 0; q < 12; q++) {
+        double X[4][3];
+        for (int i = 0; i < 3; i++)
+            for (int d = 0; d < 3; d++)
+                X[i][d] = 2 * urand() - 1;
+        X[3][0] = X[2][0]; X[3][1] = X[2][1]; X[3][2] = X[2][2];
+        for (int k = 0; k < 6; k++) {
+            double p[3] = {3 * urand() - 1.5, 3 * urand() - 1.5, 3 * urand() - 1.5};
+            double best = 1e300;
+            for (int i = 0; i <= N; i++)
+                for (int j = 0; i + j <= N; j++) {
+                    double a = (double)i / N, b = (double)j / N, x[3];
+                    for (int d = 0; d < 3; d++)
+                        x[d] = X[0][d] + a * (X[1][d] - X[0][d]) + b * (X[2][d] - X[0][d]);
+                    double dd = dist3(p, x[0], x[1], x[2]);
+                    best = dd < best ? dd : best;
+                }
+            /* Covering radius of the sample grid: half the longest grid
+             * cell diagonal. */
+            double L = 0;
+            for (int i = 0; i < 3; i++)
+                for (int j = 0; j < 3; j++)
+                    L = fmax(L, dist3(X[i], X[j][0], X[j][1], X[j][2]));
+            one(CT_QUAD_4TRI, 1, X, p, 0.0, 1, &o);
+            check_consistent(&o, X, p, 1);
+            double D = o.g.dist[0];
+            cr_assert(D <= best + CTT_TOL(1e-12, 1e-5), "q %d: D %g > sampled %g", q, D, best);
+            cr_assert(D >= best - 2 * L / N, "q %d: D %g << sampled %g", q, D, best);
+            cr_assert(o.g.h1[0] >= 0 && o.g.h2[0] >= 0 && o.g.h3[0] >= 0);
+        }
+    }
+    geo_free(&o);
+}
+
+/* Two segments sharing the edge x = 0, flat or folded into a ridge; a node
+ * whose closest point is on the shared edge or at its end vertex (above the
+ * ridge; below only when flat: under a fold each segment has its own foot,
+ * and a node on the surface gets each segment's own normal). */
+Test(project, shared_edge_and_vertex_same_answer)
+{
+    geo o;
+    geo_init(&o, 1);
+    for (int fold = 0; fold < 3; fold++) {
+        double f = 0.3 * fold;
+        double A[4][3] = {{-1, -1, -f}, {0, -1, 0}, {0, 1, 0}, {-1, 1, -f}};
+        double B[4][3] = {{0, -1, 0}, {1, -1, -f}, {1, 1, -f}, {0, 1, 0}};
+        double pts[3][3] = {{0, 0.3, 0.2}, {0, -1, 0.15}, {0, 1, -0.1}};
+        for (int m = 0; m < 3; m++)
+            for (int two = 0; two < 2; two++)
+                for (int k = 0; k < 3; k++) {
+                    if (k == 2 && fold > 0)
+                        continue;
+                    one((ct_quad_method)m, two, A, pts[k], 0.25, 0, &o);
+                    double da = o.g.dist[0], pa = o.g.pen[0];
+                    double na[3] = {o.g.nx[0], o.g.ny[0], o.g.nz[0]};
+                    one((ct_quad_method)m, two, B, pts[k], 0.25, 0, &o);
+                    cr_assert_float_eq(da, o.g.dist[0], CTT_TOL(1e-14, 1e-6), "m %d k %d", m, k);
+                    cr_assert_float_eq(pa, o.g.pen[0], CTT_TOL(1e-14, 1e-6));
+                    cr_assert_float_eq(na[0], o.g.nx[0], CTT_TOL(1e-12, 1e-5));
+                    cr_assert_float_eq(na[1], o.g.ny[0], CTT_TOL(1e-12, 1e-5));
+                    cr_assert_float_eq(na[2], o.g.nz[0], CTT_TOL(1e-12, 1e-5));
+                }
+        /* The same with triangles: A = (X1 X2 X3), B = (X2 X4 X3). */
+        double T1[4][3] = {{-1, 0, -f}, {0, -1, 0}, {0, 1, 0}, {0, 1, 0}};
+        double T2[4][3] = {{0, -1, 0}, {1, 0, -f}, {0, 1, 0}, {0, 1, 0}};
+        for (int k = 0; k < (fold > 0 ? 2 : 3); k++) {
+            one(CT_QUAD_4TRI, 1, T1, pts[k], 0.25, 1, &o);
+            double da = o.g.dist[0], nz = o.g.nz[0];
+            one(CT_QUAD_4TRI, 1, T2, pts[k], 0.25, 1, &o);
+            cr_assert_float_eq(da, o.g.dist[0], CTT_TOL(1e-14, 1e-6));
+            cr_assert_float_eq(nz, o.g.nz[0], CTT_TOL(1e-12, 1e-5));
+        }
+    }
+    geo_free(&o);
+}
+
+/* A node sliding across the shared edge: its penetration (the largest over
+ * the two segments) is 1-Lipschitz in its position, so between samples h
+ * apart it changes by at most h (times 1 + 1e-9). */
+Test(project, sliding_across_edge_is_continuous)
+{
+    geo o;
+    geo_init(&o, 1);
+    double A[4][3] = {{-1, -1, 0.2}, {0, -1, 0}, {0, 1, 0}, {-1, 1, 0.2}};
+    double B[4][3] = {{0, -1, 0}, {1, -1, -0.1}, {1, 1, -0.1}, {0, 1, 0}};
+    int n = 2001;
+    double h = 1.0 / (n - 1);
+    for (int m = 0; m < 3; m++)
+        for (int two = 0; two < 2; two++) {
+            double prev = -1, maxjump = 0;
+            for (int i = 0; i < n; i++) {
+                double p[3] = {-0.5 + i * h, 0.1, 0.05};
+                one((ct_quad_method)m, two, A, p, 0.2, 0, &o);
+                double pen = o.g.pen[0];
+                one((ct_quad_method)m, two, B, p, 0.2, 0, &o);
+                pen = fmax(pen, o.g.pen[0]);
+                if (prev >= 0)
+                    maxjump = fmax(maxjump, fabs(pen - prev));
+                prev = pen;
+            }
+            cr_assert(maxjump <= h * (1 + 1e-9) + CTT_TOL(1e-14, 1e-6),
+                      "method %d two %d: jump %g > step %g", m, two, maxjump, h);
+        }
+    geo_free(&o);
+}
+
+Test(project, one_sided_and_two_sided)
+{
+    geo o;
+    geo_init(&o, 1);
+    double Q[4][3] = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
+    for (int m = 0; m < 3; m++) {
+        double below[3] = {0.2, 0.3, -0.1}, above[3] = {0.2, 0.3, 0.05};
+        /* One-sided, behind: penetrating, pen = gap + depth, normal +z. */
+        one((ct_quad_method)m, 0, Q, below, 0.1, 0, &o);
+        cr_assert_float_eq(o.g.dist[0], -0.1, CTT_TOL(1e-14, 1e-6));
+        cr_assert_float_eq(o.g.pen[0], 0.2, CTT_TOL(1e-14, 1e-6));
+        cr_assert_float_eq(o.g.nz[0], 1.0, CTT_TOL(1e-14, 1e-6));
+        cr_assert(o.g.flag[0] & CT_NARROW_BEHIND);
+        /* One-sided, in front within the gap. */
+        one((ct_quad_method)m, 0, Q, above, 0.1, 0, &o);
+        cr_assert_float_eq(o.g.pen[0], 0.05, CTT_TOL(1e-14, 1e-6));
+        cr_assert_float_eq(o.g.nz[0], 1.0, CTT_TOL(1e-14, 1e-6));
+        /* Two-sided: symmetric on both faces. */
+        double lo[3] = {0.2, 0.3, -0.05};
+        one((ct_quad_method)m, 1, Q, above, 0.1, 0, &o);
+        double pa = o.g.pen[0], na = o.g.nz[0];
+        one((ct_quad_method)m, 1, Q, lo, 0.1, 0, &o);
+        cr_assert_float_eq(o.g.pen[0], pa, CTT_TOL(1e-14, 1e-6));
+        cr_assert_float_eq(o.g.nz[0], -na, CTT_TOL(1e-14, 1e-6));
+        cr_assert_float_eq(o.g.dist[0], 0.05, CTT_TOL(1e-14, 1e-6));
+        /* On the mid-surface: the segment normal, pen = gap, no NaN. */
+        double on[3] = {0.2, 0.3, 0};
+        for (int two = 0; two < 2; two++) {
+            one((ct_quad_method)m, two, Q, on, 0.1, 0, &o);
+            cr_assert_eq(o.g.nz[0], 1.0);
+            cr_assert_float_eq(o.g.pen[0], 0.1, CTT_TOL(1e-14, 1e-6));
+            cr_assert(fabs(o.g.dist[0]) <= CTT_TOL(1e-15, 1e-7));
+        }
+        /* One-sided, behind and outside the footprint: no contact here. */
+        double out[3] = {1.3, 0.0, -0.05};
+        one((ct_quad_method)m, 0, Q, out, 0.5, 0, &o);
+        cr_assert_eq(o.g.pen[0], 0);
+        cr_assert_eq(o.g.flag[0] & (CT_NARROW_BEHIND | CT_NARROW_OUTSIDE),
+                     CT_NARROW_BEHIND | CT_NARROW_OUTSIDE);
+        /* Two-sided, same point: distance to the edge x = 1. */
+        one((ct_quad_method)m, 1, Q, out, 0.5, 0, &o);
+        cr_assert_float_eq(o.g.dist[0], sqrt(0.09 + 0.0025), CTT_TOL(1e-14, 1e-6));
+    }
+    /* A triangle, one-sided, behind. */
+    double T[4][3] = {{0, 0, 1}, {1, 0, 1}, {0, 1, 1}, {0, 1, 1}};
+    double p[3] = {0.2, 0.2, 0.9};
+    one(CT_QUAD_4TRI, 0, T, p, 0.05, 1, &o);
+    cr_assert_float_eq(o.g.pen[0], 0.15, CTT_TOL(1e-14, 1e-6));
+    cr_assert_float_eq(o.g.dist[0], -0.1, CTT_TOL(1e-14, 1e-6));
+    geo_free(&o);
+}
+
+Test(project, gap_per_node_and_segment_with_caps)
+{
+    geo o;
+    geo_init(&o, 3);
+    ct_real x[6] = {0.2, 0.2, 0.2, -1, 1, 0}, y[6] = {0.1, 0.1, 0.1, -1, -1, 1},
+            z[6] = {0.3, 0.3, 0.3, 0, 0, 0};
+    ct_idx node[3] = {0, 1, 2}, seg[3] = {0, 1, 0};
+    ct_idx n1[2] = {3, 3}, n2[2] = {4, 4}, n3[2] = {5, 5}, n4[2] = {5, 5};
+    ct_real gn[3] = {0.3, 0.1, 0.05}, gs[2] = {0.2, 0.02};
+    /* Caps 0.25 (node) and 0.15 (segment); Gapmin 0.1. */
+    int rc = ct_narrow_node_segment(3, node, seg, n1, n2, n3, n4, x, y, z, gn, gs,
+                                    (ct_real)0.1, (ct_real)0.25, (ct_real)0.15, CT_QUAD_4TRI,
+                                    1, &o.g, NULL);
+    cr_assert_eq(rc, CT_OK);
+    cr_assert_float_eq(o.g.gap[0], 0.25 + 0.15, CTT_TOL(1e-15, 1e-7));
+    cr_assert_float_eq(o.g.gap[1], 0.1 + 0.02, CTT_TOL(1e-15, 1e-7));
+    cr_assert_float_eq(o.g.gap[2], 0.05 + 0.15, CTT_TOL(1e-15, 1e-7));
+    cr_assert_float_eq(o.g.pen[0], 0.4 - 0.3, CTT_TOL(1e-14, 1e-6));
+    cr_assert_eq(o.g.pen[1], 0);
+    /* Node gaps only, no caps: Gapmin wins where larger. */
+    rc = ct_narrow_node_segment(3, node, seg, n1, n2, n3, n4, x, y, z, gn, NULL, (ct_real)0.2,
+                                0, 0, CT_QUAD_4TRI, 1, &o.g, NULL);
+    cr_assert_float_eq(o.g.gap[0], 0.3, CTT_TOL(1e-15, 1e-7));
+    cr_assert_float_eq(o.g.gap[1], 0.2, CTT_TOL(1e-15, 1e-7));
+    /* Neither: the scalar. */
+    rc = ct_narrow_node_segment(3, node, seg, n1, n2, n3, n4, x, y, z, NULL, NULL,
+                                (ct_real)0.35, 0, 0, CT_QUAD_4TRI, 1, &o.g, NULL);
+    cr_assert_float_eq(o.g.gap[2], 0.35, CTT_TOL(1e-15, 1e-7));
+    cr_assert_float_eq(o.g.pen[2], 0.05, CTT_TOL(1e-14, 1e-6));
+    geo_free(&o);
+}
+
+static void assert_skipped(const geo *o, int bit)
+{
+    const ct_contact_geo *g = &o->g;
+    cr_assert(g->flag[0] & bit, "flag %d lacks %d", g->flag[0], bit);
+    cr_assert_eq(g->pen[0], 0);
+    ct_real v[] = {g->dist[0], g->nx[0], g->ny[0], g->nz[0], g->cx[0], g->cy[0],
+                   g->cz[0],   g->h1[0], g->h2[0], g->h3[0], g->h4[0], g->gap[0]};
+    for (size_t i = 0; i < sizeof v / sizeof v[0]; i++)
+        cr_assert(isfinite(v[i]), "output %zu not finite", i);
+}
+
+Test(project, degenerate_and_nonfinite_are_skipped)
+{
+    geo o;
+    geo_init(&o, 1);
+    double p[3] = {0.1, 0.1, 0.05};
+    double zero[4][3] = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {3, 0, 0}};       /* collinear */
+    double needle[4][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1e-14, 0}, {0, 1e-14, 0}};
+    double coinc[4][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {1, 1, 0}};      /* X4 = X3 */
+    double same[4][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+    for (int m = 0; m < 3; m++)
+        for (int two = 0; two < 2; two++) {
+            one((ct_quad_method)m, two, zero, p, 0.1, 0, &o);
+            assert_skipped(&o, CT_NARROW_DEGENERATE);
+            one((ct_quad_method)m, two, needle, p, 0.1, 0, &o);
+            assert_skipped(&o, CT_NARROW_DEGENERATE);
+            one((ct_quad_method)m, two, coinc, p, 0.1, 0, &o);
+            assert_skipped(&o, CT_NARROW_DEGENERATE);
+            one((ct_quad_method)m, two, same, p, 0.1, 0, &o);
+            assert_skipped(&o, CT_NARROW_DEGENERATE);
+            one((ct_quad_method)m, two, zero, p, 0.1, 1, &o);
+            assert_skipped(&o, CT_NARROW_DEGENERATE);
+            double nanp[3] = {NAN, 0, 0};
+            double Q[4][3] = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
+            one((ct_quad_method)m, two, Q, nanp, 0.1, 0, &o);
+            assert_skipped(&o, CT_NARROW_NONFINITE);
+            Q[2][1] = INFINITY;
+            one((ct_quad_method)m, two, Q, p, 0.1, 0, &o);
+            assert_skipped(&o, CT_NARROW_NONFINITE);
+            one((ct_quad_method)m, two, Q, p, 0.1, 1, &o);
+            assert_skipped(&o, CT_NARROW_NONFINITE);
+        }
+    geo_free(&o);
+}
+
+/* A mixed list of triangles and warped quads: identical outputs for 1 and
+ * 2 threads, and for the list shifted by one pair (other vector lanes and
+ * block boundaries). */
+Test(project, threads_and_lanes_give_identical_results)
+{
+    int ns = 200, nn = 600, np = ctt_checking() ? 3000 : 20000;
+    ct_real *x = ct_calloc((size_t)(4 * ns + nn), sizeof(ct_real));
+    ct_real *y = ct_calloc((size_t)(4 * ns + nn), sizeof(ct_real));
+    ct_real *z = ct_calloc((size_t)(4 * ns + nn), sizeof(ct_real));
+    ct_idx *n1 = ct_calloc((size_t)ns, sizeof(ct_idx)), *n2 = ct_calloc((size_t)ns, sizeof(ct_idx));
+    ct_idx *n3 = ct_calloc((size_t)ns, sizeof(ct_idx)), *n4 = ct_calloc((size_t)ns, sizeof(ct_idx));
+    for (int s = 0; s < ns; s++) {
+        double X[4][3];
+        rand_quad(X, 0.1, 1.0);
+        for (int i = 0; i < 4; i++) {
+            x[4 * s + i] = (ct_real)(X[i][0] + 3 * (s % 10));
+            y[4 * s + i] = (ct_real)X[i][1];
+            z[4 * s + i] = (ct_real)X[i][2];
+        }
+        n1[s] = 4 * s;
+        n2[s] = 4 * s + 1;
+        n3[s] = 4 * s + 2;
+        n4[s] = (s % 3 == 0) ? 4 * s + 2 : 4 * s + 3;
+    }
+    for (int i = 0; i < nn; i++) {
+        x[4 * ns + i] = (ct_real)(30 * urand() - 1);
+        y[4 * ns + i] = (ct_real)(3 * urand() - 1.5);
+        z[4 * ns + i] = (ct_real)(urand() - 0.5);
+    }
+    ct_idx *node = ct_calloc((size_t)np + 1, sizeof(ct_idx));
+    ct_idx *seg = ct_calloc((size_t)np + 1, sizeof(ct_idx));
+    for (int k = 0; k < np; k++) {
+        node[k] = 4 * ns + (ct_idx)(k / 7 % nn);
+        seg[k] = (ct_idx)((k * 37 + k / 5) % ns);
+    }
+    geo a, b;
+    geo_init(&a, np);
+    geo_init(&b, np);
+    for (int m = 0; m < 3; m++)
+        for (int two = 0; two < 2; two++) {
+            ct_narrow_stats sa, sb;
+            ctt_threads(1);
+            cr_assert_eq(ct_narrow_node_segment(np, node, seg, n1, n2, n3, n4, x, y, z, NULL,
+                                                NULL, (ct_real)0.3, 0, 0, (ct_quad_method)m, two,
+                                                &a.g, &sa),
+                         CT_OK);
+            ctt_threads(2);
+            cr_assert_eq(ct_narrow_node_segment(np, node, seg, n1, n2, n3, n4, x, y, z, NULL,
+                                                NULL, (ct_real)0.3, 0, 0, (ct_quad_method)m, two,
+                                                &b.g, &sb),
+                         CT_OK);
+            size_t stride = (size_t)np + CT_PAD;
+            cr_assert_eq(memcmp(a.buf, b.buf, stride * 13 * sizeof(ct_real)), 0);
+            cr_assert_eq(memcmp(a.g.flag, b.g.flag, (size_t)np), 0);
+            cr_assert_eq(memcmp(&sa, &sb, sizeof sa), 0);
+            cr_assert(sa.active > 0);
+            /* Shifted by one. */
+            cr_assert_eq(ct_narrow_node_segment(np - 1, node + 1, seg + 1, n1, n2, n3, n4, x, y,
+                                                z, NULL, NULL, (ct_real)0.3, 0, 0,
+                                                (ct_quad_method)m, two, &b.g, NULL),
+                         CT_OK);
+            cr_assert_eq(memcmp(a.g.dist + 1, b.g.dist, (size_t)(np - 1) * sizeof(ct_real)), 0);
+            cr_assert_eq(memcmp(a.g.nx + 1, b.g.nx, (size_t)(np - 1) * sizeof(ct_real)), 0);
+            cr_assert_eq(memcmp(a.g.h3 + 1, b.g.h3, (size_t)(np - 1) * sizeof(ct_real)), 0);
+        }
+    geo_free(&a);
+    geo_free(&b);
+    ct_free(x); ct_free(y); ct_free(z);
+    ct_free(n1); ct_free(n2); ct_free(n3); ct_free(n4);
+    ct_free(node); ct_free(seg);
+}
+
+Test(project, bad_arguments)
+{
+    geo o;
+    geo_init(&o, 1);
+    ct_idx i = 0;
+    ct_real v = 0;
+    cr_assert_eq(ct_narrow_node_segment(-1, &i, &i, &i, &i, &i, &i, &v, &v, &v, NULL, NULL, 0, 0,
+                                        0, CT_QUAD_4TRI, 0, &o.g, NULL),
+                 CT_ERR_ARG);
+    cr_assert_eq(ct_narrow_node_segment(1, NULL, &i, &i, &i, &i, &i, &v, &v, &v, NULL, NULL, 0,
+                                        0, 0, CT_QUAD_4TRI, 0, &o.g, NULL),
+                 CT_ERR_ARG);
+    cr_assert_eq(ct_narrow_node_segment(1, &i, &i, &i, &i, &i, &i, &v, &v, &v, NULL, NULL, 0, 0,
+                                        0, CT_QUAD_NMETHOD, 0, &o.g, NULL),
+                 CT_ERR_ARG);
+    cr_assert_eq(ct_quad_method_from_name("newton"), CT_QUAD_NEWTON);
+    cr_assert_eq(ct_quad_method_from_name("nope"), -1);
+    geo_free(&o);
+}
