@@ -24,6 +24,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "bench_floor.h"
+#include "bench_kernels.h"
 #include "bench_search.h"
 #include "bench_topology.h"
 #include "contact.h"
@@ -49,6 +51,8 @@ static void usage(FILE *f)
                "             [--benchmark_* flags of Google Benchmark, e.g.\n"
                "              --benchmark_filter=REGEX --benchmark_min_time=S]\n"
                "names: search/<family>/<algo>/<numbering>/t<threads>/<nodes>/real_time\n"
+               "       kernels/<group>/<kernel>/t<threads>/<pairs>/real_time\n"
+               "       floor/<triad/dram|triad/ws|bucket/plates>/t<threads>/<n>/real_time\n"
                "env: CT_BENCH_FULL=1, CT_BENCH_BIND, CT_BENCH_DIRECT_BUDGET\n");
 }
 
@@ -150,7 +154,8 @@ int main(int argc, char **argv)
     gb_add_context("ct_search_distance", "gap = 0.3 h, margin = 0.2 h (h: mean main edge length)");
 
     int rc = 0;
-    if (ctb_search_register(&cfg) < 0) {
+    if (ctb_search_register(&cfg) < 0 || ctb_kernels_register(&cfg) < 0 ||
+        ctb_floor_register(&cfg) < 0) {
         fprintf(stderr, "bench: out of memory registering benchmarks\n");
         rc = 1;
     } else {
@@ -161,6 +166,8 @@ int main(int argc, char **argv)
             fprintf(stderr, "bench: no benchmark matches the filter\n");
     }
     ctb_search_cleanup();
+    ctb_kernels_cleanup();
+    ctb_floor_cleanup();
     ctb_topology_close();
     free(args);
     return rc;

@@ -1,7 +1,12 @@
 #!/usr/bin/env python3
 """Turn the Google Benchmark JSON of `make bench` into Markdown tables.
 
-Usage: python3 bench/report.py build/bench.json > /tmp/x.md
+Usage: python3 bench/report.py build/bench.json [build/bench-single.json ...] > /tmp/x.md
+
+Several files (e.g. a double and a single precision run) are merged: the
+kernel and floor tables show them side by side (the precision of a file is
+its context's ct_precision, else the precision= of ct_build, else the
+"prec=" of its labels); the search tables are printed per file.
 
 Reads the search benchmarks (search/<family>/<algo>/<numbering>/t<threads>/
 <nodes>), takes the median of the repetitions (the "median" aggregate when
@@ -19,6 +24,14 @@ present, else the median of the repetition rows), and prints:
     algorithm;
   - the speed-up from 1 thread to the most threads, and the parallel
     efficiency, at the largest size measured with both;
+  - the kernels (kernels/<group>/<kernel>/t<threads>/<pairs>): ns per pair
+    (the ns_per_pair counter) with 1 and the most threads, the parallel
+    efficiency, per precision, and the single-precision speed-up when both
+    precisions are given;
+  - the hardware floor (floor/...): triad bandwidth, the byte model of the
+    search, the floor in ns per node and the ratio measured / floor for the
+    bucket search on plates (the floor benchmark's own run, and the search
+    benchmark's bucket run of the same size and threads when present);
   - any other benchmark as name / median time.
 Standard library only.
 """
@@ -34,11 +47,22 @@ NUMBERINGS = ["natural", "shuffled", "sfc"]
 NAME_RE = re.compile(
     r"^search/(?P<family>[^/]+)/(?P<algo>[^/]+)/(?P<numbering>[^/]+)/t(?P<threads>\d+)/"
     r"(?P<n>\d+)(?:/(?:real_time|manual_time))?$")
-COUNTERS = ["ns_per_node", "nsec", "nseg", "pairs", "bytes_per_node", "misses", "extra"]
+COUNTERS = ["ns_per_node", "nsec", "nseg", "pairs", "bytes_per_node", "misses", "extra",
+            "ns_per_pair", "threads", "npair", "active", "fallbacks", "ncolour", "GBps",
+            "array_MiB", "GBps_dram", "GBps_ws", "floor_bytes_per_node", "floor_ns_dram",
+            "floor_ns_ws", "ratio_dram", "ratio_ws", "nnode"]
+KERNEL_RE = re.compile(
+    r"^kernels/(?P<group>[^/]+)/(?P<kernel>[^/]+)/t(?P<threads>\d+)/(?P<n>\d+)"
+    r"(?:/iterations:\d+)?(?:/(?:real_time|manual_time))?$")
+FLOOR_RE = re.compile(
+    r"^floor/(?P<what>triad/dram|triad/ws|bucket/plates)/t(?P<threads>\d+)/(?P<n>\d+)"
+    r"(?:/iterations:\d+)?(?:/(?:real_time|manual_time))?$")
+KERNEL_GROUPS = ["narrow", "force", "prepare", "assemble"]
+PREC_ORDER = ["double", "single"]
 
 
 def base_name(run_name):
-    return re.sub(r"/(real_time|manual_time)$", "", run_name)
+    return re.sub(r"(/iterations:\d+)?/(real_time|manual_time)$", "", run_name)
 
 
 def collect(benchmarks):
@@ -327,10 +351,166 @@ def print_other(other, out):
     out.append("")
 
 
-def report(data):
-    out = []
-    print_context(data.get("context", {}), out)
-    search, other = parse_search(collect(data.get("benchmarks", [])))
+def precision_of(data):
+    """The precision of one benchmark file: ct_precision, ct_build's
+    precision=, or the first label's prec=."""
+    ctx = data.get("context", {})
+    if ctx.get("ct_precision"):
+        return ctx["ct_precision"]
+    m = re.search(r"precision=(\w+)", ctx.get("ct_build", ""))
+    if m:
+        return m.group(1)
+    for b in data.get("benchmarks", []):
+        m = re.match(r"prec=(\w+)", b.get("label", ""))
+        if m:
+            return m.group(1)
+    return "?"
+
+
+def split_records(records, prec):
+    """Kernel, floor and other records; kernel and floor records get their
+    fields parsed and the precision (label's prec=, else the file's)."""
+    kern, flo, other = [], [], []
+    for r in records:
+        m = KERNEL_RE.match(r["name"]) or FLOOR_RE.match(r["name"])
+        if not m:
+            other.append(r)
+            continue
+        r.update(m.groupdict())
+        r["threads"] = int(r["threads"])
+        r["n"] = int(r["n"])
+        lm = re.match(r"prec=(\w+)", r["label"] or "")
+        r["prec"] = lm.group(1) if lm else prec
+        (kern if "group" in r else flo).append(r)
+    return kern, flo, other
+
+
+def kernel_setting(label):
+    """The setting named in a kernel label: after prec=..., up to ';'."""
+    label = re.sub(r"^prec=\w+\s*", "", label or "")
+    return label.split(";")[0].strip()
+
+
+def print_kernels(kern, precs, out):
+    if not kern:
+        return
+    tmax = max(r["threads"] for r in kern)
+    rows, cells = [], {}
+    for r in kern:
+        key = (r["group"], r["kernel"], r["n"])
+        if key not in cells:
+            cells[key] = {}
+            rows.append(key)
+        cells[key][(r["prec"], r["threads"])] = r
+    gorder = {g: i for i, g in enumerate(KERNEL_GROUPS)}
+    first = {}
+    for i, k in enumerate(rows):
+        first.setdefault((k[0], k[1]), i)
+    rows.sort(key=lambda k: (gorder.get(k[0], 99), first[(k[0], k[1])], k[2]))
+
+    def ns(rec):
+        if rec is None or rec["error"]:
+            return None
+        return rec["counters"].get("ns_per_pair")
+
+    out.append("## Kernels: ns per pair\n")
+    out.append("Median of the repetitions of the ns_per_pair counter (wall time per call / "
+               "pairs); pairs in node order (plates case, bucket search); efficiency = "
+               "ns(1 thread) / (%d × ns(%d threads)). The setting is the benchmark's label."
+               "\n" % (tmax, tmax))
+    head = "| kernel | setting | pairs |"
+    rule = "|---|---|---:|"
+    for p in precs:
+        head += " %s 1 thr | %s %d thr | %s eff. |" % (p, p, tmax, p)
+        rule += "---:|---:|---:|"
+    both = "double" in precs and "single" in precs
+    if both:
+        head += " single speed-up (1 thr) |"
+        rule += "---:|"
+    out.append(head)
+    out.append(rule)
+    for key in rows:
+        c = cells[key]
+        setting = ""
+        for p in precs:
+            for t in (1, tmax):
+                rec = c.get((p, t))
+                if rec is not None and not setting:
+                    setting = kernel_setting(rec["label"]) or (rec["error"] or "")
+        line = "| %s/%s | %s | %d |" % (key[0], key[1], setting, key[2])
+        for p in precs:
+            a, b = ns(c.get((p, 1))), ns(c.get((p, tmax)))
+            err = c.get((p, 1)) or c.get((p, tmax))
+            if a is None and b is None and err is not None and err["error"]:
+                line += " %s | - | - |" % err["error"]
+                continue
+            eff = "%.0f%%" % (100.0 * a / (tmax * b)) if a and b and tmax > 1 else "-"
+            line += " %s | %s | %s |" % (fmt_ns(a) if a is not None else "-",
+                                         fmt_ns(b) if b is not None and tmax > 1 else "-", eff)
+        if both:
+            a, b = ns(c.get(("double", 1))), ns(c.get(("single", 1)))
+            line += " %s |" % ("%.2f" % (a / b) if a and b else "-")
+        out.append(line)
+    out.append("")
+
+
+def print_floor(flo, searches, out):
+    """searches: {precision: search records of that file}."""
+    bucket = [r for r in flo if r["what"] == "bucket/plates"]
+    triads = [r for r in flo if r["what"].startswith("triad/")]
+    if not flo:
+        return
+    out.append("## Hardware floor\n")
+    if triads:
+        out.append("Triad a[i] = b[i] + s·c[i], 24 bytes per element (STREAM's count); "
+                   "dram: arrays together 4× the last-level cache; ws: arrays the size of the "
+                   "search's working set.\n")
+        out.append("| precision | kind | threads | MiB per array | GB/s |")
+        out.append("|---|---|---:|---:|---:|")
+        for r in sorted(triads, key=lambda r: (r["prec"], r["what"], r["threads"])):
+            c = r["counters"]
+            out.append("| %s | %s | %d | %s | %s |" % (
+                r["prec"], r["what"][6:], r["threads"], fmt_num(c.get("array_MiB"), 0),
+                "%.2f" % c["GBps"] if "GBps" in c else (r["error"] or "-")))
+        out.append("")
+    if not bucket:
+        return
+    out.append("Bucket search on plates against its floor: bytes/node is the minimum any "
+               "search must move per secondary node (secondary list, coordinates of the "
+               "touched nodes, main connectivity, pairs written; bench/floor.h); floor = "
+               "bytes / best triad bandwidth of the run with the same threads; ratio = "
+               "measured / floor. \"search run\" is the search benchmark's bucket on plates "
+               "(natural numbering) of the same size and threads.\n")
+    out.append("| precision | nodes | threads | bytes/node | GB/s dram | floor ns/node | "
+               "measured ns/node | ratio | GB/s ws | floor ns/node (ws) | ratio (ws) "
+               "| search run ns/node | its ratio |")
+    out.append("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+    for r in sorted(bucket, key=lambda r: (r["prec"], r["n"], r["threads"])):
+        c = r["counters"]
+        if r["error"]:
+            out.append("| %s | %d | %d | %s | - | - | - | - | - | - | - | - | - |" % (
+                r["prec"], r["n"], r["threads"], r["error"]))
+            continue
+        sv, sr = "-", "-"
+        for s in searches.get(r["prec"], []):
+            if (s["family"], s["algo"], s["numbering"], s["n"], s["threads"]) == \
+                    ("plates", "bucket", "natural", r["n"], r["threads"]) and not s["error"]:
+                v = ns_per_node(s)
+                fd = c.get("floor_ns_dram")
+                if v is not None:
+                    sv = fmt_ns(v)
+                    sr = "%.1f" % (v / fd) if fd and fd > 0 else "-"
+        out.append("| %s | %d | %d | %.1f | %.2f | %.2f | %s | %.1f | %.2f | %.2f | %.1f "
+                   "| %s | %s |" % (
+                       r["prec"], r["n"], r["threads"], c.get("floor_bytes_per_node", 0),
+                       c.get("GBps_dram", 0), c.get("floor_ns_dram", 0),
+                       fmt_ns(c.get("ns_per_node")), c.get("ratio_dram", 0),
+                       c.get("GBps_ws", 0), c.get("floor_ns_ws", 0), c.get("ratio_ws", 0),
+                       sv, sr))
+    out.append("")
+
+
+def report_search(data, search, out):
     families = []
     for r in search:
         if r["family"] not in families:
@@ -345,21 +525,62 @@ def report(data):
         print_family(fam, search, out)
     print_scaling(families, search, out)
     print_speedup(families, search, out)
-    print_other(other, out)
+
+
+def report(datas, names=None):
+    """datas: one parsed JSON file, or a list of them (merged)."""
+    if isinstance(datas, dict):
+        datas = [datas]
+    names = names or ["file %d" % (i + 1) for i in range(len(datas))]
+    multi = len(datas) > 1
+    out = []
+    files = []
+    for data, name in zip(datas, names):
+        prec = precision_of(data)
+        tag = prec
+        k = 2
+        while tag in [f["tag"] for f in files]:
+            tag = "%s#%d" % (prec, k)
+            k += 1
+        search, rest = parse_search(collect(data.get("benchmarks", [])))
+        kern, flo, other = split_records(rest, tag)
+        files.append({"tag": tag, "name": name, "data": data, "search": search,
+                      "kern": kern, "flo": flo, "other": other})
+    for f in files:
+        if multi:
+            out.append("# %s precision (%s)\n" % (f["tag"], f["name"]))
+        print_context(f["data"].get("context", {}), out)
+    for f in files:
+        if multi and f["search"]:
+            out.append("# Search benchmarks, %s precision\n" % f["tag"])
+        report_search(f["data"], f["search"], out)
+    precs = []
+    for f in files:
+        for r in f["kern"] + f["flo"]:
+            if r["prec"] not in precs:
+                precs.append(r["prec"])
+    precs.sort(key=lambda p: (PREC_ORDER.index(p) if p in PREC_ORDER else 99, p))
+    print_kernels([r for f in files for r in f["kern"]], precs, out)
+    print_floor([r for f in files for r in f["flo"]], {f["tag"]: f["search"] for f in files},
+                out)
+    for f in files:
+        print_other(f["other"], out)
     return "\n".join(out)
 
 
 def main(argv):
-    if len(argv) != 2:
-        sys.stderr.write("usage: report.py BENCH.json\n")
+    if len(argv) < 2:
+        sys.stderr.write("usage: report.py BENCH.json [BENCH2.json ...]\n")
         return 2
-    try:
-        with open(argv[1]) as f:
-            data = json.load(f)
-    except (OSError, ValueError) as e:
-        sys.stderr.write("report.py: cannot read %s: %s\n" % (argv[1], e))
-        return 1
-    sys.stdout.write(report(data) + "\n")
+    datas = []
+    for path in argv[1:]:
+        try:
+            with open(path) as f:
+                datas.append(json.load(f))
+        except (OSError, ValueError) as e:
+            sys.stderr.write("report.py: cannot read %s: %s\n" % (path, e))
+            return 1
+    sys.stdout.write(report(datas, argv[1:]) + "\n")
     return 0
 
 

@@ -1,0 +1,127 @@
+/*
+ * floor.h -- the hardware floor of the contact search: the minimum number of
+ * bytes any search must move, and the time that takes at a measured memory
+ * bandwidth. Pure functions (header only, so the tests use them without the
+ * benchmark program); the bandwidth itself is measured by bench_floor.c.
+ *
+ * The byte model counts what ANY search algorithm must move for one search,
+ * not the passes of a particular one (the bucket sort's binning, counting
+ * and scatter passes come on top): every input it cannot do without is read
+ * once, every output is written once.
+ *
+ *   sec_list = nsec * sizeof(ct_idx)       the list of secondary nodes
+ *                                          (global indices) is read;
+ *   coords   = 3 * nnode * sizeof(ct_real) x, y, z of every node the search
+ *                                          touches, once: the secondary
+ *                                          nodes and the corners of the main
+ *                                          segments (nnode counts the union;
+ *                                          a node that is both is read once);
+ *   conn     = 4 * nseg * sizeof(ct_idx)   the main segments' connectivity
+ *                                          n1..n4 (a triangle repeats n3, so
+ *                                          it has 4 entries too);
+ *   pairs    = 2 * npair * sizeof(ct_idx)  the output (node, seg) pairs are
+ *                                          written.
+ *
+ * Writes are counted once, as STREAM counts them (its triad a = b + s c
+ * moves 3 arrays: 2 read, 1 written; the extra read of a write-allocate
+ * cache is counted in neither), so the ratio measured / floor compares like
+ * with like. Everything else (grids, sort keys, scratch) is the algorithm's
+ * own overhead and is what the ratio measures.
+ */
+#ifndef CTB_FLOOR_H
+#define CTB_FLOOR_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include <stdlib.h>
+
+#include "contact.h"
+
+typedef struct ctb_floor_terms {
+    double sec_list, coords, conn, pairs; /* bytes, as documented above */
+    double total;                         /* their sum; -1 for invalid input */
+} ctb_floor_terms;
+
+/* The minimum bytes of one search (see the top of this file). A negative
+ * count or a zero element size gives total = -1 and every term 0. */
+static inline ctb_floor_terms ctb_floor_search_bytes(int64_t nsec, int64_t nseg, int64_t nnode,
+                                                     int64_t npair, size_t real_size,
+                                                     size_t idx_size)
+{
+    ctb_floor_terms t = {0, 0, 0, 0, -1};
+    if (nsec < 0 || nseg < 0 || nnode < 0 || npair < 0 || real_size == 0 || idx_size == 0)
+        return t;
+    t.sec_list = (double)nsec * (double)idx_size;
+    t.coords = 3.0 * (double)nnode * (double)real_size;
+    t.conn = 4.0 * (double)nseg * (double)idx_size;
+    t.pairs = 2.0 * (double)npair * (double)idx_size;
+    t.total = t.sec_list + t.coords + t.conn + t.pairs;
+    return t;
+}
+
+/* The lower bound in ns per secondary node: bytes / bandwidth / nsec, with
+ * the bandwidth in GB/s (1e9 bytes per second): bytes / (gbps * 1e9) s is
+ * bytes / gbps ns. -1 when an argument is not positive. */
+static inline double ctb_floor_ns_per_node(double bytes, int64_t nsec, double gbps)
+{
+    if (!(bytes > 0) || nsec <= 0 || !(gbps > 0))
+        return -1;
+    return bytes / gbps / (double)nsec;
+}
+
+/* Bytes one triad a[i] = b[i] + s c[i] over n elements of elem_size bytes
+ * moves, counted as STREAM does: 3 n elem_size. */
+static inline double ctb_triad_bytes(int64_t n, size_t elem_size)
+{
+    return 3.0 * (double)n * (double)elem_size;
+}
+
+/* GB/s (1e9 bytes per second); -1 when seconds is not positive. */
+static inline double ctb_gbps(double bytes, double seconds)
+{
+    return seconds > 0 ? bytes / seconds / 1e9 : -1;
+}
+
+/*
+ * The nodes a search over this input touches: the union of the secondary
+ * nodes sec[0..nsec-1] and the corners n1..n4 of the nseg main segments
+ * (indices in [0, nnode_all)), each counted once. This is the nnode of the
+ * byte model. -1 on allocation failure or an index out of range.
+ */
+static inline int64_t ctb_floor_touched_nodes(int64_t nnode_all, int64_t nsec,
+                                              const ct_idx *sec, int64_t nseg,
+                                              const ct_idx *n1, const ct_idx *n2,
+                                              const ct_idx *n3, const ct_idx *n4)
+{
+    if (nnode_all < 0 || nsec < 0 || nseg < 0)
+        return -1;
+    unsigned char *seen = calloc((size_t)nnode_all + 1, 1);
+    if (!seen)
+        return -1;
+    int64_t count = 0;
+    int bad = 0;
+    for (int64_t i = 0; i < nsec && !bad; i++) {
+        ct_idx v = sec[i];
+        if (v < 0 || v >= nnode_all) {
+            bad = 1;
+            break;
+        }
+        count += !seen[v];
+        seen[v] = 1;
+    }
+    const ct_idx *corner[4] = {n1, n2, n3, n4};
+    for (int c = 0; c < 4 && !bad; c++)
+        for (int64_t s = 0; s < nseg; s++) {
+            ct_idx v = corner[c][s];
+            if (v < 0 || v >= nnode_all) {
+                bad = 1;
+                break;
+            }
+            count += !seen[v];
+            seen[v] = 1;
+        }
+    free(seen);
+    return bad ? -1 : count;
+}
+
+#endif /* CTB_FLOOR_H */

@@ -1,0 +1,192 @@
+/*
+ * test_bench_floor.c -- the hardware floor of the benchmarks (bench/floor.h):
+ * the byte model of the search on hand-computed cases, the floor in ns per
+ * node for a given bandwidth, the triad byte count, and the count of the
+ * nodes a search touches on a small plates case whose numbers are known;
+ * and the kernel and floor tables of bench/report.py on two small fixed
+ * files (double and single precision), merged.
+ */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "floor.h"
+#include "meshgen.h"
+#include "test_util.h"
+
+/* Byte counts are integers far below 2^53: exact in double. */
+Test(bench_floor, byte_model_hand_count)
+{
+    /* Plates with s = 10: 100 secondary nodes, 100 main quads, 100 + 11^2 =
+     * 221 nodes, 300 pairs; double, 4-byte indices:
+     *   sec list 100 * 4 = 400; coordinates 3 * 221 * 8 = 5304;
+     *   connectivity 4 * 100 * 4 = 1600; pairs 2 * 300 * 4 = 2400;
+     *   total 9704. */
+    ctb_floor_terms t = ctb_floor_search_bytes(100, 100, 221, 300, 8, 4);
+    cr_expect_eq(t.sec_list, 400.0);
+    cr_expect_eq(t.coords, 5304.0);
+    cr_expect_eq(t.conn, 1600.0);
+    cr_expect_eq(t.pairs, 2400.0);
+    cr_expect_eq(t.total, 9704.0);
+    /* Single precision: coordinates 3 * 221 * 4 = 2652, total 7052. */
+    t = ctb_floor_search_bytes(100, 100, 221, 300, 4, 4);
+    cr_expect_eq(t.coords, 2652.0);
+    cr_expect_eq(t.total, 7052.0);
+    /* 8-byte indices (a 64-bit build): 800 + 5304 + 3200 + 4800 = 14104. */
+    t = ctb_floor_search_bytes(100, 100, 221, 300, 8, 8);
+    cr_expect_eq(t.total, 14104.0);
+    /* Self contact, 10^6 nodes, 10^6 segments, 5 * 10^6 pairs, double:
+     * 4e6 + 24e6 + 16e6 + 40e6 = 84e6. */
+    t = ctb_floor_search_bytes(1000000, 1000000, 1000000, 5000000, 8, 4);
+    cr_expect_eq(t.total, 84e6);
+    /* Invalid input. */
+    cr_expect_eq(ctb_floor_search_bytes(-1, 1, 1, 1, 8, 4).total, -1.0);
+    cr_expect_eq(ctb_floor_search_bytes(1, 1, 1, 1, 0, 4).total, -1.0);
+}
+
+Test(bench_floor, ns_per_node_for_a_bandwidth)
+{
+    /* 9704 bytes at 10 GB/s take 970.4 ns; over 100 nodes 9.704 ns/node. */
+    cr_expect(fabs(ctb_floor_ns_per_node(9704, 100, 10.0) - 9.704) < 1e-12);
+    /* 84e6 bytes at 12 GB/s: 7 ms, over 10^6 nodes 7 ns/node. */
+    cr_expect(fabs(ctb_floor_ns_per_node(84e6, 1000000, 12.0) - 7.0) < 1e-12);
+    cr_expect_eq(ctb_floor_ns_per_node(84e6, 0, 12.0), -1.0);
+    cr_expect_eq(ctb_floor_ns_per_node(84e6, 10, 0.0), -1.0);
+    /* Triad over 10^6 doubles: 24e6 bytes; in 2 ms that is 12 GB/s. */
+    cr_expect_eq(ctb_triad_bytes(1000000, 8), 24e6);
+    cr_expect(fabs(ctb_gbps(24e6, 2e-3) - 12.0) < 1e-12);
+    cr_expect_eq(ctb_gbps(1.0, 0.0), -1.0);
+}
+
+/* The union of secondary nodes and main corners on a hand-made input:
+ * nodes 0..9; sec = {0, 1, 2}; segments (2 3 4 5) and the triangle
+ * (5 6 7 7): union {0..7} = 8 nodes (2 and 5 counted once, 8 and 9 never
+ * touched). */
+Test(bench_floor, touched_nodes_hand_case)
+{
+    const ct_idx sec[] = {0, 1, 2};
+    const ct_idx n1[] = {2, 5}, n2[] = {3, 6}, n3[] = {4, 7}, n4[] = {5, 7};
+    cr_expect_eq(ctb_floor_touched_nodes(10, 3, sec, 2, n1, n2, n3, n4), 8);
+    /* Out of range. */
+    const ct_idx bad[] = {0, 10};
+    cr_expect_eq(ctb_floor_touched_nodes(10, 2, bad, 2, n1, n2, n3, n4), -1);
+}
+
+/* On the plates family (meshgen.h): s = round(sqrt(target)), plate A has
+ * s x s secondary nodes, plate B (s+1)^2 nodes and s^2 quads. Target 400
+ * gives s = 20: nsec = 400, nseg = 400, touched nodes 400 + 441 = 841, and
+ * with P pairs the model gives 400*4 + 3*841*R + 1600*4 + 2*P*4 bytes. */
+Test(bench_floor, plates_case_counts)
+{
+    ctd_case c;
+    ct_diag d;
+    memset(&c, 0, sizeof c);
+    cr_assert_eq(ctd_case_make(&c, "plates", 400, CTD_NUM_NATURAL, 1, &d), CT_OK, "%s", d.msg);
+    ct_search_input in;
+    ctd_case_input(&c, 0.3, 0.2, &in);
+    cr_expect_eq(in.nsec, 400);
+    cr_expect_eq(in.nseg, 400);
+    int64_t nn = ctb_floor_touched_nodes(in.nnode, in.nsec, in.sec, in.nseg, in.n1, in.n2,
+                                         in.n3, in.n4);
+    cr_expect_eq(nn, 841);
+    ctb_floor_terms t = ctb_floor_search_bytes(in.nsec, in.nseg, nn, 1000, sizeof(ct_real),
+                                               sizeof(ct_idx));
+    double want = 1600.0 + 3.0 * 841.0 * (double)sizeof(ct_real) + 6400.0 + 8000.0;
+    cr_expect_eq(t.total, want);
+    ctd_case_destroy(&c);
+}
+
+/* ---- The kernel and floor tables of bench/report.py ---------------------- */
+
+/* Write text to dir/name (the path is left in path). */
+static const char *write_file(const char *dir, const char *name, const char *text,
+                              char *path, size_t len)
+{
+    snprintf(path, len, "%s/%s", dir, name);
+    FILE *f = fopen(path, "w");
+    cr_assert(f != NULL, "cannot write %s", path);
+    fputs(text, f);
+    fclose(f);
+    return path;
+}
+
+static char *run_cmd(const char *cmd, int *status)
+{
+    FILE *p = popen(cmd, "r");
+    cr_assert(p != NULL, "popen(%s) failed", cmd);
+    size_t cap = 1 << 16, len = 0, got;
+    char *buf = malloc(cap);
+    cr_assert(buf != NULL);
+    while ((got = fread(buf + len, 1, cap - 1 - len, p)) > 0) {
+        len += got;
+        if (len + 1 == cap) {
+            cap *= 2;
+            buf = realloc(buf, cap);
+            cr_assert(buf != NULL);
+        }
+    }
+    buf[len] = '\0';
+    int st = pclose(p);
+    *status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+    return buf;
+}
+
+#define KROW(name, ns, extra)                                                                 \
+    "{\"name\": \"" name "\", \"run_name\": \"" name "\", \"run_type\": \"iteration\", "      \
+    "\"real_time\": 1000, \"time_unit\": \"ns\", \"ns_per_pair\": " #ns ", "                  \
+    "\"label\": \"prec=" extra " node-quad 4tri; 1000 pairs\"}"
+
+/* Two files, double and single, merged side by side. By hand:
+ * double 1 thread: the median of 10, 12, 30 is 12; 2 threads 8; efficiency
+ * 12 / (2 * 8) = 75%. Single: 6 and 4, efficiency 6 / 8 = 75%; speed-up of
+ * single at 1 thread 12 / 6 = 2.00. The single file has no ct_precision:
+ * its precision comes from ct_build's precision=single.
+ * Floor: the bucket row's counters are printed as they are; the search
+ * benchmark's bucket run of the same size and threads took 46e6 ns over 10^6
+ * nodes = 46.0 ns/node, 46 / 9.2 = 5.0 times the floor. */
+Test(bench_floor, report_merges_precisions)
+{
+    cr_assert(access("bench/report.py", R_OK) == 0,
+              "bench/report.py not found: run the tests from the repository's top directory");
+    char dir[] = "/tmp/ct_floor_XXXXXX";
+    cr_assert(mkdtemp(dir) != NULL);
+    const char *dbl =
+        "{\"context\": {\"ct_precision\": \"double\"}, \"benchmarks\": ["
+        KROW("kernels/narrow/4tri/t1/1000/real_time", 10, "double") ","
+        KROW("kernels/narrow/4tri/t1/1000/real_time", 30, "double") ","
+        KROW("kernels/narrow/4tri/t1/1000/real_time", 12, "double") ","
+        KROW("kernels/narrow/4tri/t2/1000/real_time", 8, "double") ","
+        "{\"name\": \"floor/bucket/plates/t1/1000000/real_time\", \"run_name\": "
+        "\"floor/bucket/plates/t1/1000000/real_time\", \"run_type\": \"iteration\", "
+        "\"real_time\": 92000000, \"time_unit\": \"ns\", \"floor_bytes_per_node\": 92, "
+        "\"GBps_dram\": 10, \"floor_ns_dram\": 9.2, \"ns_per_node\": 92, \"ratio_dram\": 10, "
+        "\"GBps_ws\": 20, \"floor_ns_ws\": 4.6, \"ratio_ws\": 20, \"label\": \"prec=double x\"},"
+        "{\"name\": \"search/plates/bucket/natural/t1/1000000/real_time\", \"run_name\": "
+        "\"search/plates/bucket/natural/t1/1000000/real_time\", \"run_type\": \"iteration\", "
+        "\"real_time\": 46000000, \"time_unit\": \"ns\", \"nsec\": 1000000, "
+        "\"nseg\": 1000000, \"pairs\": 3000000, \"label\": \"\"}]}";
+    const char *sgl =
+        "{\"context\": {\"ct_build\": \"compiler=gcc precision=single commit=x\"}, "
+        "\"benchmarks\": ["
+        KROW("kernels/narrow/4tri/t1/1000/real_time", 6, "single") ","
+        KROW("kernels/narrow/4tri/t2/1000/real_time", 4, "single") "]}";
+    char p1[256], p2[256], cmd[700];
+    write_file(dir, "d.json", dbl, p1, sizeof p1);
+    write_file(dir, "s.json", sgl, p2, sizeof p2);
+    snprintf(cmd, sizeof cmd, "python3 bench/report.py %s %s 2>&1", p1, p2);
+    int status = -1;
+    char *out = run_cmd(cmd, &status);
+    cr_assert_eq(status, 0, "report.py failed:\n%s", out);
+    const char *row = "| narrow/4tri | node-quad 4tri | 1000 | 12.0 | 8.0 | 75% | 6.0 | 4.0 | "
+                      "75% | 2.00 |";
+    cr_expect(strstr(out, row) != NULL, "missing:\n%s\nin:\n%s", row, out);
+    const char *frow = "| double | 1000000 | 1 | 92.0 | 10.00 | 9.20 | 92.0 | 10.0 | 20.00 | "
+                       "4.60 | 20.0 | 46.0 | 5.0 |";
+    cr_expect(strstr(out, frow) != NULL, "missing:\n%s\nin:\n%s", frow, out);
+    free(out);
+    remove(p1);
+    remove(p2);
+    rmdir(dir);
+}
