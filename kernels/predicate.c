@@ -99,34 +99,35 @@ static inline ct_real orient3(const ct_real a[3], const ct_real b[3], const ct_r
            ap[2] * (ab[0] * ac[1] - ab[1] * ac[0]);
 }
 
-int ct_pair_box_near(const ct_real p[3], const ct_real a[3], const ct_real b[3],
-                     const ct_real c[3], const ct_real e[3], ct_real d)
+/* Squared Euclidean distance from p to the corners' axis-aligned box, or -1
+ * when p is outside the box inflated by d (then it is surely farther). */
+static inline ct_real box_dist2(const ct_real p[3], const ct_real a[3], const ct_real b[3],
+                                const ct_real c[3], const ct_real e[3], ct_real d)
 {
-    ct_real d2 = d * d, box2 = 0;
+    ct_real box2 = 0;
     for (int k = 0; k < 3; k++) {
         ct_real lo = CTI_MIN(CTI_MIN(a[k], b[k]), CTI_MIN(c[k], e[k]));
         ct_real hi = CTI_MAX(CTI_MAX(a[k], b[k]), CTI_MAX(c[k], e[k]));
         if (p[k] < lo - d || p[k] > hi + d)
-            return 0;
+            return -1;
         ct_real ex = p[k] < lo ? lo - p[k] : (p[k] > hi ? p[k] - hi : 0);
         box2 += ex * ex;
     }
-    return box2 <= d2;
+    return box2;
+}
+
+int ct_pair_box_near(const ct_real p[3], const ct_real a[3], const ct_real b[3],
+                     const ct_real c[3], const ct_real e[3], ct_real d)
+{
+    ct_real box2 = box_dist2(p, a, b, c, e, d);
+    return box2 >= 0 && box2 <= d * d;
 }
 
 int ct_pair_may_touch(const ct_real p[3], const ct_real a[3], const ct_real b[3],
                       const ct_real c[3], const ct_real e[3], ct_real d)
 {
-    ct_real d2 = d * d, box2 = 0;
-    for (int k = 0; k < 3; k++) {
-        ct_real lo = CTI_MIN(CTI_MIN(a[k], b[k]), CTI_MIN(c[k], e[k]));
-        ct_real hi = CTI_MAX(CTI_MAX(a[k], b[k]), CTI_MAX(c[k], e[k]));
-        if (p[k] < lo - d || p[k] > hi + d)
-            return 0;
-        ct_real ex = p[k] < lo ? lo - p[k] : (p[k] > hi ? p[k] - hi : 0);
-        box2 += ex * ex;
-    }
-    if (box2 > d2)
+    ct_real d2 = d * d, box2 = box_dist2(p, a, b, c, e, d);
+    if (box2 < 0 || box2 > d2)
         return 0;
     ct_real v[3];
     const ct_real *corner[4] = {a, b, c, e};
