@@ -26,6 +26,7 @@
 
 #include "bench_floor.h"
 #include "bench_kernels.h"
+#include "bench_peers.h"
 #include "bench_search.h"
 #include "bench_topology.h"
 #include "contact.h"
@@ -58,6 +59,9 @@ static void usage(FILE *f)
 
 int main(int argc, char **argv)
 {
+    int vrc = ctb_peers_verify_main(argc, argv); /* bench --verify-peers */
+    if (vrc >= 0)
+        return vrc;
     ctb_search_config cfg;
     memset(&cfg, 0, sizeof cfg);
     const char *e = getenv("CT_BENCH_FULL");
@@ -154,8 +158,8 @@ int main(int argc, char **argv)
     gb_add_context("ct_search_distance", "gap = 0.3 h, margin = 0.2 h (h: mean main edge length)");
 
     int rc = 0;
-    if (ctb_search_register(&cfg) < 0 || ctb_kernels_register(&cfg) < 0 ||
-        ctb_floor_register(&cfg) < 0) {
+    if (ctb_search_register(&cfg) < 0 || ctb_peers_register(&cfg) < 0 ||
+        ctb_kernels_register(&cfg) < 0 || ctb_floor_register(&cfg) < 0) {
         fprintf(stderr, "bench: out of memory registering benchmarks\n");
         rc = 1;
     } else {
@@ -166,6 +170,8 @@ int main(int argc, char **argv)
             fprintf(stderr, "bench: no benchmark matches the filter\n");
     }
     ctb_search_cleanup();
+    if (ctb_peers_cleanup() > 0 && rc == 0)
+        rc = 4; /* a peer's pairs differed from ours, or a peer failed */
     ctb_kernels_cleanup();
     ctb_floor_cleanup();
     ctb_topology_close();

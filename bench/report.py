@@ -32,6 +32,11 @@ present, else the median of the repetition rows), and prints:
     search, the floor in ns per node and the ratio measured / floor for the
     bucket search on plates (the floor benchmark's own run, and the search
     benchmark's bucket run of the same size and threads when present);
+  - the peers (peer/<family>/<peer>[@<setting>]/t<threads>/<nodes>: nanoflann,
+    CGAL, Bullet on the same meshes and query, their pair sets checked equal to
+    our bucket search's): build and query ns per node, and the ratio of the
+    peer's cost to our best search on the same family and size (natural
+    numbering, any thread count);
   - any other benchmark as name / median time.
 Standard library only.
 """
@@ -51,6 +56,12 @@ COUNTERS = ["ns_per_node", "nsec", "nseg", "pairs", "bytes_per_node", "misses", 
             "ns_per_pair", "threads", "npair", "active", "fallbacks", "ncolour", "GBps",
             "array_MiB", "GBps_dram", "GBps_ws", "floor_bytes_per_node", "floor_ns_dram",
             "floor_ns_ws", "ratio_dram", "ratio_ws", "nnode"]
+# The peers' benchmarks (bench_peers.c).
+PEER_RE = re.compile(
+    r"^peer/(?P<family>[^/]+)/(?P<peer>[^/@]+)(?:@(?P<setting>[^/]+))?/t(?P<threads>\d+)/"
+    r"(?P<n>\d+)$")
+COUNTERS += [c for c in ("build_ns_per_node", "query_ns_per_node", "candidates", "threads")
+             if c not in COUNTERS]
 KERNEL_RE = re.compile(
     r"^kernels/(?P<group>[^/]+)/(?P<kernel>[^/]+)/t(?P<threads>\d+)/(?P<n>\d+)"
     r"(?:/iterations:\d+)?(?:/(?:real_time|manual_time))?$")
@@ -339,6 +350,69 @@ def print_speedup(families, search, out):
     out.append("")
 
 
+def parse_peers(other):
+    peers, rest = [], []
+    for r in other:
+        m = PEER_RE.match(r["name"])
+        if not m:
+            rest.append(r)
+            continue
+        r.update(m.groupdict())
+        r["threads"] = int(r["threads"])
+        r["n"] = int(r["n"])
+        r["tuned"] = not r["setting"]
+        if not r["setting"]:
+            lab = r["label"] or ""
+            r["setting"] = lab.split(" same_as")[0].replace(" (tuned)", "") if lab else "-"
+        peers.append(r)
+    return peers, rest
+
+
+def our_best(search, family, n):
+    """Our fastest search (ns per node) on the same family and size, natural
+    numbering, any thread count: (ns/node, algorithm, threads) or None."""
+    best = None
+    for r in search:
+        if r["error"] or r["family"] != family or r["n"] != n or r["numbering"] != "natural":
+            continue
+        v = ns_per_node(r)
+        if v is not None and (best is None or v < best[0]):
+            best = (v, r["algo"], r["threads"])
+    return best
+
+
+def print_peers(peers, search, out):
+    if not peers:
+        return
+    out.append("## Peers: the same query on the same meshes\n")
+    out.append("Each peer's pairs, after the project's exact filter, are checked equal to "
+               "the bucket search's before timing. ns/node = build + query per secondary "
+               "node; × ours = peer ns/node / our best search's ns/node on the same family "
+               "and size (natural numbering, any threads).\n")
+    out.append("| family | nodes | peer | setting | threads | build ns/node | query ns/node "
+               "| ns/node | ours (best) | × ours | pairs |")
+    out.append("|---|---:|---|---|---:|---:|---:|---:|---|---:|---:|")
+    rows = sorted(peers, key=lambda r: (r["family"], r["n"], not r["tuned"], r["peer"],
+                                        r["setting"], r["threads"]))
+    for r in rows:
+        head = "| %s | %d | %s | %s | %d " % (r["family"], r["n"], r["peer"], r["setting"],
+                                              r["threads"])
+        if r["error"]:
+            out.append(head + "| - | - | - | - | - | - | %s |" % r["error"])
+            continue
+        c = r["counters"]
+        v = c.get("ns_per_node")
+        if v is None:
+            v = ns_per_node(r)
+        b = our_best(search, r["family"], r["n"])
+        ours = "%s %s t%d" % (fmt_ns(b[0]), b[1], b[2]) if b else "-"
+        ratio = "%.1f" % (v / b[0]) if b and v is not None and b[0] > 0 else "-"
+        out.append(head + "| %s | %s | %s | %s | %s | %s |" % (
+            fmt_ns(c.get("build_ns_per_node")), fmt_ns(c.get("query_ns_per_node")), fmt_ns(v),
+            ours, ratio, fmt_num(c.get("pairs"))))
+    out.append("")
+
+
 def print_other(other, out):
     if not other:
         return
@@ -544,8 +618,9 @@ def report(datas, names=None):
             k += 1
         search, rest = parse_search(collect(data.get("benchmarks", [])))
         kern, flo, other = split_records(rest, tag)
+        peers, other = parse_peers(other)
         files.append({"tag": tag, "name": name, "data": data, "search": search,
-                      "kern": kern, "flo": flo, "other": other})
+                      "kern": kern, "flo": flo, "other": other, "peers": peers})
     for f in files:
         if multi:
             out.append("# %s precision (%s)\n" % (f["tag"], f["name"]))
@@ -563,6 +638,8 @@ def report(datas, names=None):
     print_kernels([r for f in files for r in f["kern"]], precs, out)
     print_floor([r for f in files for r in f["flo"]], {f["tag"]: f["search"] for f in files},
                 out)
+    for f in files:
+        print_peers(f["peers"], f["search"], out)
     for f in files:
         print_other(f["other"], out)
     return "\n".join(out)

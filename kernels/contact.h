@@ -27,6 +27,13 @@
 extern "C" {
 #endif
 
+/* `restrict` in the public headers, spelled so C++ can include them. */
+#ifdef __cplusplus
+#define CT_RESTRICT __restrict__
+#else
+#define CT_RESTRICT restrict
+#endif
+
 /* ---- Scalar types ------------------------------------------------------ */
 
 #ifdef CT_SINGLE

@@ -69,11 +69,11 @@ ct_asm_map ct_asm_map_edge(ct_idx npair, const ct_idx *a1, const ct_idx *a2,
 /* Materialise the segment nodes of each pair, s_i[k] = n_i[seg[k]] (once per
  * pair list), in parallel. Returns CT_ERR_RANGE when a seg[k] is outside
  * [0, nseg). */
-int ct_asm_seg_slots(ct_idx npair, const ct_idx *restrict seg, ct_idx nseg,
-                     const ct_idx *restrict n1, const ct_idx *restrict n2,
-                     const ct_idx *restrict n3, const ct_idx *restrict n4,
-                     ct_idx *restrict s1, ct_idx *restrict s2, ct_idx *restrict s3,
-                     ct_idx *restrict s4);
+int ct_asm_seg_slots(ct_idx npair, const ct_idx *CT_RESTRICT seg, ct_idx nseg,
+                     const ct_idx *CT_RESTRICT n1, const ct_idx *CT_RESTRICT n2,
+                     const ct_idx *CT_RESTRICT n3, const ct_idx *CT_RESTRICT n4,
+                     ct_idx *CT_RESTRICT s1, ct_idx *CT_RESTRICT s2, ct_idx *CT_RESTRICT s3,
+                     ct_idx *CT_RESTRICT s4);
 
 typedef enum ct_assemble_variant {
     CT_ASM_COLOUR = 0, /* the default: coloured blocks, no atomics */
@@ -178,34 +178,34 @@ int ct_assemble_prepare(ct_assemble_ws *ws, ct_assemble_variant variant,
  * ranges itself when sizes or the thread count change.
  */
 int ct_assemble(ct_assemble_ws *ws, ct_assemble_variant variant, const ct_asm_map *map,
-                const ct_real *const w[], const ct_real *restrict fx,
-                const ct_real *restrict fy, const ct_real *restrict fz, ct_idx nnode,
-                ct_real *restrict fxn, ct_real *restrict fyn, ct_real *restrict fzn);
+                const ct_real *const w[], const ct_real *CT_RESTRICT fx,
+                const ct_real *CT_RESTRICT fy, const ct_real *CT_RESTRICT fz, ct_idx nnode,
+                ct_real *CT_RESTRICT fxn, ct_real *CT_RESTRICT fyn, ct_real *CT_RESTRICT fzn);
 
 /* The variants, explicitly (same arguments). */
 int ct_assemble_coloured(const ct_assemble_ws *ws, const ct_asm_map *map,
-                         const ct_real *const w[], const ct_real *restrict fx,
-                         const ct_real *restrict fy, const ct_real *restrict fz,
-                         ct_idx nnode, ct_real *restrict fxn, ct_real *restrict fyn,
-                         ct_real *restrict fzn);
+                         const ct_real *const w[], const ct_real *CT_RESTRICT fx,
+                         const ct_real *CT_RESTRICT fy, const ct_real *CT_RESTRICT fz,
+                         ct_idx nnode, ct_real *CT_RESTRICT fxn, ct_real *CT_RESTRICT fyn,
+                         ct_real *CT_RESTRICT fzn);
 int ct_assemble_atomic(const ct_asm_map *map, const ct_real *const w[],
-                       const ct_real *restrict fx, const ct_real *restrict fy,
-                       const ct_real *restrict fz, ct_idx nnode, ct_real *restrict fxn,
-                       ct_real *restrict fyn, ct_real *restrict fzn);
+                       const ct_real *CT_RESTRICT fx, const ct_real *CT_RESTRICT fy,
+                       const ct_real *CT_RESTRICT fz, ct_idx nnode, ct_real *CT_RESTRICT fxn,
+                       ct_real *CT_RESTRICT fyn, ct_real *CT_RESTRICT fzn);
 int ct_assemble_threadbuf(ct_assemble_ws *ws, const ct_asm_map *map,
-                          const ct_real *const w[], const ct_real *restrict fx,
-                          const ct_real *restrict fy, const ct_real *restrict fz,
-                          ct_idx nnode, ct_real *restrict fxn, ct_real *restrict fyn,
-                          ct_real *restrict fzn);
+                          const ct_real *const w[], const ct_real *CT_RESTRICT fx,
+                          const ct_real *CT_RESTRICT fy, const ct_real *CT_RESTRICT fz,
+                          ct_idx nnode, ct_real *CT_RESTRICT fxn, ct_real *CT_RESTRICT fyn,
+                          ct_real *CT_RESTRICT fzn);
 int ct_assemble_gather(ct_assemble_ws *ws, const ct_asm_map *map,
-                       const ct_real *const w[], const ct_real *restrict fx,
-                       const ct_real *restrict fy, const ct_real *restrict fz,
-                       ct_idx nnode, ct_real *restrict fxn, ct_real *restrict fyn,
-                       ct_real *restrict fzn);
+                       const ct_real *const w[], const ct_real *CT_RESTRICT fx,
+                       const ct_real *CT_RESTRICT fy, const ct_real *CT_RESTRICT fz,
+                       ct_idx nnode, ct_real *CT_RESTRICT fxn, ct_real *CT_RESTRICT fyn,
+                       ct_real *CT_RESTRICT fzn);
 int ct_assemble_serial(const ct_asm_map *map, const ct_real *const w[],
-                       const ct_real *restrict fx, const ct_real *restrict fy,
-                       const ct_real *restrict fz, ct_idx nnode, ct_real *restrict fxn,
-                       ct_real *restrict fyn, ct_real *restrict fzn);
+                       const ct_real *CT_RESTRICT fx, const ct_real *CT_RESTRICT fy,
+                       const ct_real *CT_RESTRICT fz, ct_idx nnode, ct_real *CT_RESTRICT fxn,
+                       ct_real *CT_RESTRICT fyn, ct_real *CT_RESTRICT fzn);
 
 /*
  * Deterministic sum of v[0..n-1] (e.g. contact or friction energies): at
@@ -214,7 +214,7 @@ int ct_assemble_serial(const ct_asm_map *map, const ct_real *const w[],
  * sums are added in block order. Bit-identical for any thread count; call it
  * outside a parallel region.
  */
-double ct_sum_fixed(int64_t n, const ct_real *restrict v);
+double ct_sum_fixed(int64_t n, const ct_real *CT_RESTRICT v);
 
 #ifdef __cplusplus
 }
