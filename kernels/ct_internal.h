@@ -118,7 +118,7 @@ static inline int cti_pair_test(const ct_real *restrict x, const ct_real *restri
  * Searches that visit secondary nodes in an order of their own (cell order,
  * tree order) store each node's candidate segments, in increasing segment
  * order, in a per-thread buffer and record where: owner[i] (thread), start[i]
- * and count[i] for secondary position i. cti_collect_finish() then writes the
+ * and count[i] for secondary position i (a count of 0 needs no record). cti_collect_finish() then writes the
  * canonical pair list (secondary order, then segment) in parallel; the
  * result does not depend on which thread found what.
  */
@@ -139,20 +139,15 @@ typedef struct cti_collect {
  * parallel region). Counts are zeroed. */
 int cti_collect_begin(cti_collect *c, ct_idx nsec);
 
-/* Append a node's candidates from thread t (inside the parallel region).
- * Returns 0, or CT_ERR_NOMEM after setting c->err. */
-int cti_collect_put(cti_collect *c, int t, ct_idx secpos, const ct_idx *segs, ct_idx n);
-
-/* Write the canonical pairs. */
-int cti_collect_finish(cti_collect *c, const ct_idx *sec, ct_pairs *out);
-
-/* Grow thread t's buffer to hold `extra` more entries (inside the parallel
- * region; sets c->err on failure). */
+/* Grow thread t's buffer to hold `extra` more entries beyond c->len[t]
+ * (inside the parallel region; sets c->err on failure). A thread records a
+ * node's list by writing owner[i], start[i] and count[i] for its secondary
+ * position i; segments in increasing order. */
 int cti_collect_room(cti_collect *c, int t, size_t extra);
 
-/* Append one segment for thread t, then, after a node's last one, record
- * that node's list as everything appended since `start` (c->len[t] before
- * the first push). Segments must be pushed in increasing order. */
+/* Convenience for callers without a local fill: append one segment for
+ * thread t, and record a node's list as everything appended since `start`
+ * (c->len[t] before its first push). */
 static inline int cti_collect_push(cti_collect *c, int t, ct_idx seg)
 {
     if (c->len[t] == c->cap[t] && cti_collect_room(c, t, 1) != CT_OK)
@@ -167,6 +162,9 @@ static inline void cti_collect_mark(cti_collect *c, int t, ct_idx secpos, size_t
     c->start[secpos] = (int64_t)start;
     c->count[secpos] = (ct_idx)(c->len[t] - start);
 }
+
+/* Write the canonical pairs. */
+int cti_collect_finish(cti_collect *c, const ct_idx *sec, ct_pairs *out);
 
 void cti_collect_free(cti_collect *c);
 size_t cti_collect_memory(const cti_collect *c);

@@ -55,7 +55,9 @@ typedef struct ct_search_input {
 
 typedef enum ct_search_algo {
     CT_SEARCH_DIRECT = 0, /* all pairs; the reference */
-    CT_SEARCH_TOPO,       /* topologically limited (TYPE3/5 engine) */
+    CT_SEARCH_TOPO,       /* topologically limited (TYPE3/5 engine): may miss
+                             impacts; not meant for self contact (a node's
+                             closest main node is itself) */
     CT_SEARCH_BUCKET,     /* uniform voxel grid, counting sort */
     CT_SEARCH_BSP,        /* quick sort: binary space partition */
     CT_SEARCH_NALGO
@@ -73,9 +75,10 @@ typedef struct ct_search_params {
      * cells capped at max_cells (0 -> 2 * (nsec + nseg) + 1024). */
     double cell_factor;
     int64_t max_cells;
-    /* bsp: a box with at most leaf_size nodes or segments, or whose longest
-     * side is below min_box (0 -> gap + margin), is tested all against all
-     * (leaf_size 0 -> 32). */
+    /* bsp: a box becomes a leaf, tested all against all, when it holds no
+     * node or no segment, when nodes x segments <= leaf_size x (nodes +
+     * segments) (leaf_size 0 -> 32), or when its longest side is below
+     * min_box (0 -> gap + margin). */
     int leaf_size;
     double min_box;
 } ct_search_params;

@@ -115,21 +115,6 @@ int cti_collect_room(cti_collect *c, int t, size_t extra)
     return CT_OK;
 }
 
-int cti_collect_put(cti_collect *c, int t, ct_idx secpos, const ct_idx *segs, ct_idx n)
-{
-    if (n == 0)
-        return CT_OK;
-    size_t need = c->len[t] + (size_t)n;
-    if (cti_collect_room(c, t, (size_t)n) != CT_OK)
-        return CT_ERR_NOMEM;
-    memcpy(c->buf[t] + c->len[t], segs, (size_t)n * sizeof *segs);
-    c->owner[secpos] = t;
-    c->start[secpos] = (int64_t)c->len[t];
-    c->count[secpos] = n;
-    c->len[t] = need;
-    return CT_OK;
-}
-
 int cti_collect_finish(cti_collect *c, const ct_idx *sec, ct_pairs *out)
 {
     if (c->err)

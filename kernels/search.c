@@ -114,7 +114,9 @@ int ct_search_run(ct_search *s, const ct_search_input *in, ct_pairs *out)
 }
 
 /* Every secondary node against every segment: O(nsec * nseg). Threads take
- * contiguous blocks of secondary nodes; the collector restores the order. */
+ * blocks of secondary nodes; the collector restores the order. Each thread
+ * keeps its fill in a local variable (the shared per-thread lengths sit on
+ * one cache line). */
 int cti_search_direct(ct_search *s, const ct_search_input *in, ct_pairs *out)
 {
     cti_collect *c = &s->col;
@@ -125,18 +127,27 @@ int cti_search_direct(ct_search *s, const ct_search_input *in, ct_pairs *out)
 #pragma omp parallel
     {
         int t = cti_thread_id();
+        size_t len = c->len[t];
 #pragma omp for schedule(dynamic, 64)
         for (ct_idx i = 0; i < in->nsec; i++) {
             ct_idx node = in->sec[i];
-            size_t start = c->len[t];
-            for (ct_idx j = 0; j < in->nseg; j++) {
-                if (cti_pair_test_f(in->x, in->y, in->z, node, in->n1[j], in->n2[j], in->n3[j],
-                                    in->n4[j], d, in->self, in->filter) &&
-                    cti_collect_push(c, t, j) != CT_OK)
-                    break;
+            size_t start = len;
+            for (ct_idx j = 0; j < in->nseg && !c->err; j++) {
+                if (!cti_pair_test_f(in->x, in->y, in->z, node, in->n1[j], in->n2[j], in->n3[j],
+                                     in->n4[j], d, in->self, in->filter))
+                    continue;
+                if (len == c->cap[t]) {
+                    c->len[t] = len;
+                    if (cti_collect_room(c, t, 1024) != CT_OK)
+                        break;
+                }
+                c->buf[t][len++] = j;
             }
-            cti_collect_mark(c, t, i, start);
+            c->owner[i] = t;
+            c->start[i] = (int64_t)start;
+            c->count[i] = (ct_idx)(len - start);
         }
+        c->len[t] = len;
     }
     return cti_collect_finish(c, in->sec, out);
 }

@@ -1,0 +1,134 @@
+/*
+ * test_search_families.c -- every search against the direct search on every
+ * synthetic family, at several sizes, gaps and numberings, and the same
+ * bytes for 1 and 2 threads.
+ */
+#include "test_util.h"
+
+#include <string.h>
+
+#include "meshgen.h"
+
+static void run(ct_search_algo a, const ct_search_input *in, ct_pairs *out)
+{
+    ct_search_params p = ct_search_default_params(a);
+    ct_search *s;
+    cr_assert_eq(ct_search_init(&s, &p), CT_OK);
+    int rc = ct_search_run(s, in, out);
+    cr_assert_eq(rc, CT_OK, "%s search failed: %s", ct_search_algo_name(a), ct_strerror(rc));
+    ct_search_destroy(s);
+}
+
+static int same_pairs(const ct_pairs *a, const ct_pairs *b)
+{
+    return a->n == b->n && memcmp(a->node, b->node, sizeof(ct_idx) * (size_t)a->n) == 0 &&
+           memcmp(a->seg, b->seg, sizeof(ct_idx) * (size_t)a->n) == 0;
+}
+
+/* Pairs of `sub` not in `all`, both canonical (secondary order = node order
+ * because the case's secondary list is sorted). */
+static int64_t missing(const ct_pairs *sub, const ct_pairs *all)
+{
+    int64_t miss = 0, j = 0;
+    for (ct_idx i = 0; i < sub->n; i++) {
+        while (j < all->n && (all->node[j] < sub->node[i] ||
+                              (all->node[j] == sub->node[i] && all->seg[j] < sub->seg[i])))
+            j++;
+        if (!(j < all->n && all->node[j] == sub->node[i] && all->seg[j] == sub->seg[i]))
+            miss++;
+    }
+    return miss;
+}
+
+/* expect_pairs: the search distance reaches across the case's spacing (the
+ * plates are 0.3 h apart, the folded layers 0.4 h), so the direct search
+ * must find pairs. */
+static void check_case(const char *family, int64_t n, ctd_numbering num, double gap_h,
+                       double margin_h, int expect_pairs)
+{
+    ctd_case c;
+    ct_diag d = {0};
+    int rc = ctd_case_make(&c, family, n, num, 7, &d);
+    cr_assert_eq(rc, CT_OK, "case %s: %s", family, d.msg);
+    double h = c.h_mean;
+    ct_search_input in;
+    ctd_case_input(&c, (ct_real)(gap_h * h), (ct_real)(margin_h * h), &in);
+    ct_pairs ref, got;
+    ct_pairs_init(&ref, 0);
+    ct_pairs_init(&got, 0);
+    run(CT_SEARCH_DIRECT, &in, &ref);
+    if (expect_pairs)
+        cr_assert_gt(ref.n, 0, "%s (n=%lld): the case has no contact candidates", family,
+                     (long long)n);
+    for (int a = CT_SEARCH_BUCKET; a <= CT_SEARCH_BSP; a++) {
+        run((ct_search_algo)a, &in, &got);
+        cr_assert(same_pairs(&ref, &got),
+                  "%s, n=%lld, numbering %s, gap %g h: %s gives %d pairs (missing %lld, extra %lld), "
+                  "direct %d",
+                  family, (long long)n, ctd_numbering_name(num), gap_h, ct_search_algo_name(a),
+                  got.n, (long long)missing(&ref, &got), (long long)missing(&got, &ref), ref.n);
+    }
+    /* The topological search may miss pairs; it never reports one that the
+     * direct search rejects. */
+    run(CT_SEARCH_TOPO, &in, &got);
+    cr_assert_eq(missing(&got, &ref), 0, "%s: topological reported pairs direct rejects", family);
+    ct_pairs_destroy(&ref);
+    ct_pairs_destroy(&got);
+    ctd_case_destroy(&c);
+}
+
+Test(search_families, all_families_match_direct, .timeout = 240)
+{
+    int nf = 0;
+    const char *const *fam = ctd_case_families(&nf);
+    cr_assert_geq(nf, 8);
+    int64_t sizes[] = {300, 3000};
+    int nsize = ctt_checking() ? 1 : 2;
+    for (int f = 0; f < nf; f++)
+        for (int k = 0; k < nsize; k++) {
+            check_case(fam[f], sizes[k], CTD_NUM_NATURAL, 0.4, 0.1, 1);
+            check_case(fam[f], sizes[k], CTD_NUM_SHUFFLED, 0.1, 0.05, 0);
+        }
+}
+
+Test(search_families, gaps_and_numberings, .timeout = 240)
+{
+    const double gaps[] = {0.0, 0.05, 0.3, 1.0, 2.5};
+    const ctd_numbering nums[] = {CTD_NUM_NATURAL, CTD_NUM_SHUFFLED, CTD_NUM_SFC};
+    int64_t n = ctt_checking() ? 500 : 4000;
+    for (int g = 0; g < 5; g++)
+        for (int k = 0; k < 3; k++) {
+            check_case("plates", n, nums[k], gaps[g], 0.1, gaps[g] >= 0.3);
+            check_case("folded", n, nums[k], gaps[g], 0.1, gaps[g] >= 0.3);
+        }
+}
+
+/* The same output bytes with 1 and 2 threads, for every algorithm. */
+Test(search_families, thread_count_does_not_change_bytes, .timeout = 240)
+{
+    const char *fams[] = {"plates", "folded", "soup", "graded"};
+    int64_t n = ctt_checking() ? 2000 : 20000;
+    for (int f = 0; f < 4; f++) {
+        ctd_case c;
+        ct_diag d = {0};
+        cr_assert_eq(ctd_case_make(&c, fams[f], n, CTD_NUM_SHUFFLED, 3, &d), CT_OK, "%s", d.msg);
+        ct_search_input in;
+        ctd_case_input(&c, (ct_real)(0.3 * c.h_mean), (ct_real)(0.1 * c.h_mean), &in);
+        for (int a = 0; a < CT_SEARCH_NALGO; a++) {
+            if (a == CT_SEARCH_DIRECT && (double)c.sec.n * c.main.n > 1e8)
+                continue;
+            ct_pairs p1, p2;
+            ct_pairs_init(&p1, 0);
+            ct_pairs_init(&p2, 0);
+            ctt_threads(1);
+            run((ct_search_algo)a, &in, &p1);
+            ctt_threads(2);
+            run((ct_search_algo)a, &in, &p2);
+            cr_assert(same_pairs(&p1, &p2), "%s on %s: 1 and 2 threads differ (%d vs %d pairs)",
+                      ct_search_algo_name(a), fams[f], p1.n, p2.n);
+            ct_pairs_destroy(&p1);
+            ct_pairs_destroy(&p2);
+        }
+        ctd_case_destroy(&c);
+    }
+}
