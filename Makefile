@@ -144,10 +144,12 @@ TEST_ARGS ?= --jobs 1
 test: deps
 	@$(MAKE) --no-print-directory build-tests run-tests
 
+# MESH=path adds a Radioss deck of yours to the real-mesh benchmarks.
 BENCH_ARGS ?=
+BENCH_ENV = CT_SHARED=$(abspath ../shared) $(if $(MESH),CT_BENCH_MESH=$(abspath $(MESH)))
 bench: deps
 	@$(MAKE) --no-print-directory $(BENCHBIN)
-	$(BENCHBIN) $(BENCH_ARGS)
+	$(BENCH_ENV) $(BENCHBIN) $(BENCH_ARGS)
 
 # The harness's own correctness: every peer's pair set against the direct
 # search on small meshes (no timing).
@@ -157,7 +159,12 @@ bench-test: deps
 
 bench-full: deps
 	@$(MAKE) --no-print-directory $(BENCHBIN)
-	CT_BENCH_FULL=1 $(BENCHBIN) $(BENCH_ARGS)
+	$(BENCH_ENV) CT_BENCH_FULL=1 $(BENCHBIN) --benchmark_repetitions=3 $(BENCH_ARGS)
+
+# PNG plots in docs/ from the last bench run(s).
+.PHONY: plots
+plots:
+	python3 bench/plots.py build/bench.json $(wildcard build/bench-single.json) --out docs/
 
 # ---- Sanitizers -------------------------------------------------------------
 # ASan+UBSan with gcc. The race check uses clang's ThreadSanitizer with LLVM's
