@@ -144,8 +144,18 @@ int ct_pair_may_touch(const ct_real p[3], const ct_real a[3], const ct_real b[3]
     if (cti_dist2_point_triangle(p, a, b, c) <= d2 || cti_dist2_point_triangle(p, a, c, e) <= d2 ||
         cti_dist2_point_triangle(p, a, b, e) <= d2 || cti_dist2_point_triangle(p, b, c, e) <= d2)
         return 1;
+    /* The inside test is meaningful only for a tetrahedron whose volume is
+     * clearly above the rounding error of orient3 (about eps |ab||ac||ae|):
+     * for a flat one, all orientations of a coplanar point are noise. A
+     * hull thinner than that is covered by its four faces to within its
+     * thickness, which the faces' test above already used. */
+    ct_real ab[3], ac[3], ae[3];
+    sub3(ab, b, a);
+    sub3(ac, c, a);
+    sub3(ae, e, a);
+    ct_real scale = CTI_SQRT(dot3(ab, ab) * dot3(ac, ac) * dot3(ae, ae));
     ct_real vol = orient3(a, b, c, e);
-    if (vol == 0)
+    if (!(CTI_FABS(vol) > 1024 * CTI_EPS * scale))
         return 0;
     ct_real s1 = orient3(a, b, c, p), s2 = orient3(a, c, e, p);
     ct_real s3 = orient3(a, e, b, p), s4 = orient3(b, e, c, p);

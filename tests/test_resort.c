@@ -77,6 +77,66 @@ Test(resort, predicate_matches_sampled_hull)
     cr_assert_gt(decided, ntrial * 3 / 4);
 }
 
+/* Flat quads with the point in their plane: every orientation of a flat
+ * tetrahedron and a coplanar point is rounding noise, so an inside test
+ * must not decide. Random planes, points in the plane outside the quad. */
+Test(resort, predicate_coplanar_points)
+{
+    int ntrial = ctt_checking() ? 300 : 2000, checked = 0;
+    for (int t = 0; t < ntrial; t++) {
+        double o[3], u[3], v[3], c2[4][2], c[4][3];
+        for (int a = 0; a < 3; a++) {
+            o[a] = 20 * urand();
+            u[a] = urand() - 0.5;
+            v[a] = urand() - 0.5;
+        }
+        /* A convex quad in the (u, v) plane: a jittered unit square. */
+        double sq[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+        for (int k = 0; k < 4; k++)
+            for (int a = 0; a < 2; a++)
+                c2[k][a] = sq[k][a] + 0.2 * (urand() - 0.5);
+        for (int k = 0; k < 4; k++)
+            for (int a = 0; a < 3; a++)
+                c[k][a] = o[a] + c2[k][0] * u[a] + c2[k][1] * v[a];
+        double s0 = 1.5 + 2 * urand(), s1 = 3 * urand() - 1;
+        double p[3];
+        for (int a = 0; a < 3; a++)
+            p[a] = o[a] + s0 * u[a] + s1 * v[a];
+        double ds = sampled_hull_dist(p, c, 40), d = 0.3 * ds;
+        ct_real P[3], A[4][3];
+        for (int a = 0; a < 3; a++) {
+            P[a] = (ct_real)p[a];
+            for (int k = 0; k < 4; k++)
+                A[k][a] = (ct_real)c[k][a];
+        }
+        /* The point is at least 0.3 (in plane units) beyond the quad; the
+         * sampled distance exceeds d by far more than the sampling error. */
+        cr_assert(!ct_pair_may_touch(P, A[0], A[1], A[2], A[3], (ct_real)d),
+                  "trial %d: coplanar point at %g accepted for d = %g", t, ds, d);
+        checked++;
+    }
+    cr_assert_eq(checked, ntrial);
+}
+
+/* The case found in the contact cycle: a vertical quad of the folded sheet
+ * and a node in its plane, 0.51 away, accepted for d = 0.297 by an inside
+ * test fooled by rounding. */
+Test(resort, predicate_vertical_quad_regression)
+{
+    ct_real P[3] = {(ct_real)0x1.5a34c0bac34cp-2, (ct_real)0x1.c3851a1049a72p+0,
+                    (ct_real)0x1.0a5a581f4a09ep+4};
+    ct_real A[4][3] = {{(ct_real)0x1.5a34c0bac34cp-2, (ct_real)0x1.c3851a1049a72p+0,
+                        (ct_real)0x1.d4b4b03e9413cp+3},
+                       {(ct_real)0x1.0568635f824p-5, (ct_real)0x1.05d706bf6a709p+1,
+                        (ct_real)0x1.eb3d86547f53ep+3},
+                       {(ct_real)0x1.0568635f824p-5, (ct_real)0x1.05d706bf6a709p+1,
+                        (ct_real)0x1.059ec32a3fa9fp+4},
+                       {(ct_real)0x1.5a34c0bac34cp-2, (ct_real)0x1.c3851a1049a72p+0,
+                        (ct_real)0x1.f4b4b03e9413cp+3}};
+    cr_assert(!ct_pair_may_touch(P, A[0], A[1], A[2], A[3], (ct_real)0.2972));
+    cr_assert(ct_pair_may_touch(P, A[0], A[1], A[2], A[3], (ct_real)0.52));
+}
+
 Test(resort, predicate_triangle_and_degenerate)
 {
     ct_real a[3] = {0, 0, 0}, b[3] = {1, 0, 0}, c[3] = {0, 1, 0};
