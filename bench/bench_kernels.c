@@ -5,7 +5,7 @@
  *
  * Names (Google Benchmark appends "/<pairs>/real_time"):
  *   kernels/narrow/<tri|4tri|newton|closed|edge>/t<T>
- *   kernels/force/<penalty+coulomb|type7|mu-<law>>/t<T>
+ *   kernels/force/<penalty+coulomb|penalty+coulomb-fused|type7|mu-<law>>/t<T>
  *   kernels/assemble/<colour|colour-b1|atomic|threadbuf|gather|serial>/t<T>
  *   kernels/prepare/<slots|colour|colour-b1|gather>/t<T>  (once per pair list:
  *       the segment slots, the colourings, the gather map; the thread
@@ -45,7 +45,7 @@
 #include "meshgen.h"
 
 enum { G_NARROW, G_EDGE, G_FORCE, G_TYPE7, G_MU, G_ASM, G_PREP };
-enum { F_PENALTY_COULOMB = 0 };
+enum { F_PENALTY_COULOMB = 0, F_PAIR_FUSED = 1 };
 enum { A_COLOUR, A_COLOUR_B1, A_ATOMIC, A_THREADBUF, A_GATHER, A_SERIAL, A_N };
 enum { P_SLOTS, P_COLOUR, P_COLOUR_B1, P_GATHER, P_N };
 static const char *const asm_name[A_N] = {"colour", "colour-b1", "atomic",
@@ -391,6 +391,17 @@ static int edge_get(int64_t n)
 
 /* ---- The benchmark ------------------------------------------------------- */
 
+/* The fused pair force on the same inputs and outputs as the composition
+ * ct_normal_force + ct_friction_step of G_FORCE (bit-identical results). */
+static int run_pair_force(const pdata *p)
+{
+    return ct_pair_force_linear_coulomb(p->npair, p->p, p->nx, p->ny, p->nz, p->vx, p->vy,
+                                        p->vz, p->vn, p->K, 0, p->ms, NULL, (ct_real)KB_VISS,
+                                        NULL, (ct_real)KB_MU0, NULL, (ct_real)KB_KT0,
+                                        (ct_real)KB_DT, 1, p->fx, p->fy, p->fz, p->fn,
+                                        p->energy, p->dissip, p->ftx, p->fty, p->ftz, p->fdis);
+}
+
 /* One call of the kernel of d (the timed body). stats/aux receive extras. */
 static int run_once(const kdesc *d, pdata *p, ct_narrow_stats *stats)
 {
@@ -405,6 +416,8 @@ static int run_once(const kdesc *d, pdata *p, ct_narrow_stats *stats)
         return ct_narrow_edge_edge((ct_idx)ed.npair, ed.ea, ed.eb, ed.e1, ed.e2, ed.x, ed.y,
                                    ed.z, NULL, (ct_real)0.15, 0, &ed.geo, stats);
     case G_FORCE: {
+        if (d->sub == F_PAIR_FUSED)
+            return run_pair_force(p);
         int rc = ct_normal_force(p->npair, p->p, p->nx, p->ny, p->nz, p->vn, p->K, 0, p->ms,
                                  NULL, (ct_real)KB_VISS, (ct_real)KB_DT, p->fx, p->fy, p->fz,
                                  p->fn, p->energy, p->dissip);
@@ -481,7 +494,10 @@ static const char *setting(const kdesc *d, char *buf, size_t len)
         snprintf(buf, len, "edge-edge, synthetic crossing edges");
         break;
     case G_FORCE:
-        snprintf(buf, len, "ct_normal_force (linear, damping) + ct_friction_step (Coulomb)");
+        if (d->sub == F_PAIR_FUSED)
+            snprintf(buf, len, "ct_pair_force_linear_coulomb (fused: linear, damping, Coulomb)");
+        else
+            snprintf(buf, len, "ct_normal_force (linear, damping) + ct_friction_step (Coulomb)");
         break;
     case G_TYPE7:
         snprintf(buf, len, "ct_penalty_type7");
@@ -615,6 +631,7 @@ int ctb_kernels_register(const ctb_search_config *c)
             ADD(G_NARROW, m, what);
         }
         ADD(G_FORCE, F_PENALTY_COULOMB, "force/penalty+coulomb");
+        ADD(G_FORCE, F_PAIR_FUSED, "force/penalty+coulomb-fused");
         ADD(G_TYPE7, 0, "force/type7");
         for (int l = 0; l < CT_FRIC_NLAW; l++) {
             snprintf(what, sizeof what, "force/mu-%s", law_name[l]);

@@ -90,6 +90,34 @@ int ct_friction_step(ct_idx npair, const ct_real *nx, const ct_real *ny, const c
                      ct_real kt0, ct_real dt, ct_real alpha, ct_real *ftx, ct_real *fty,
                      ct_real *ftz, ct_real *dissip);
 
+/*
+ * The fused fast path: the linear penalty force with normal damping
+ * (exactly ct_normal_force) and the Coulomb friction step (exactly
+ * ct_friction_step with fn the normal force just computed), in one pass
+ * that reads each input once and writes each output once. The results are
+ * bit-identical to calling ct_normal_force(npair, p, nx, ny, nz, vn, K, K0,
+ * ms, mm, viss, dt, fx, fy, fz, fn, energy, dissip) and then
+ * ct_friction_step(npair, nx, ny, nz, vx, vy, vz, fn, mu, mu0, kt, kt0, dt,
+ * alpha, ftx, fty, ftz, fdissip), for any thread count.
+ *
+ * v = (vx, vy, vz) is the velocity of the secondary node relative to the
+ * contact point (ct_friction_step); vn may be NULL to use its normal
+ * component v . n (computed as v0 n0 + v1 n1 + v2 n2), which saves a stream
+ * when the caller has no separate normal velocity. K, mm, mu, kt may be
+ * NULL (scalar K0, secondary mass only, mu0, kt0). fn, energy, dissip
+ * (normal damping work) and fdissip (friction work) may be NULL; fx, fy, fz
+ * receive the normal force vector and ftx, fty, ftz (in: last step's
+ * tangential force, out: the new one) the tangential force, both on the
+ * secondary node. CT_ERR_ARG as in the two kernels.
+ */
+int ct_pair_force_linear_coulomb(
+    ct_idx npair, const ct_real *p, const ct_real *nx, const ct_real *ny, const ct_real *nz,
+    const ct_real *vx, const ct_real *vy, const ct_real *vz, const ct_real *vn,
+    const ct_real *K, ct_real K0, const ct_real *ms, const ct_real *mm, ct_real viss,
+    const ct_real *mu, ct_real mu0, const ct_real *kt, ct_real kt0, ct_real dt,
+    ct_real alpha, ct_real *fx, ct_real *fy, ct_real *fz, ct_real *fn, ct_real *energy,
+    ct_real *dissip, ct_real *ftx, ct_real *fty, ct_real *ftz, ct_real *fdissip);
+
 /* Total friction dissipation of a step: ct_sum_ordered(npair, dissip)
  * (bit-identical for any thread count). */
 double ct_friction_dissipation(ct_idx npair, const ct_real *dissip);

@@ -153,8 +153,10 @@ CTI_SIMD_SQRT
         ct_real t1 = o1 - kd * (v1 - vnn * n1);
         ct_real t2 = o2 - kd * (v2 - vnn * n2);
         ct_real tt = t0 * t0 + t1 * t1 + t2 * t2;
-        /* NaN or overflow anywhere in the trial: no force (below). */
-        int fin = tt <= CTI_HUGE;
+        /* NaN or overflow anywhere in the trial: no force (below). The flag
+         * is kept as a force, not an int, because gcc 12 cannot vectorise a
+         * select on an int flag built from double compares. */
+        ct_real fok = tt <= CTI_HUGE ? f : 0;
         tt = tt > 0 ? tt : 0; /* lets the compiler drop the errno path of sqrt */
         ct_real tn = CTI_SQRT(tt);
         /* Return to the cone along the trial direction. */
@@ -182,10 +184,9 @@ CTI_SIMD_SQRT
         ct_real slq = slip / (k > 0 ? k : (ct_real)1);
         slip = (slip > 0 && k > 0) ? slq : 0;
         /* Out of contact, or a NaN anywhere in the trial: no force. */
-        int ok = f > 0 && fin;
-        g0 = ok ? g0 : 0;
-        g1 = ok ? g1 : 0;
-        g2 = ok ? g2 : 0;
+        g0 = fok > 0 ? g0 : 0;
+        g1 = fok > 0 ? g1 : 0;
+        g2 = fok > 0 ? g2 : 0;
         hx[i] = g0;
         hy[i] = g1;
         hz[i] = g2;

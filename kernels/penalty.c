@@ -367,7 +367,10 @@ CTI_SIMD_SQRT
         a = a > 0 ? a : 0;
         ct_real c = vs * CTI_SQRT(a);
         ct_real ft = fe - c * v[i];
-        ft = (ft > 0 && q > 0) ? ft : 0;
+        /* Two selects, not (ft > 0 && q > 0): gcc 12 turns the && into a
+         * select on a bool that it cannot vectorise. */
+        ft = ft > 0 ? ft : 0;
+        ft = q > 0 ? ft : 0;
         ox[i] = ft * ax[i];
         oy[i] = ft * ay[i];
         oz[i] = ft * az[i];

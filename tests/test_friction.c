@@ -321,3 +321,189 @@ Test(friction, history_remap)
     free(m1);
     free(m2);
 }
+
+/* ---- The fused pair force ------------------------------------------------ */
+
+Test(friction, pair_force_hand_values)
+{
+    /* K = 1000, ms = 2 (no segment mass), viss = 0.1, dt = 1e-3, n = z,
+     * mu0 = 0.5, kt0 = 1000; vn is taken as v . n (NULL).
+     * C = 0.1 sqrt(2 * 1000 * 2) = 0.1 sqrt(4000).
+     * Pair 0: p = 0.01, v = (1, 0, -0.5), no history: fel = 10, fn = 10 +
+     * 0.5 C, energy 0.05, damping work (fel - fn) vn dt = 0.5 C * 0.5e-3;
+     * friction trial -kt dt (1, 0, 0) = (-1, 0, 0) inside the cone
+     * (limit fn / 2 > 5): stick, no friction work.
+     * Pair 1: the same penetration and v = (2, 0, -0.5), history
+     * (-6, 0, 3): its normal part 3 is dropped, the trial is (-6 - 2, 0, 0),
+     * beyond the limit L = fn/2: slip, F = (-L, 0, 0), friction work
+     * L (8 - L)/kt.
+     * Pair 2: separated (p < 0): no force, the history is cleared. */
+    const double C = 0.1 * sqrt(4000.0), fn0 = 10 + 0.5 * C, L = fn0 / 2;
+    ct_real p[3] = {0.01, 0.01, -0.1}, nx[3] = {0, 0, 0}, ny[3] = {0, 0, 0}, nz[3] = {1, 1, 1};
+    ct_real vx[3] = {1, 2, 1}, vy[3] = {0, 0, 1}, vz[3] = {-0.5, -0.5, -0.5}, ms[3] = {2, 2, 2};
+    ct_real hx[3] = {0, -6, 4}, hy[3] = {0, 0, 4}, hz[3] = {0, 3, 0};
+    ct_real fx[3], fy[3], fz[3], fn[3], e[3], dd[3], td[3];
+    cr_assert_eq(ct_pair_force_linear_coulomb(3, p, nx, ny, nz, vx, vy, vz, NULL, NULL, 1000, ms,
+                                              NULL, 0.1, NULL, 0.5, NULL, 1000, 1e-3, 1, fx,
+                                              fy, fz, fn, e, dd, hx, hy, hz, td),
+                 CT_OK);
+    for (int i = 0; i < 2; i++) {
+        cr_assert_leq(ctt_rel(fn[i], fn0), TOL, "pair %d", i);
+        cr_assert_leq(ctt_rel(fz[i], fn0), TOL, "pair %d", i);
+        cr_assert(fx[i] == 0 && fy[i] == 0, "pair %d", i);
+        cr_assert_leq(ctt_rel(e[i], 0.05), TOL, "pair %d", i);
+        cr_assert_leq(ctt_rel(dd[i], 0.25e-3 * C), CTT_TOL(1e-12, 1e-5), "pair %d", i);
+    }
+    cr_assert_leq(ctt_rel(hx[0], -1), CTT_TOL(1e-13, 1e-5));
+    cr_assert(hy[0] == 0 && hz[0] == 0 && td[0] == 0);
+    cr_assert_leq(ctt_rel(hx[1], -L), TOL);
+    cr_assert(hy[1] == 0 && hz[1] == 0);
+    cr_assert_leq(ctt_rel(td[1], L * (8 - L) / 1000), CTT_TOL(1e-12, 1e-5));
+    cr_assert(fx[2] == 0 && fy[2] == 0 && fz[2] == 0 && fn[2] == 0 && e[2] == 0 && dd[2] == 0);
+    cr_assert(hx[2] == 0 && hy[2] == 0 && hz[2] == 0 && td[2] == 0);
+    /* Arguments. */
+    cr_assert_eq(ct_pair_force_linear_coulomb(3, NULL, nx, ny, nz, vx, vy, vz, NULL, NULL, 1000,
+                                              ms, NULL, 0.1, NULL, 0.5, NULL, 1000, 1e-3, 1, fx,
+                                              fy, fz, NULL, NULL, NULL, hx, hy, hz, NULL),
+                 CT_ERR_ARG);
+    cr_assert_eq(ct_pair_force_linear_coulomb(3, p, nx, ny, nz, vx, vy, vz, NULL, NULL, 1000, ms,
+                                              NULL, 0.1, NULL, 0.5, NULL, 1000, 1e-3, 0, fx, fy,
+                                              fz, NULL, NULL, NULL, hx, hy, hz, NULL),
+                 CT_ERR_ARG);
+    cr_assert_eq(ct_pair_force_linear_coulomb(3, p, nx, ny, nz, vx, vy, vz, NULL, NULL, 1000, ms,
+                                              NULL, 0.1, NULL, 0.5, NULL, 1000, -1, 1, fx, fy,
+                                              fz, NULL, NULL, NULL, hx, hy, hz, NULL),
+                 CT_ERR_ARG);
+    cr_assert_eq(ct_pair_force_linear_coulomb(3, p, nx, ny, nz, vx, vy, vz, NULL, NULL, 1000, ms,
+                                              NULL, 0.1, NULL, 0.5, NULL, 1000, 1e-3, 1, fx, fy,
+                                              fz, NULL, NULL, NULL, NULL, hy, hz, NULL),
+                 CT_ERR_ARG);
+}
+
+/* A value drawn in [lo, hi), now and then replaced by an awkward one
+ * (0, a negative value, NaN) when `odd` is set. */
+static ct_real draw(double lo, double hi, int odd)
+{
+    double u = urand();
+    if (odd && u < 0.02)
+        return (ct_real)NAN;
+    if (odd && u < 0.05)
+        return 0;
+    if (odd && u < 0.08)
+        return (ct_real)-lo - (ct_real)1;
+    return (ct_real)(lo + (hi - lo) * urand());
+}
+
+Test(friction, pair_force_fused_bit_identical_to_composition)
+{
+    /* Every combination of the optional inputs (K, mm, vn, mu, kt), the
+     * filter and the optional outputs: the fused kernel, on 1 and on 2
+     * threads, against ct_normal_force then ct_friction_step, bytewise.
+     * n is above the parallel threshold. */
+    const ct_idx n = ctt_checking() ? 9000 : 30000;
+    enum { NA = 32 };
+    ct_real *a[NA];
+    for (int i = 0; i < NA; i++)
+        a[i] = malloc(n * sizeof(ct_real));
+    ct_real *p = a[0], *nx = a[1], *ny = a[2], *nz = a[3], *vx = a[4], *vy = a[5],
+            *vz = a[6], *vn = a[7], *K = a[8], *ms = a[9], *mm = a[10], *mu = a[11],
+            *kt = a[12], *h0x = a[13], *h0y = a[14], *h0z = a[15];
+    for (ct_idx i = 0; i < n; i++) {
+        double x = urand() - 0.5, y = urand() - 0.5, z = urand() - 0.5;
+        double l = sqrt(x * x + y * y + z * z) + 1e-300;
+        nx[i] = (ct_real)(x / l);
+        ny[i] = (ct_real)(y / l);
+        nz[i] = (ct_real)(z / l);
+        p[i] = draw(-0.01, 0.02, 1);
+        vx[i] = draw(-5, 5, 0);
+        vy[i] = draw(-5, 5, 0);
+        vz[i] = draw(-5, 5, i % 5 == 0);
+        vn[i] = draw(-2, 2, 1);
+        K[i] = draw(1e2, 1e4, 1);
+        ms[i] = draw(1e-3, 1, 1);
+        mm[i] = draw(1e-3, 1, 1);
+        mu[i] = draw(0, 0.6, 1);
+        kt[i] = draw(1e2, 1e4, 1);
+        h0x[i] = draw(-20, 20, 0);
+        h0y[i] = draw(-20, 20, 0);
+        h0z[i] = draw(-20, 20, 0);
+    }
+    /* Composition: R[0..9] = fx fy fz fn energy dissip ftx fty ftz fdissip;
+     * fused on 1 thread: S[0..9]; on 2 threads: T[0..9]. */
+    ct_real **R = a + 16, *S[10], *T[10];
+    ct_real *vnc = malloc(n * sizeof(ct_real));
+    for (int j = 0; j < 10; j++) {
+        S[j] = malloc(n * sizeof(ct_real));
+        T[j] = malloc(n * sizeof(ct_real));
+    }
+    const ct_real dt = (ct_real)1e-4;
+    int ncase = 0;
+    for (int v = 0; v < 128; v++) {
+        const int hk = v & 1, hmm = v >> 1 & 1, hvn = v >> 2 & 1, hmu = v >> 3 & 1,
+                  hkt = v >> 4 & 1, filt = v >> 5 & 1, outs = v >> 6 & 1;
+        const ct_real alpha = filt ? (ct_real)0.3 : 1;
+        /* Without vn the normal velocity is v . n, written as the kernel
+         * documents it. */
+        for (ct_idx i = 0; i < n; i++)
+            vnc[i] = hvn ? vn[i] : vx[i] * nx[i] + vy[i] * ny[i] + vz[i] * nz[i];
+        for (int j = 0; j < 10; j++) {
+            memset(R[j], 0, n * sizeof(ct_real));
+            memset(S[j], 0, n * sizeof(ct_real));
+            memset(T[j], 0, n * sizeof(ct_real));
+        }
+        memcpy(R[6], h0x, n * sizeof(ct_real));
+        memcpy(R[7], h0y, n * sizeof(ct_real));
+        memcpy(R[8], h0z, n * sizeof(ct_real));
+        for (int j = 6; j < 9; j++) {
+            memcpy(S[j], R[j], n * sizeof(ct_real));
+            memcpy(T[j], R[j], n * sizeof(ct_real));
+        }
+        ctt_threads(2);
+        cr_assert_eq(ct_normal_force(n, p, nx, ny, nz, vnc, hk ? K : NULL, (ct_real)3e3, ms,
+                                     hmm ? mm : NULL, (ct_real)0.07, dt, R[0], R[1], R[2], R[3],
+                                     R[4], R[5]),
+                     CT_OK);
+        cr_assert_eq(ct_friction_step(n, nx, ny, nz, vx, vy, vz, R[3], hmu ? mu : NULL,
+                                      (ct_real)0.3, hkt ? kt : NULL, (ct_real)5e3, dt, alpha,
+                                      R[6], R[7], R[8], R[9]),
+                     CT_OK);
+        for (int t = 1; t <= 2; t++) {
+            ct_real **O = t == 1 ? S : T;
+            ctt_threads(t);
+            cr_assert_eq(ct_pair_force_linear_coulomb(
+                             n, p, nx, ny, nz, vx, vy, vz, hvn ? vn : NULL, hk ? K : NULL,
+                             (ct_real)3e3, ms, hmm ? mm : NULL, (ct_real)0.07, hmu ? mu : NULL,
+                             (ct_real)0.3, hkt ? kt : NULL, (ct_real)5e3, dt, alpha, O[0], O[1],
+                             O[2], outs ? O[3] : NULL, outs ? O[4] : NULL, outs ? O[5] : NULL,
+                             O[6], O[7], O[8], outs ? O[9] : NULL),
+                         CT_OK);
+        }
+        for (int j = 0; j < 10; j++) {
+            if (!outs && (j == 3 || j == 4 || j == 5 || j == 9))
+                continue;
+            cr_assert_eq(memcmp(S[j], R[j], n * sizeof(ct_real)), 0,
+                         "case %d, output %d: fused differs from the composition", v, j);
+            cr_assert_eq(memcmp(T[j], S[j], n * sizeof(ct_real)), 0,
+                         "case %d, output %d: 2 threads differ from 1", v, j);
+        }
+        ncase++;
+    }
+    cr_assert_eq(ncase, 128);
+    /* The inputs exercise both sides of each branch: contact and
+     * separation, stick and slip (checked on the last case). */
+    int ncontact = 0, nslip = 0;
+    for (ct_idx i = 0; i < n; i++) {
+        ncontact += R[3][i] > 0;
+        nslip += R[9][i] > 0;
+    }
+    cr_assert_gt(ncontact, n / 10);
+    cr_assert_gt(nslip, n / 20);
+    cr_assert_lt(nslip, ncontact);
+    for (int j = 0; j < 10; j++) {
+        free(S[j]);
+        free(T[j]);
+    }
+    free(vnc);
+    for (int i = 0; i < NA; i++)
+        free(a[i]);
+}
