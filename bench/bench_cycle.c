@@ -1,0 +1,386 @@
+/*
+ * bench_cycle.c -- the full contact cycle of a self-contact sheet, in ns per
+ * node per cycle for each phase (issue 5 item 6; DESIGN.md section 4). The
+ * cycle itself is driver/contact_cycle.c; this file is the scene, the
+ * motion and the Google Benchmark glue.
+ *
+ * Names (Google Benchmark appends "/<nodes>/real_time"):
+ *   cycle/<folded|crumpled>/t<T>
+ * at 10^5 and 10^6 nodes for folded and 10^5 for crumpled (CT_BENCH_FULL
+ * adds crumpled at 10^6), 1 thread and all threads.
+ *
+ * The scene: the meshgen case (self contact, natural numbering, unit mass
+ * per node), gap 0.3 h (two-sided shells: 0.15 h of sheet thickness per
+ * side), margin 0.2 h, TYPE7 law with K0 = 1, damping 0.05, Coulomb 0.2,
+ * bucket search with the hull filter, 4-triangle quads, colouring assembly
+ * (ctd_cycle_default_params). It moves under the prescribed motion of
+ * ctd_motion: the stacking axis (y for folded, z for crumpled) is scaled
+ * about the middle by s0 - s1 (1 - cos phi)/2 (folded: s0 = 0.72, so the
+ * layers 0.4 h apart start 0.288 h apart, already in contact, and close to
+ * 0.248 h; crumpled: s0 = 0.9), neighbouring layers slide against each
+ * other by 0.5 h sin phi along z (folded) or x (crumpled), and the period
+ * is chosen so that no node moves more than 0.008 h in a cycle.
+ *
+ * What one Google Benchmark iteration is: a block of C cycles (8 at
+ * 10^5 nodes, 3 at 10^6) preceded by one forced search, with the scene
+ * kept from one iteration (and one benchmark) to the next so the motion
+ * goes on; the iteration count is fixed at 1, so every repetition is one
+ * block. The positions and velocities of each cycle are computed with the
+ * timer paused. The phases are timed inside the cycle (omp_get_wtime).
+ * Re-sorts are rare (every ~10-25 cycles), so a short block cannot
+ * amortise them by itself: the search figure is
+ *     ns_search = check per cycle + (cost of one search) / interval,
+ * the cost of one search being the mean over the block's searches (the
+ * forced one included: there is always at least one), and the interval the
+ * mean number of cycles between re-sorts of the criterion over a whole
+ * period of the motion, computed exactly from the motion's displacement
+ * field (the bound ct_resort_needed evaluates: twice the largest node
+ * displacement since the last sort, against the margin). The interval the
+ * interface itself saw (re-sorts fired by the criterion, over its life) is
+ * reported too when there was one (resort_interval_seen; blocks are
+ * usually shorter than an interval, so it rarely is).
+ *
+ * Counters (per node and cycle): ns_search, ns_narrow, ns_force (relative
+ * velocity, TYPE7 law, damping, friction, pair force), ns_assemble (zeroing
+ * the nodal forces and ct_assemble), ns_timestep, ns_total, and
+ * ns_total_x_threads (ns_total times the threads: the "per thread" figure
+ * the target of 15 ns is stated in); ns_per_sort (one search, per node),
+ * resort_interval, ns_check, cand_per_node, active_per_node,
+ * threads, nodes.
+ */
+#include "bench_cycle.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "bench_topology.h"
+#include "contact.h"
+#include "contact_cycle.h"
+#include "gbench.h"
+#include "meshgen.h"
+
+/* Largest node displacement per cycle, in mesh sizes h. */
+#define CB_STEP 0.008
+/* Memory per node at the peak, for the skip test (measured: about 2.7 kB
+ * per node for the folded sheet in double, with the mesh and the arrays). */
+#define CB_BYTES_PER_NODE 4000.0
+#define CB_DT 1e-3
+
+typedef struct cdesc {
+    const char *family;
+    int64_t nodes;
+    int threads;
+    int cycles; /* per iteration */
+    struct cdesc *next;
+} cdesc;
+
+static cdesc *descs;
+static ctb_search_config cfg;
+
+/* The cached scene. */
+static struct {
+    int valid, rc;
+    char err[300];
+    const char *family;
+    int64_t target;
+    ctd_case c;
+    int have_case;
+    ct_idx nnode;
+    double h;
+    ct_real *ref[3], *pos[3], *vel[3], *f[3], *m;
+    ctd_motion mo;
+    double interval; /* predicted mean re-sort interval */
+    int64_t cycle;   /* cycles run on the scene (the motion's clock) */
+    ctd_cycle *cy;
+} sc;
+
+static void scene_free(void)
+{
+    ctd_cycle_destroy(sc.cy);
+    for (int a = 0; a < 3; a++) {
+        ctb_free(sc.ref[a]);
+        ctb_free(sc.pos[a]);
+        ctb_free(sc.vel[a]);
+        ctb_free(sc.f[a]);
+    }
+    ctb_free(sc.m);
+    if (sc.have_case)
+        ctd_case_destroy(&sc.c);
+    memset(&sc, 0, sizeof sc);
+}
+
+static int scene_fail(int rc, const char *what)
+{
+    sc.rc = rc;
+    snprintf(sc.err, sizeof sc.err, "%s: %s", what, ct_strerror(rc));
+    return rc;
+}
+
+/* One node of the motion's displacement field, (d^2, cos^2). */
+typedef struct { double a, b; } cpoint;
+
+static int cmp_a_desc(const void *p, const void *q)
+{
+    double x = ((const cpoint *)p)->a, y = ((const cpoint *)q)->a;
+    return x < y ? 1 : x > y ? -1 : 0;
+}
+
+/*
+ * The mean re-sort interval of the criterion under the motion, over one
+ * period. Between cycles i and j a node moves by sqrt(a df^2 + b dsl^2)
+ * (a = d^2 its squared distance to the centre along the compression axis,
+ * b = cos^2 of its slide wave, df and dsl the changes of the scale and of
+ * the slide amplitude), so the largest displacement is a maximum over the
+ * Pareto front of the points (a, b): a few nodes. The criterion's bound is
+ * twice it (secondary and main are the same nodes).
+ */
+static double predict_interval(const ctd_motion *mo, ct_idx n, const ct_real *rc,
+                               double margin)
+{
+    cpoint *pt = malloc(sizeof *pt * (size_t)(n > 0 ? n : 1));
+    if (!pt || n <= 0) {
+        free(pt);
+        return 0;
+    }
+    double kw = 2 * 3.141592653589793 / mo->wavelength;
+    for (ct_idx i = 0; i < n; i++) {
+        double d = (double)rc[i] - mo->centre, cw = cos(kw * (double)rc[i]);
+        pt[i].a = d * d;
+        pt[i].b = cw * cw;
+    }
+    qsort(pt, (size_t)n, sizeof *pt, cmp_a_desc);
+    int nf = 0;
+    double bmax = -1;
+    for (ct_idx i = 0; i < n; i++) /* a descending: keep b records */
+        if (pt[i].b > bmax) {
+            bmax = pt[i].b;
+            pt[nf++] = pt[i];
+        }
+    const double pi2 = 2 * 3.141592653589793;
+    int64_t ncyc = (int64_t)ceil(mo->period) + 1, last = 0, sorts = 0, sum = 0;
+    double f0 = mo->s0, s0 = 0;
+    for (int64_t c = 1; c <= 4 * ncyc && (c <= ncyc || sorts < 2); c++) {
+        double phi = pi2 * (double)c / mo->period;
+        double f = mo->s0 - mo->s1 * (1 - cos(phi)) / 2, s = mo->slide * sin(phi);
+        double df2 = (f - f0) * (f - f0), ds2 = (s - s0) * (s - s0), m2 = 0;
+        for (int k = 0; k < nf; k++) {
+            double v = pt[k].a * df2 + pt[k].b * ds2;
+            m2 = v > m2 ? v : m2;
+        }
+        if (2 * sqrt(m2) > margin) {
+            sorts++;
+            sum += c - last;
+            last = c;
+            f0 = f;
+            s0 = s;
+        }
+    }
+    free(pt);
+    return sorts > 0 ? (double)sum / (double)sorts : (double)ncyc;
+}
+
+static int scene_get(const char *family, int64_t target)
+{
+    if (sc.valid && sc.family == family && sc.target == target)
+        return sc.rc;
+    scene_free();
+    sc.valid = 1;
+    sc.family = family;
+    sc.target = target;
+    ctb_bind_threads(cfg.bind, cfg.max_threads, NULL, 0);
+    ct_diag diag;
+    int rc = ctd_case_make(&sc.c, family, target, CTD_NUM_NATURAL, cfg.seed, &diag);
+    if (rc != CT_OK) {
+        sc.rc = rc;
+        snprintf(sc.err, sizeof sc.err, "%.250s", diag.msg);
+        return rc;
+    }
+    sc.have_case = 1;
+    ct_idx n = sc.nnode = sc.c.mesh.nodes.n;
+    sc.h = sc.c.h_mean > 0 ? sc.c.h_mean : 1;
+    const ct_real *src[3] = {sc.c.mesh.nodes.x, sc.c.mesh.nodes.y, sc.c.mesh.nodes.z};
+    int ok = 1;
+    for (int a = 0; a < 3; a++) {
+        ok &= (sc.ref[a] = ctb_first_touch_copy_real(src[a], (size_t)n)) != NULL;
+        ok &= (sc.pos[a] = ctb_first_touch_alloc((size_t)n, sizeof(ct_real))) != NULL;
+        ok &= (sc.vel[a] = ctb_first_touch_alloc((size_t)n, sizeof(ct_real))) != NULL;
+        ok &= (sc.f[a] = ctb_first_touch_alloc((size_t)n, sizeof(ct_real))) != NULL;
+    }
+    ok &= (sc.m = ctb_first_touch_alloc((size_t)n, sizeof(ct_real))) != NULL;
+    if (!ok)
+        return scene_fail(CT_ERR_NOMEM, "scene arrays");
+    for (ct_idx i = 0; i < n; i++)
+        sc.m[i] = 1;
+    /* The motion (see the top of the file). */
+    int folded = strcmp(family, "folded") == 0;
+    ctd_motion *mo = &sc.mo;
+    mo->axis_c = folded ? 1 : 2;
+    mo->axis_s = folded ? 2 : 0;
+    double lo = 1e300, hi = -1e300;
+    for (ct_idx i = 0; i < n; i++) {
+        double v = (double)sc.ref[mo->axis_c][i];
+        lo = v < lo ? v : lo;
+        hi = v > hi ? v : hi;
+    }
+    mo->centre = 0.5 * (lo + hi);
+    mo->s0 = folded ? 0.72 : 0.9;
+    mo->s1 = 0.1;
+    mo->slide = 0.5 * sc.h;
+    mo->wavelength = folded ? 0.8 * sc.h : 4 * sc.h; /* folded: layers 0.4 h apart */
+    mo->period = 1;
+    mo->period = ctd_motion_max_step(mo, 0.5 * (hi - lo)) / (CB_STEP * sc.h);
+    ctd_cycle_params p = ctd_cycle_default_params(sc.h);
+    sc.interval = predict_interval(mo, n, sc.ref[mo->axis_c], (double)p.margin);
+    rc = ctd_cycle_init(&sc.cy, &p, n, sc.m, sc.c.sec.n, sc.c.sec.node, sc.c.sec.n,
+                        sc.c.sec.node, sc.c.main.n, sc.c.mn1, sc.c.mn2, sc.c.mn3, sc.c.mn4,
+                        sc.c.self);
+    if (rc != CT_OK)
+        return scene_fail(rc, "cycle init");
+    /* The first cycle (the initial search, the arrays' first touch), then
+     * room for 1.5 times its pairs (the motion's most compressed state has
+     * up to ~1.35 times the first one's), so the timed cycles do not
+     * allocate. */
+    ctd_motion_eval(mo, n, (const ct_real *const *)sc.ref, 0, CB_DT, sc.pos, sc.vel);
+    rc = ctd_cycle_step(sc.cy, sc.pos[0], sc.pos[1], sc.pos[2], sc.vel[0], sc.vel[1],
+                        sc.vel[2], (ct_real)CB_DT, sc.f[0], sc.f[1], sc.f[2]);
+    if (rc != CT_OK)
+        return scene_fail(rc, "first cycle");
+    sc.cycle = 1;
+    int64_t want = 3 * (int64_t)ctd_cycle_pairs(sc.cy)->n / 2;
+    rc = ctd_cycle_reserve(sc.cy, (ct_idx)(want < INT32_MAX / 2 ? want : INT32_MAX / 2));
+    if (rc != CT_OK)
+        return scene_fail(rc, "reserve");
+    return CT_OK;
+}
+
+static void bm_cycle(gb_state *st, void *arg)
+{
+    const cdesc *d = arg;
+    char where[256], msg[700];
+    if ((double)d->nodes * CB_BYTES_PER_NODE > cfg.mem_limit) {
+        gb_skip_with_error(st, "skipped: not enough memory");
+        return;
+    }
+    if (scene_get(d->family, d->nodes) != CT_OK) {
+        snprintf(msg, sizeof msg, "setup: %.300s", sc.err);
+        gb_skip_with_error(st, msg);
+        return;
+    }
+    ctb_bind_threads(cfg.bind, d->threads, where, sizeof where);
+    ctd_cycle_stats_reset(sc.cy);
+    int rc = CT_OK;
+    while (rc == CT_OK && gb_keep_running(st)) {
+        ctd_cycle_force_resort(sc.cy); /* one search per block, timed */
+        for (int k = 0; k < d->cycles && rc == CT_OK; k++) {
+            gb_pause_timing(st);
+            ctd_motion_eval(&sc.mo, sc.nnode, (const ct_real *const *)sc.ref,
+                            (double)sc.cycle, CB_DT, sc.pos, sc.vel);
+            sc.cycle++;
+            gb_resume_timing(st);
+            rc = ctd_cycle_step(sc.cy, sc.pos[0], sc.pos[1], sc.pos[2], sc.vel[0], sc.vel[1],
+                                sc.vel[2], (ct_real)CB_DT, sc.f[0], sc.f[1], sc.f[2]);
+        }
+    }
+    if (rc != CT_OK) {
+        snprintf(msg, sizeof msg, "cycle: %s", ct_strerror(rc));
+        sc.rc = rc; /* the interface is unusable now */
+        snprintf(sc.err, sizeof sc.err, "cycle: %s", ct_strerror(rc));
+        gb_skip_with_error(st, msg);
+        return;
+    }
+    const ctd_cycle_stats *s = ctd_cycle_get_stats(sc.cy);
+    if (s->cycles <= 0 || s->resorts <= 0)
+        return;
+    double per = 1e9 / ((double)s->cycles * (double)sc.nnode);
+    double sort_ns = 1e9 * s->t_sort / (double)s->resorts / (double)sc.nnode;
+    double check_ns = (s->t[CTD_PH_SEARCH] - s->t_sort) * per;
+    double search_ns = check_ns + (sc.interval > 0 ? sort_ns / sc.interval : sort_ns);
+    double ph[CTD_PH_N] = {search_ns, s->t[CTD_PH_NARROW] * per, s->t[CTD_PH_FORCE] * per,
+                           s->t[CTD_PH_ASSEMBLE] * per, s->t[CTD_PH_TIMESTEP] * per};
+    static const char *const ph_name[CTD_PH_N] = {"ns_search", "ns_narrow", "ns_force",
+                                                  "ns_assemble", "ns_timestep"};
+    double total = 0;
+    for (int i = 0; i < CTD_PH_N; i++) {
+        gb_set_counter(st, ph_name[i], ph[i], GB_PLAIN);
+        total += ph[i];
+    }
+    gb_set_counter(st, "ns_total", total, GB_PLAIN);
+    gb_set_counter(st, "ns_total_x_threads", total * d->threads, GB_PLAIN);
+    gb_set_counter(st, "ns_per_sort", sort_ns, GB_PLAIN);
+    gb_set_counter(st, "ns_check", check_ns, GB_PLAIN);
+    gb_set_counter(st, "resort_interval", sc.interval, GB_PLAIN);
+    if (s->natural_sorts > 0)
+        gb_set_counter(st, "resort_interval_seen",
+                       (double)s->interval_sum / (double)s->natural_sorts, GB_PLAIN);
+    gb_set_counter(st, "cand_per_node", (double)s->cand_sum / (double)s->cycles / sc.nnode,
+                   GB_PLAIN);
+    gb_set_counter(st, "active_per_node",
+                   (double)s->active_sum / (double)s->cycles / sc.nnode, GB_PLAIN);
+    gb_set_counter(st, "threads", (double)d->threads, GB_PLAIN);
+    gb_set_counter(st, "nodes", (double)sc.nnode, GB_PLAIN);
+    snprintf(msg, sizeof msg,
+             "prec=%s %s self contact, bucket+hull, 4tri, TYPE7, Coulomb 0.2, colour; "
+             "%d cycles + 1 forced search per iteration; %.1f ns/node/cycle x %d thr = %.1f "
+             "(target <= 15); %s[%s]",
+             sizeof(ct_real) == 4 ? "single" : "double", d->family, d->cycles, total,
+             d->threads, total * d->threads, ctb_bind_name(cfg.bind), where);
+    gb_set_label(st, msg);
+}
+
+static int add(const char *family, int64_t nodes, int threads)
+{
+    cdesc *d = calloc(1, sizeof *d);
+    if (!d)
+        return -1;
+    d->family = family;
+    d->nodes = nodes;
+    d->threads = threads;
+    d->cycles = nodes >= 1000000 ? 3 : 8;
+    d->next = descs;
+    descs = d;
+    char name[128];
+    snprintf(name, sizeof name, "cycle/%s/t%d", family, threads);
+    return gb_register(name, bm_cycle, d, nodes, 1, 1, 0);
+}
+
+int ctb_cycle_register(const ctb_search_config *c)
+{
+    cfg = *c;
+    if (cfg.max_threads < 1)
+        cfg.max_threads = 1;
+    gb_add_context("ct_cycle",
+                   "self-contact sheet under a prescribed fold-and-slide motion; gap 0.3 h, "
+                   "margin 0.2 h; search amortised over the predicted re-sort interval");
+    static const struct {
+        const char *family;
+        int64_t nodes;
+        int full_only;
+    } set[] = {{"folded", 100000, 0},
+               {"crumpled", 100000, 0},
+               {"folded", 1000000, 0},
+               {"crumpled", 1000000, 1}};
+    int tlist[2] = {1, cfg.max_threads};
+    int nt = cfg.max_threads > 1 ? 2 : 1, count = 0;
+    for (size_t i = 0; i < sizeof set / sizeof *set; i++) {
+        if (set[i].full_only && !cfg.full)
+            continue;
+        for (int t = 0; t < nt; t++) {
+            if (add(set[i].family, set[i].nodes, tlist[t]) != 0)
+                return -1;
+            count++;
+        }
+    }
+    return count;
+}
+
+void ctb_cycle_cleanup(void)
+{
+    scene_free();
+    while (descs) {
+        cdesc *n = descs->next;
+        free(descs);
+        descs = n;
+    }
+}
