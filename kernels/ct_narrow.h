@@ -53,7 +53,9 @@ typedef enum ct_quad_method {
     CT_QUAD_4TRI = 0,
     /* Exact bilinear isoparametric projection: Newton on (s, t) minimising
      * |x(s,t) - p|^2 (full Hessian when positive definite, Gauss-Newton
-     * otherwise), converged to 1e-12 (single 1e-6) in (s, t); the closest
+     * otherwise), started from the least-squares (s, t) of the affine part
+     * x0 + s a1 + t a2 (exact on a parallelogram), converged to 1e-12
+     * (single 1e-5) in |ds| + |dt|; the closest
      * point of the four straight boundary edges is taken when it is closer
      * or the minimum lies outside [-1,1]^2. After 30 iterations without
      * convergence the best of the last iterate (clamped) and the boundary is

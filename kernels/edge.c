@@ -22,72 +22,26 @@
 #define CTI_EE_PAR_TOL (16 * CTI_EPS)
 
 /* |w + s u - t v|^2, the squared distance of Pa(s) and Pb(t). */
-static inline ct_real cti_ee_q(const ct_real u[3], const ct_real v[3], const ct_real w[3],
-                               ct_real s, ct_real t)
+static inline ct_real cti_ee_q(ct_real ux, ct_real uy, ct_real uz, ct_real vx, ct_real vy,
+                               ct_real vz, ct_real wx, ct_real wy, ct_real wz, ct_real s,
+                               ct_real t)
 {
-    ct_real rx = w[0] + s * u[0] - t * v[0];
-    ct_real ry = w[1] + s * u[1] - t * v[1];
-    ct_real rz = w[2] + s * u[2] - t * v[2];
+    ct_real rx = wx + s * ux - t * vx;
+    ct_real ry = wy + s * uy - t * vy;
+    ct_real rz = wz + s * uz - t * vz;
     return rx * rx + ry * ry + rz * rz;
 }
 
-static inline void cti_ee_cand(const ct_real u[3], const ct_real v[3], const ct_real w[3],
-                               ct_real s, ct_real t, ct_real *bs, ct_real *bt, ct_real *bq)
-{
-    ct_real q = cti_ee_q(u, v, w, s, t);
-    int take = q < *bq;
-    *bs = take ? s : *bs;
-    *bt = take ? t : *bt;
-    *bq = take ? q : *bq;
-}
-
-static inline void cti_ee_closest(const ct_real A1[3], const ct_real A2[3],
-                                  const ct_real B1[3], const ct_real B2[3], ct_real *psa,
-                                  ct_real *psb, int *par, ct_real *pa, ct_real *pc,
-                                  ct_real ucv[3])
-{
-    ct_real u[3], v[3], w[3];
-    _Pragma("GCC unroll 4")
-    for (int i = 0; i < 3; i++) {
-        u[i] = A2[i] - A1[i];
-        v[i] = B2[i] - B1[i];
-        w[i] = A1[i] - B1[i];
-    }
-    ct_real a = u[0] * u[0] + u[1] * u[1] + u[2] * u[2];
-    ct_real b = u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
-    ct_real c = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
-    ct_real d = u[0] * w[0] + u[1] * w[1] + u[2] * w[2];
-    ct_real e = v[0] * w[0] + v[1] * w[1] + v[2] * w[2];
-    ucv[0] = u[1] * v[2] - u[2] * v[1];
-    ucv[1] = u[2] * v[0] - u[0] * v[2];
-    ucv[2] = u[0] * v[1] - u[1] * v[0];
-    ct_real den = ucv[0] * ucv[0] + ucv[1] * ucv[1] + ucv[2] * ucv[2];
-    int parallel = !(den > CTI_EE_PAR_TOL * a * c);
-    ct_real ai = 1 / (a > 0 ? a : 1), ci = 1 / (c > 0 ? c : 1);
-    /* General case. */
-    ct_real sg = (b * e - c * d) / (parallel ? 1 : den);
-    /* Parallel: B1 and B2 on A's line are at -d/a and (b - d)/a. */
-    ct_real q1 = -d * ai, q2 = (b - d) * ai;
-    ct_real lo = q1 < q2 ? q1 : q2, hi = q1 < q2 ? q2 : q1;
-    ct_real olo = lo > 0 ? lo : 0, ohi = hi < 1 ? hi : 1;
-    ct_real sp = olo <= ohi ? (ct_real)0.5 * (olo + ohi) : (hi < 0 ? 0 : 1);
-    ct_real s = cti_nr_clamp01(parallel ? sp : sg);
-    ct_real t = cti_nr_clamp01((b * s + e) * ci);
-    s = cti_nr_clamp01((b * t - d) * ai);
-    /* The minimum is interior to both edges (found above) or has an end
-     * point: the four end-point projections are candidates too, which
-     * makes nearly parallel edges exact. Ties keep the earlier one. */
-    ct_real bs = s, bt = t, bq = cti_ee_q(u, v, w, s, t);
-    cti_ee_cand(u, v, w, 0, cti_nr_clamp01(e * ci), &bs, &bt, &bq);
-    cti_ee_cand(u, v, w, 1, cti_nr_clamp01((e + b) * ci), &bs, &bt, &bq);
-    cti_ee_cand(u, v, w, cti_nr_clamp01(-d * ai), 0, &bs, &bt, &bq);
-    cti_ee_cand(u, v, w, cti_nr_clamp01((b - d) * ai), 1, &bs, &bt, &bq);
-    *psa = bs;
-    *psb = bt;
-    *par = parallel;
-    *pa = a;
-    *pc = c;
-}
+/* Keep (s, t) when it is strictly closer than the best so far. */
+#define CTI_EE_CAND(s_, t_)                                                               \
+    do {                                                                                  \
+        ct_real cs_ = (s_), ct_ = (t_);                                                   \
+        ct_real q_ = cti_ee_q(ux, uy, uz, vx, vy, vz, wx, wy, wz, cs_, ct_);              \
+        cti_nr_int take_ = q_ < bq;                                                       \
+        bs = take_ ? cs_ : bs;                                                            \
+        bt = take_ ? ct_ : bt;                                                            \
+        bq = take_ ? q_ : bq;                                                             \
+    } while (0)
 
 int ct_narrow_edge_edge(ct_idx npair, const ct_idx *restrict ea, const ct_idx *restrict eb,
                         const ct_idx *restrict e1, const ct_idx *restrict e2,
@@ -114,24 +68,19 @@ int ct_narrow_edge_edge(ct_idx npair, const ct_idx *restrict ea, const ct_idx *r
     ct_real *restrict ogap = out->gap;
     uint8_t *restrict oflag = out->flag;
     ct_idx nblock = (ct_idx)((npair + CTI_NR_BLOCK - 1) / CTI_NR_BLOCK);
-#pragma omp parallel for schedule(static)
+    /* A call of one block runs without a thread team (cheaper). */
+#pragma omp parallel for schedule(static) if (nblock > 1)
     for (ct_idx bi = 0; bi < nblock; bi++) {
         ct_idx k0 = bi * CTI_NR_BLOCK, nb = CTI_MIN(npair - k0, CTI_NR_BLOCK);
-        /* Gather the block's end points and gaps. */
-        ct_real P[4][3][CTI_NR_BLOCK], G[CTI_NR_BLOCK];
+        /* The block's gaps; the end points are loaded through the indices
+         * by the vector loop (gather instructions). */
+        _Alignas(64) ct_real G[CTI_NR_BLOCK];
+        _Alignas(64) cti_nr_int F[CTI_NR_BLOCK];
         for (ct_idx j = 0; j < nb; j++) {
-            ct_idx ia = ea[k0 + j], ib = eb[k0 + j];
-            ct_idx v[4] = {e1[ia], e2[ia], e1[ib], e2[ib]};
-            _Pragma("GCC unroll 4")
-            for (int q = 0; q < 4; q++) {
-                P[q][0][j] = x[v[q]];
-                P[q][1][j] = y[v[q]];
-                P[q][2][j] = z[v[q]];
-            }
             ct_real ga = gap, gb = gap;
             if (gap_edge) {
-                ga = gap_edge[ia];
-                gb = gap_edge[ib];
+                ga = gap_edge[ea[k0 + j]];
+                gb = gap_edge[eb[k0 + j]];
                 ga = (gap_max > 0 && ga > gap_max) ? gap_max : ga;
                 gb = (gap_max > 0 && gb > gap_max) ? gap_max : gb;
             }
@@ -139,93 +88,111 @@ int ct_narrow_edge_edge(ct_idx npair, const ct_idx *restrict ea, const ct_idx *r
         }
         CTI_NR_SIMD
         for (ct_idx j = 0; j < nb; j++) {
-        ct_idx k = k0 + j;
-        ct_real A1[3], A2[3], B1[3], B2[3];
-        _Pragma("GCC unroll 4")
-        for (int i = 0; i < 3; i++) {
-            A1[i] = P[0][i][j];
-            A2[i] = P[1][i][j];
-            B1[i] = P[2][i][j];
-            B2[i] = P[3][i][j];
+            ct_idx k = k0 + j;
+            ct_idx ia = ea[k], ib = eb[k];
+            ct_idx v0 = e1[ia], v1 = e2[ia], v2 = e1[ib], v3 = e2[ib];
+            /* Relative to A1 (accuracy far from the origin). */
+            const ct_real ox = x[v0], oy = y[v0], oz = z[v0];
+            const ct_real ux = x[v1] - ox, uy = y[v1] - oy, uz = z[v1] - oz;
+            const ct_real b1x = x[v2] - ox, b1y = y[v2] - oy, b1z = z[v2] - oz;
+            const ct_real b2x = x[v3] - ox, b2y = y[v3] - oy, b2z = z[v3] - oz;
+            const ct_real g = G[j];
+            /* NaN or Inf anywhere makes the sum NaN or Inf. */
+            ct_real zs = ((ux + uy) + (uz + b1x)) + ((b1y + b1z) + (b2x + b2y)) + (b2z + g);
+            cti_nr_int nonfin = !(zs - zs == 0);
+            ct_real vx = b2x - b1x, vy = b2y - b1y, vz = b2z - b1z;
+            ct_real wx = -b1x, wy = -b1y, wz = -b1z;
+            ct_real a = ux * ux + uy * uy + uz * uz;
+            ct_real bb = ux * vx + uy * vy + uz * vz;
+            ct_real c = vx * vx + vy * vy + vz * vz;
+            ct_real d = ux * wx + uy * wy + uz * wz;
+            ct_real e = vx * wx + vy * wy + vz * wz;
+            ct_real cx = uy * vz - uz * vy, cy = uz * vx - ux * vz, cz = ux * vy - uy * vx;
+            ct_real den = cx * cx + cy * cy + cz * cz;
+            cti_nr_int par = !(den > CTI_EE_PAR_TOL * a * c);
+            /* 1/a and 1/c from one division. */
+            ct_real ag = a > 0 ? a : 1, cg = c > 0 ? c : 1;
+            ct_real iac = 1 / (ag * cg);
+            ct_real ai = cg * iac, ci = ag * iac;
+            /* General case. */
+            ct_real sg = (bb * e - c * d) / (par ? 1 : den);
+            /* Parallel: B1 and B2 on A's line are at -d/a and (b - d)/a. */
+            ct_real q1 = -d * ai, q2 = (bb - d) * ai;
+            ct_real lo = q1 < q2 ? q1 : q2, hi = q1 < q2 ? q2 : q1;
+            ct_real olo = lo > 0 ? lo : 0, ohi = hi < 1 ? hi : 1;
+            ct_real sp = olo <= ohi ? (ct_real)0.5 * (olo + ohi) : (hi < 0 ? 0 : 1);
+            ct_real s = cti_nr_clamp01(par ? sp : sg);
+            ct_real t = cti_nr_clamp01((bb * s + e) * ci);
+            s = cti_nr_clamp01((bb * t - d) * ai);
+            /* The minimum is interior to both edges (found above) or has an
+             * end point: the four end-point projections are candidates too,
+             * which makes nearly parallel edges exact. Ties keep the
+             * earlier one. */
+            ct_real bs = s, bt = t, bq = cti_ee_q(ux, uy, uz, vx, vy, vz, wx, wy, wz, s, t);
+            CTI_EE_CAND(0, cti_nr_clamp01(e * ci));
+            CTI_EE_CAND(1, cti_nr_clamp01((e + bb) * ci));
+            CTI_EE_CAND(cti_nr_clamp01(-d * ai), 0);
+            CTI_EE_CAND(cti_nr_clamp01((bb - d) * ai), 1);
+            s = bs;
+            t = bt;
+            ct_real lm = a > c ? a : c, ls = a < c ? a : c;
+            cti_nr_int degen = !(ls > CTI_NR_EDGE_TOL * CTI_NR_EDGE_TOL * lm);
+            cti_nr_int bad = nonfin ? CT_NARROW_NONFINITE : (degen ? CT_NARROW_DEGENERATE : 0);
+            ct_real pax = s * ux, pay = s * uy, paz = s * uz;
+            ct_real pbx = b1x + t * vx, pby = b1y + t * vy, pbz = b1z + t * vz;
+            ct_real rx = pax - pbx, ry = pay - pby, rz = paz - pbz;
+            ct_real r2 = rx * rx + ry * ry + rz * rz;
+            ct_real dist = CTI_SQRT(r2);
+            /* dist <= tol * sqrt(lm), squared. */
+            cti_nr_int touch = r2 <= (CTI_NR_ON_TOL * CTI_NR_ON_TOL) * lm;
+            /* Touching: u x v, or for parallel edges u x (the axis along
+             * which u is smallest), then oriented from B's midpoint towards
+             * A's. */
+            ct_real max_ = (ct_real)0.5 * (ux - (b1x + b2x));
+            ct_real may_ = (ct_real)0.5 * (uy - (b1y + b2y));
+            ct_real maz_ = (ct_real)0.5 * (uz - (b1z + b2z));
+            ct_real aux = CTI_FABS(ux), auy = CTI_FABS(uy), auz = CTI_FABS(uz);
+            /* Selects of reals and single comparisons: combined boolean
+             * masks stop gcc's vectoriser here. */
+            cti_nr_int kx = aux <= (auy < auz ? auy : auz), ky = auy <= auz;
+            ct_real pcx = kx ? 0 : (ky ? -uz : uy);
+            ct_real pcy = kx ? uz : (ky ? 0 : -ux);
+            ct_real pcz = kx ? -uy : (ky ? ux : 0);
+            ct_real tx = par ? pcx : cx, ty = par ? pcy : cy, tz = par ? pcz : cz;
+            ct_real om = tx * max_ + ty * may_ + tz * maz_;
+            ct_real atx = CTI_FABS(tx), aty = CTI_FABS(ty), atz = CTI_FABS(tz);
+            ct_real big = atx >= (aty > atz ? aty : atz) ? tx : (aty >= atz ? ty : tz);
+            ct_real fl = om < 0 ? -1 : (om > 0 ? 1 : (big < 0 ? -1 : 1));
+            /* One square root and one division normalise the normal. */
+            ct_real nx = touch ? fl * tx : rx, ny = touch ? fl * ty : ry;
+            ct_real nz = touch ? fl * tz : rz;
+            ct_real n2 = touch ? tx * tx + ty * ty + tz * tz : r2;
+            ct_real ni = 1 / CTI_SQRT(n2 > 0 ? n2 : 1);
+            ct_real pen = g - dist;
+            ct_real smin = s < t ? s : t, smax = s < t ? t : s;
+            cti_nr_int clamped = (smin <= 0) | (smax >= 1);
+            odist[k] = bad ? CT_NARROW_FAR : dist;
+            open[k] = bad ? 0 : (pen > 0 ? pen : 0);
+            onx[k] = bad ? 0 : nx * ni;
+            ony[k] = bad ? 0 : ny * ni;
+            onz[k] = bad ? 1 : nz * ni;
+            osa[k] = bad ? 0 : s;
+            osb[k] = bad ? 0 : t;
+            opax[k] = bad ? 0 : pax + ox;
+            opay[k] = bad ? 0 : pay + oy;
+            opaz[k] = bad ? 0 : paz + oz;
+            opbx[k] = bad ? 0 : pbx + ox;
+            opby[k] = bad ? 0 : pby + oy;
+            opbz[k] = bad ? 0 : pbz + oz;
+            ogap[k] = nonfin ? 0 : g;
+            F[j] = bad ? bad
+                       : ((clamped ? CT_NARROW_OUTSIDE : 0) | (par ? CT_NARROW_PARALLEL : 0));
         }
-        ct_real g = G[j];
-        ct_real zs = g - g;
-        _Pragma("GCC unroll 4")
-        for (int i = 0; i < 3; i++)
-            zs += (A1[i] - A1[i]) + (A2[i] - A2[i]) + (B1[i] - B1[i]) + (B2[i] - B2[i]);
-        /* Relative to A1 (accuracy far from the origin). */
-        ct_real org[3];
-        for (int i = 0; i < 3; i++) {
-            org[i] = A1[i];
-            A2[i] -= org[i];
-            B1[i] -= org[i];
-            B2[i] -= org[i];
-            A1[i] = 0;
-        }
-        int nonfin = cti_nr_nonfinite(zs);
-        ct_real s, t, aa, cc, ucv[3];
-        int par;
-        cti_ee_closest(A1, A2, B1, B2, &s, &t, &par, &aa, &cc, ucv);
-        ct_real lm = aa > cc ? aa : cc, ls = aa < cc ? aa : cc;
-        int degen = !(ls > CTI_NR_EDGE_TOL * CTI_NR_EDGE_TOL * lm);
-        int bad = nonfin ? CT_NARROW_NONFINITE : (degen ? CT_NARROW_DEGENERATE : 0);
-        ct_real Pa[3], Pb[3], r[3], ma[3];
-        _Pragma("GCC unroll 4")
-        for (int i = 0; i < 3; i++) {
-            Pa[i] = A1[i] + s * (A2[i] - A1[i]);
-            Pb[i] = B1[i] + t * (B2[i] - B1[i]);
-            r[i] = Pa[i] - Pb[i];
-            ma[i] = (ct_real)0.5 * ((A1[i] + A2[i]) - (B1[i] + B2[i]));
-        }
-        ct_real dist = CTI_SQRT(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
-        int touch = dist <= CTI_NR_ON_TOL * CTI_SQRT(lm);
-        /* Touching: u x v, or for parallel edges u x (the axis along which u
-         * is smallest), then oriented from B's midpoint towards A's. */
-        ct_real u[3] = {A2[0] - A1[0], A2[1] - A1[1], A2[2] - A1[2]};
-        ct_real ax = CTI_FABS(u[0]), ay = CTI_FABS(u[1]), az = CTI_FABS(u[2]);
-        int kx = (ax <= ay) & (ax <= az), ky = (!kx) & (ay <= az);
-        ct_real pcv[3] = {kx ? 0 : (ky ? -u[2] : u[1]), kx ? u[2] : (ky ? 0 : -u[0]),
-                          kx ? -u[1] : (ky ? u[0] : 0)};
-        ct_real tn[3];
-        _Pragma("GCC unroll 4")
-        for (int i = 0; i < 3; i++)
-            tn[i] = par ? pcv[i] : ucv[i];
-        ct_real tl = CTI_SQRT(tn[0] * tn[0] + tn[1] * tn[1] + tn[2] * tn[2]);
-        ct_real ti = 1 / (tl > 0 ? tl : 1);
-        ct_real om = tn[0] * ma[0] + tn[1] * ma[1] + tn[2] * ma[2];
-        ct_real big = ((CTI_FABS(tn[0]) >= CTI_FABS(tn[1])) & (CTI_FABS(tn[0]) >= CTI_FABS(tn[2])))
-                          ? tn[0]
-                          : (CTI_FABS(tn[1]) >= CTI_FABS(tn[2]) ? tn[1] : tn[2]);
-        ct_real sg = ((om < 0) | ((om == 0) & (big < 0))) ? -ti : ti;
-        ct_real di = 1 / (touch ? 1 : dist);
-        ct_real n[3];
-        _Pragma("GCC unroll 4")
-        for (int i = 0; i < 3; i++)
-            n[i] = touch ? tn[i] * sg : r[i] * di;
-        ct_real pen = g - dist;
-        int clamped = (s <= 0) | (s >= 1) | (t <= 0) | (t >= 1);
-        odist[k] = bad ? CT_NARROW_FAR : dist;
-        open[k] = bad ? 0 : (pen > 0 ? pen : 0);
-        onx[k] = bad ? 0 : n[0];
-        ony[k] = bad ? 0 : n[1];
-        onz[k] = bad ? 1 : n[2];
-        osa[k] = bad ? 0 : s;
-        osb[k] = bad ? 0 : t;
-        opax[k] = bad ? 0 : Pa[0] + org[0];
-        opay[k] = bad ? 0 : Pa[1] + org[1];
-        opaz[k] = bad ? 0 : Pa[2] + org[2];
-        opbx[k] = bad ? 0 : Pb[0] + org[0];
-        opby[k] = bad ? 0 : Pb[1] + org[1];
-        opbz[k] = bad ? 0 : Pb[2] + org[2];
-        ogap[k] = nonfin ? 0 : g;
-        oflag[k] = (uint8_t)(bad ? bad
-                                 : ((clamped ? CT_NARROW_OUTSIDE : 0) |
-                                    (par ? CT_NARROW_PARALLEL : 0)));
-        }
+        cti_nr_flags_out(F, oflag + k0, nb);
     }
     if (stats) {
         int64_t act = 0, dg = 0, nf = 0, os = 0;
-#pragma omp parallel for schedule(static) reduction(+ : act, dg, nf, os)
+#pragma omp parallel for schedule(static) reduction(+ : act, dg, nf, os) if (nblock > 1)
         for (ct_idx k = 0; k < npair; k++) {
             act += open[k] > 0;
             dg += (oflag[k] & CT_NARROW_DEGENERATE) != 0;
@@ -253,7 +220,7 @@ int ct_edge_edge_forces(ct_idx npair, const ct_real *restrict fmag,
     if (!fmag || !nx || !ny || !nz || !sa || !sb || !fx || !fy || !fz)
         return CT_ERR_ARG;
     ct_idx nblock = (ct_idx)((npair + CTI_NR_BLOCK - 1) / CTI_NR_BLOCK);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (nblock > 1)
     for (ct_idx bi = 0; bi < nblock; bi++) {
         ct_idx k0 = bi * CTI_NR_BLOCK, k1 = CTI_MIN(npair, k0 + CTI_NR_BLOCK);
         CTI_NR_SIMD

@@ -32,25 +32,10 @@ int ct_quad_method_from_name(const char *name)
     return -1;
 }
 
+/* The pair gaps of a block (see ct_narrow.h) into b->g. */
 void cti_nr_gather(const cti_nr_args *a, ct_idx k0, ct_idx n, cti_nr_blk *b)
 {
     const ct_idx *restrict node = a->node + k0, *restrict seg = a->seg + k0;
-    const ct_idx *restrict n1 = a->n1, *restrict n2 = a->n2, *restrict n3 = a->n3,
-                           *restrict n4 = a->n4;
-    const ct_real *restrict x = a->x, *restrict y = a->y, *restrict z = a->z;
-    for (ct_idx j = 0; j < n; j++) {
-        ct_idx i = node[j], s = seg[j];
-        ct_idx c[4] = {n1[s], n2[s], n3[s], n4[s]};
-        b->p[0][j] = x[i];
-        b->p[1][j] = y[i];
-        b->p[2][j] = z[i];
-        _Pragma("GCC unroll 4")
-        for (int v = 0; v < 4; v++) {
-            b->X[v][0][j] = x[c[v]];
-            b->X[v][1][j] = y[c[v]];
-            b->X[v][2][j] = z[c[v]];
-        }
-    }
     const ct_real *restrict gn = a->gap_node, *restrict gs = a->gap_seg;
     ct_real gap = a->gap, cs = a->gap_max_s, cm = a->gap_max_m;
     if (!gn && !gs) {
@@ -68,40 +53,49 @@ void cti_nr_gather(const cti_nr_args *a, ct_idx k0, ct_idx n, cti_nr_blk *b)
     }
 }
 
-/* Node-triangle over a block whose segments are all triangles. */
-void cti_nr_block_tri(const cti_nr_args *a, ct_idx k0, ct_idx n, const cti_nr_blk *b)
+/* Node-triangle over a block whose segments are all triangles: as
+ * CTI_NR_LOAD, but only the three corners are loaded (n4 == n3). */
+void cti_nr_block_tri(const cti_nr_args *a, ct_idx k0, ct_idx n, cti_nr_blk *b)
 {
     CTI_NR_OUTPTRS(a, k0);
     int two = a->two_sided;
+    const ct_idx *restrict node = a->node + k0, *restrict seg = a->seg + k0;
+    const ct_idx *restrict n1 = a->n1, *restrict n2 = a->n2, *restrict n3 = a->n3;
+    const ct_real *restrict X = a->x, *restrict Y = a->y, *restrict Z = a->z;
+    const ct_real *restrict G = b->g;
     CTI_NR_SIMD
     for (ct_idx j = 0; j < n; j++) {
-        ct_real p[3], A[3], B[3], C[3], D[3], g, org[3];
-        ct_real zs = cti_nr_get(b, j, p, A, B, C, D, &g, org);
-        (void)D;
-        int nonfin = cti_nr_nonfinite(zs);
+        ct_idx i = node[j], s = seg[j];
+        ct_idx i1 = n1[s], i2 = n2[s], i3 = n3[s];
+        const ct_real ox = X[i1], oy = Y[i1], oz = Z[i1];
+        const ct_real px = X[i] - ox, py = Y[i] - oy, pz = Z[i] - oz;
+        const ct_real x2 = X[i2] - ox, y2 = Y[i2] - oy, z2 = Z[i2] - oz;
+        const ct_real x3 = X[i3] - ox, y3 = Y[i3] - oy, z3 = Z[i3] - oz;
+        const ct_real g = G[j];
+        const ct_real zsum_ = (((px + py) + (pz + x2)) + ((y2 + z2) + (x3 + y3))) + (z3 + g);
+        const cti_nr_int nonfin = !(zsum_ - zsum_ == 0);
         ct_real q, u, v, w, nx, ny, nz, nn, l2;
-        int in;
-        cti_nr_tri(B[0] - A[0], B[1] - A[1], B[2] - A[2], C[0] - A[0], C[1] - A[1],
-                   C[2] - A[2], p[0] - A[0], p[1] - A[1], p[2] - A[2], &q, &u, &v, &w, &nx,
-                   &ny, &nz, &nn, &l2, &in);
+        cti_nr_int in;
+        cti_nr_tri(x2, y2, z2, x3, y3, z3, px, py, pz, &q, &u, &v, &w, &nx, &ny, &nz, &nn, &l2,
+                   &in);
         (void)q;
         /* Area |n|/2 <= tol * l2. */
         ct_real lim = 2 * CTI_NR_AREA_TOL * l2;
-        int degen = !(nn > lim * lim);
-        int bad = nonfin ? CT_NARROW_NONFINITE : (degen ? CT_NARROW_DEGENERATE : 0);
-        ct_real inv = 1 / CTI_SQRT(nn > 0 ? nn : 1);
-        ct_real cx = A[0] + v * (B[0] - A[0]) + w * (C[0] - A[0]);
-        ct_real cy = A[1] + v * (B[1] - A[1]) + w * (C[1] - A[1]);
-        ct_real cz = A[2] + v * (B[2] - A[2]) + w * (C[2] - A[2]);
+        cti_nr_int degen = !(nn > lim * lim);
+        cti_nr_int bad = nonfin ? CT_NARROW_NONFINITE : (degen ? CT_NARROW_DEGENERATE : 0);
+        ct_real cx = v * x2 + w * x3;
+        ct_real cy = v * y2 + w * y3;
+        ct_real cz = v * z2 + w * z3;
         ct_real dist, pen, mx, my, mz;
-        int flag;
-        cti_nr_finish(p[0], p[1], p[2], cx, cy, cz, nx * inv, ny * inv, nz * inv,
-                      CTI_SQRT(l2), in, g, two, &dist, &pen, &mx, &my, &mz, &flag);
+        cti_nr_int flag;
+        cti_nr_finish(px, py, pz, cx, cy, cz, nx, ny, nz, nn, l2, in, g, two, &dist, &pen,
+                      &mx, &my, &mz, &flag);
         CTI_NR_STORE(j, bad, dist, pen, mx, my, mz, cx, cy, cz, u, v, w, 0, g, flag);
     }
+    cti_nr_flags_out(b->flag, a->out->flag + k0, n);
 }
 
-typedef void (*cti_nr_kernel)(const cti_nr_args *, ct_idx, ct_idx, const cti_nr_blk *);
+typedef void (*cti_nr_kernel)(const cti_nr_args *, ct_idx, ct_idx, cti_nr_blk *);
 
 int ct_narrow_node_segment(ct_idx npair, const ct_idx *restrict node,
                            const ct_idx *restrict seg, const ct_idx *restrict n1,
@@ -129,9 +123,11 @@ int ct_narrow_node_segment(ct_idx npair, const ct_idx *restrict node,
                          : method == CT_QUAD_NEWTON ? cti_nr_block_newton
                                                     : cti_nr_block_closed;
     ct_idx nblock = (ct_idx)((npair + CTI_NR_BLOCK - 1) / CTI_NR_BLOCK);
-#pragma omp parallel
+    /* A call of one block (a few pairs) runs without a thread team: opening
+     * one costs more than the work. */
+#pragma omp parallel if (nblock > 1)
     {
-        /* One gather buffer per thread, on its stack. */
+        /* One block scratch per thread, on its stack. */
         cti_nr_blk blk;
 #pragma omp for schedule(static)
         for (ct_idx bi = 0; bi < nblock; bi++) {
@@ -153,7 +149,7 @@ int ct_narrow_node_segment(ct_idx npair, const ct_idx *restrict node,
         int64_t act = 0, fb = 0, dg = 0, nf = 0, bh = 0, os = 0;
         const ct_real *restrict pen = out->pen;
         const uint8_t *restrict fl = out->flag;
-#pragma omp parallel for schedule(static) reduction(+ : act, fb, dg, nf, bh, os)
+#pragma omp parallel for schedule(static) reduction(+ : act, fb, dg, nf, bh, os) if (nblock > 1)
         for (ct_idx k = 0; k < npair; k++) {
             act += pen[k] > 0;
             fb += (fl[k] & CT_NARROW_FALLBACK) != 0;

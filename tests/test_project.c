@@ -243,6 +243,78 @@ Test(project, newton_matches_dense_search_on_warped_quads)
     geo_free(&o);
 }
 
+/* Newton over a batch of pairs, as the vector loop sees them: warped quads
+ * and nodes up to 1.2 L off the surface, far beyond the edges too, so that
+ * some pairs need more than the vector loop's fixed number of iterations
+ * and are finished by the scalar loop. Every pair against the dense
+ * search. */
+Test(project, newton_batch_with_far_nodes_matches_dense_search)
+{
+    int nq = ctt_checking() ? 6 : 24, np = 16, npair = nq * np;
+    ct_real *x = ct_calloc((size_t)(5 * npair), sizeof(ct_real));
+    ct_real *y = ct_calloc((size_t)(5 * npair), sizeof(ct_real));
+    ct_real *z = ct_calloc((size_t)(5 * npair), sizeof(ct_real));
+    ct_idx *node = ct_calloc((size_t)npair, sizeof(ct_idx)), *seg = ct_calloc((size_t)npair, sizeof(ct_idx));
+    ct_idx *n1 = ct_calloc((size_t)nq, sizeof(ct_idx)), *n2 = ct_calloc((size_t)nq, sizeof(ct_idx));
+    ct_idx *n3 = ct_calloc((size_t)nq, sizeof(ct_idx)), *n4 = ct_calloc((size_t)nq, sizeof(ct_idx));
+    double (*X)[4][3] = malloc(sizeof(double[4][3]) * (size_t)nq);
+    double (*P)[3] = malloc(sizeof(double[3]) * (size_t)npair);
+    for (int q = 0; q < nq; q++) {
+        rand_quad(X[q], 0.2, 1.0 + 0.05 * q);
+        for (int i = 0; i < 4; i++) {
+            x[4 * q + i] = (ct_real)X[q][i][0];
+            y[4 * q + i] = (ct_real)X[q][i][1];
+            z[4 * q + i] = (ct_real)X[q][i][2];
+        }
+        n1[q] = 4 * q;
+        n2[q] = 4 * q + 1;
+        n3[q] = 4 * q + 2;
+        n4[q] = 4 * q + 3;
+    }
+    for (int k = 0; k < npair; k++) {
+        int q = k / np;
+        double s = 6 * urand() - 3, t = 6 * urand() - 3, c[3], a[3], b[3];
+        bil(X[q], s, t, c, a, b);
+        double n[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
+                       a[0] * b[1] - a[1] * b[0]};
+        double nl = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        double h = 2.4 * urand() - 1.2;
+        for (int d = 0; d < 3; d++)
+            P[k][d] = c[d] + h * n[d] / nl;
+        ct_idx i = 4 * nq + k;
+        x[i] = (ct_real)P[k][0];
+        y[i] = (ct_real)P[k][1];
+        z[i] = (ct_real)P[k][2];
+        node[k] = i;
+        seg[k] = (ct_idx)q;
+    }
+    geo o;
+    geo_init(&o, npair);
+    cr_assert_eq(ct_narrow_node_segment(npair, node, seg, n1, n2, n3, n4, x, y, z, NULL, NULL,
+                                        (ct_real)0.01, 0, 0, CT_QUAD_NEWTON, 1, &o.g, NULL),
+                 CT_OK);
+    for (int k = 0; k < npair; k++) {
+        /* The reference takes the rounded inputs of the single build. */
+        double Xr[4][3], pr[3] = {x[node[k]], y[node[k]], z[node[k]]}, c[3], d;
+        int q = k / np;
+        for (int i = 0; i < 4; i++) {
+            Xr[i][0] = x[4 * q + i];
+            Xr[i][1] = y[4 * q + i];
+            Xr[i][2] = z[4 * q + i];
+        }
+        truth_quad(Xr, pr, c, &d);
+        cr_assert_float_eq(o.g.dist[k], d, CTT_TOL(1e-10, 5e-5), "pair %d", k);
+        cr_assert(dist3(c, o.g.cx[k], o.g.cy[k], o.g.cz[k]) <= CTT_TOL(1e-10, 5e-4),
+                  "pair %d: point off by %g", k, dist3(c, o.g.cx[k], o.g.cy[k], o.g.cz[k]));
+        cr_assert_eq(o.g.flag[k] & (CT_NARROW_FALLBACK | CT_NARROW_DEGENERATE), 0);
+    }
+    geo_free(&o);
+    free(X);
+    free(P);
+    ct_free(x); ct_free(y); ct_free(z); ct_free(node); ct_free(seg);
+    ct_free(n1); ct_free(n2); ct_free(n3); ct_free(n4);
+}
+
 Test(project, all_methods_exact_on_flat_parallelograms)
 {
     geo o;
