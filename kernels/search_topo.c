@@ -117,6 +117,24 @@ static int topo_build_csr(topo_state *st, const ct_search_input *in)
  * secondary scans rings of cells around its own until no unvisited cell
  * can hold a closer node. Scratch is allocated here: this runs on the
  * first call only. */
+/* In self contact a node's own segments are excluded, so the node itself
+ * and the nodes it shares a segment with can never be its useful closest
+ * main node: they are skipped, and the search looks across the fold. */
+static inline int topo_excluded(const ct_search_input *in, const ct_idx *restrict off,
+                                const ct_idx *restrict adj, ct_idx node, ct_idx m)
+{
+    if (!in->self)
+        return 0;
+    if (m == node)
+        return 1;
+    for (ct_idx q = off[node]; q < off[node + 1]; q++) {
+        ct_idx j = adj[q];
+        if (in->n1[j] == m || in->n2[j] == m || in->n3[j] == m || in->n4[j] == m)
+            return 1;
+    }
+    return 0;
+}
+
 static int topo_full(topo_state *st, const ct_search_input *in)
 {
     const ct_real *restrict x = in->x, *restrict y = in->y, *restrict z = in->z;
@@ -223,7 +241,8 @@ static int topo_full(topo_state *st, const ct_search_input *in)
                         for (ct_idx q = c ? cnt[c - 1] : 0; q < cnt[c]; q++) {
                             ct_idx m = item[q];
                             ct_real d2 = topo_d2(x, y, z, m, px, py, pz);
-                            if (best < 0 || d2 < bd || (d2 == bd && m < best)) {
+                            if ((best < 0 || d2 < bd || (d2 == bd && m < best)) &&
+                                !topo_excluded(in, off, st->adj, node, m)) {
                                 best = m;
                                 bd = d2;
                             }
@@ -310,7 +329,8 @@ int cti_search_topo(ct_search *s, const ct_search_input *in, ct_pairs *out)
                     ct_idx v[4] = {in->n1[j], in->n2[j], in->n3[j], in->n4[j]};
                     for (int k = 0; k < 4; k++) {
                         ct_real d2 = topo_d2(x, y, z, v[k], px, py, pz);
-                        if (d2 < bd || (d2 == bd && v[k] < best)) {
+                        if ((d2 < bd || (d2 == bd && v[k] < best)) &&
+                            !topo_excluded(in, off, adj, node, v[k])) {
                             best = v[k];
                             bd = d2;
                         }

@@ -3,27 +3,11 @@
  * synthetic family, at several sizes, gaps and numberings, and the same
  * bytes for 1 and 2 threads.
  */
-#include "test_util.h"
+#include "test_scene.h"
 
 #include <string.h>
 
 #include "meshgen.h"
-
-static void run(ct_search_algo a, const ct_search_input *in, ct_pairs *out)
-{
-    ct_search_params p = ct_search_default_params(a);
-    ct_search *s;
-    cr_assert_eq(ct_search_init(&s, &p), CT_OK);
-    int rc = ct_search_run(s, in, out);
-    cr_assert_eq(rc, CT_OK, "%s search failed: %s", ct_search_algo_name(a), ct_strerror(rc));
-    ct_search_destroy(s);
-}
-
-static int same_pairs(const ct_pairs *a, const ct_pairs *b)
-{
-    return a->n == b->n && memcmp(a->node, b->node, sizeof(ct_idx) * (size_t)a->n) == 0 &&
-           memcmp(a->seg, b->seg, sizeof(ct_idx) * (size_t)a->n) == 0;
-}
 
 /* Pairs of `sub` not in `all`, both canonical (secondary order = node order
  * because the case's secondary list is sorted). */
@@ -56,13 +40,13 @@ static void check_case(const char *family, int64_t n, ctd_numbering num, double 
     ct_pairs ref, got;
     ct_pairs_init(&ref, 0);
     ct_pairs_init(&got, 0);
-    run(CT_SEARCH_DIRECT, &in, &ref);
+    ctt_search(CT_SEARCH_DIRECT, &in, &ref);
     if (expect_pairs)
         cr_assert_gt(ref.n, 0, "%s (n=%lld): the case has no contact candidates", family,
                      (long long)n);
     for (int a = CT_SEARCH_BUCKET; a <= CT_SEARCH_BSP; a++) {
-        run((ct_search_algo)a, &in, &got);
-        cr_assert(same_pairs(&ref, &got),
+        ctt_search((ct_search_algo)a, &in, &got);
+        cr_assert(ctt_same_pairs(&ref, &got),
                   "%s, n=%lld, numbering %s, gap %g h: %s gives %d pairs (missing %lld, extra %lld), "
                   "direct %d",
                   family, (long long)n, ctd_numbering_name(num), gap_h, ct_search_algo_name(a),
@@ -70,7 +54,7 @@ static void check_case(const char *family, int64_t n, ctd_numbering num, double 
     }
     /* The topological search may miss pairs; it never reports one that the
      * direct search rejects. */
-    run(CT_SEARCH_TOPO, &in, &got);
+    ctt_search(CT_SEARCH_TOPO, &in, &got);
     cr_assert_eq(missing(&got, &ref), 0, "%s: topological reported pairs direct rejects", family);
     ct_pairs_destroy(&ref);
     ct_pairs_destroy(&got);
@@ -121,10 +105,10 @@ Test(search_families, thread_count_does_not_change_bytes, .timeout = 240)
             ct_pairs_init(&p1, 0);
             ct_pairs_init(&p2, 0);
             ctt_threads(1);
-            run((ct_search_algo)a, &in, &p1);
+            ctt_search((ct_search_algo)a, &in, &p1);
             ctt_threads(2);
-            run((ct_search_algo)a, &in, &p2);
-            cr_assert(same_pairs(&p1, &p2), "%s on %s: 1 and 2 threads differ (%d vs %d pairs)",
+            ctt_search((ct_search_algo)a, &in, &p2);
+            cr_assert(ctt_same_pairs(&p1, &p2), "%s on %s: 1 and 2 threads differ (%d vs %d pairs)",
                       ct_search_algo_name(a), fams[f], p1.n, p2.n);
             ct_pairs_destroy(&p1);
             ct_pairs_destroy(&p2);
