@@ -1,0 +1,340 @@
+/*
+ * brick.c -- the 8-node elastic brick: total Lagrangian St Venant-Kirchhoff
+ * with full 2 x 2 x 2 Gauss integration. See elements.h.
+ */
+#include <stdlib.h>
+
+#include "ct_internal.h"
+#include "elements.h"
+
+/* Natural coordinates of the nodes (hex8 order of ctd_block). */
+static const int XI[8] = {-1, 1, 1, -1, -1, 1, 1, -1};
+static const int ETA[8] = {-1, -1, 1, 1, -1, -1, 1, 1};
+static const int ZETA[8] = {-1, -1, -1, -1, 1, 1, 1, 1};
+
+/* The six faces, each counter-clockwise seen from outside. */
+static const int FACE[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
+                               {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+
+/* dN[g][a][k]: derivative of shape function a along natural axis k at
+ * Gauss point g (points at +-1/sqrt(3), weights 1). */
+typedef ct_real cti_hex_dn[8][8][3];
+
+static void hex_dn(cti_hex_dn dN)
+{
+    const double gp = 1.0 / sqrt(3.0);
+    for (int g = 0; g < 8; g++) {
+        double xi = gp * XI[g], eta = gp * ETA[g], zeta = gp * ZETA[g];
+        for (int a = 0; a < 8; a++) {
+            double p = 1 + xi * XI[a], q = 1 + eta * ETA[a], r = 1 + zeta * ZETA[a];
+            dN[g][a][0] = (ct_real)(XI[a] * q * r / 8);
+            dN[g][a][1] = (ct_real)(ETA[a] * p * r / 8);
+            dN[g][a][2] = (ct_real)(ZETA[a] * p * q / 8);
+        }
+    }
+}
+
+/* J[i][k] = sum_a X[a][i] dN[a][k]; returns det J, inv = J^-1. */
+static inline ct_real jac_inv(const ct_real X[8][3], const ct_real dN[8][3], ct_real inv[3][3])
+{
+    ct_real J[3][3] = {{0}};
+    for (int a = 0; a < 8; a++)
+        for (int i = 0; i < 3; i++)
+            for (int k = 0; k < 3; k++)
+                J[i][k] += X[a][i] * dN[a][k];
+    ct_real c00 = J[1][1] * J[2][2] - J[1][2] * J[2][1];
+    ct_real c01 = J[1][2] * J[2][0] - J[1][0] * J[2][2];
+    ct_real c02 = J[1][0] * J[2][1] - J[1][1] * J[2][0];
+    ct_real det = J[0][0] * c00 + J[0][1] * c01 + J[0][2] * c02;
+    if (inv) {
+        ct_real id = det != 0 ? 1 / det : 0;
+        inv[0][0] = c00 * id;
+        inv[1][0] = c01 * id;
+        inv[2][0] = c02 * id;
+        inv[0][1] = (J[0][2] * J[2][1] - J[0][1] * J[2][2]) * id;
+        inv[1][1] = (J[0][0] * J[2][2] - J[0][2] * J[2][0]) * id;
+        inv[2][1] = (J[0][1] * J[2][0] - J[0][0] * J[2][1]) * id;
+        inv[0][2] = (J[0][1] * J[1][2] - J[0][2] * J[1][1]) * id;
+        inv[1][2] = (J[0][2] * J[1][0] - J[0][0] * J[1][2]) * id;
+        inv[2][2] = (J[0][0] * J[1][1] - J[0][1] * J[1][0]) * id;
+    }
+    return det;
+}
+
+static inline ct_real det3(const ct_real A[3][3])
+{
+    return A[0][0] * (A[1][1] * A[2][2] - A[1][2] * A[2][1]) -
+           A[0][1] * (A[1][0] * A[2][2] - A[1][2] * A[2][0]) +
+           A[0][2] * (A[1][0] * A[2][1] - A[1][1] * A[2][0]);
+}
+
+static void load(const ct_idx *conn, const ct_real *x, const ct_real *y, const ct_real *z,
+                 ct_real P[8][3])
+{
+    for (int a = 0; a < 8; a++) {
+        ct_idx v = conn[a];
+        P[a][0] = x[v];
+        P[a][1] = y[v];
+        P[a][2] = z[v];
+    }
+}
+
+void ctd_lame(ct_real E, ct_real nu, ct_real *lambda, ct_real *mu)
+{
+    *lambda = E * nu / ((1 + nu) * (1 - 2 * nu));
+    *mu = E / (2 * (1 + nu));
+}
+
+void ctd_brick_destroy(ctd_brick *b)
+{
+    if (!b)
+        return;
+    ct_free(b->conn);
+    ct_free(b->X0);
+    ct_free(b->Y0);
+    ct_free(b->Z0);
+    ct_free(b->vol0);
+    ct_free(b->eint);
+    ct_free(b->dte);
+    for (int d = 0; d < 3; d++)
+        ct_free(b->s[d]);
+    ctd_gather_destroy(&b->g);
+    memset(b, 0, sizeof *b);
+}
+
+int ctd_brick_init(ctd_brick *b, ct_idx n, const ct_idx *conn, ct_idx nnode, const ct_real *x,
+                   const ct_real *y, const ct_real *z, ct_real E, ct_real nu, ct_real rho,
+                   ct_diag *diag)
+{
+    if (!b || n < 0 || nnode < 0 || (n > 0 && (!conn || !x || !y || !z)))
+        return cti_fail(diag, CT_ERR_ARG, -1, "Bad arguments to ctd_brick_init.");
+    if (!(E > 0) || !(nu > -1 && nu < 0.5) || !(rho > 0))
+        return cti_fail(diag, CT_ERR_ARG, -1,
+                        "Brick material needs E > 0, -1 < nu < 0.5 and rho > 0.");
+    if (n > (INT32_MAX - 64) / 8)
+        return cti_fail(diag, CT_ERR_TOOBIG, -1, "Too many bricks (%d).", (int)n);
+    memset(b, 0, sizeof *b);
+    const size_t ne = (size_t)n + 1, nn = (size_t)nnode + 1;
+    b->conn = ct_calloc(8 * ne, sizeof *b->conn);
+    b->X0 = ct_calloc(nn, sizeof *b->X0);
+    b->Y0 = ct_calloc(nn, sizeof *b->Y0);
+    b->Z0 = ct_calloc(nn, sizeof *b->Z0);
+    b->vol0 = ct_calloc(ne, sizeof *b->vol0);
+    b->eint = ct_calloc(ne, sizeof *b->eint);
+    b->dte = ct_calloc(ne, sizeof *b->dte);
+    int ok = b->conn && b->X0 && b->Y0 && b->Z0 && b->vol0 && b->eint && b->dte;
+    for (int d = 0; d < 3; d++) {
+        b->s[d] = ct_calloc(8 * ne, sizeof *b->s[d]);
+        ok = ok && b->s[d];
+    }
+    if (!ok) {
+        ctd_brick_destroy(b);
+        return cti_fail(diag, CT_ERR_NOMEM, -1, "Out of memory for %d bricks.", (int)n);
+    }
+    b->n = n;
+    b->nnode = nnode;
+    ctd_lame(E, nu, &b->lambda, &b->mu);
+    b->rho = rho;
+    if (nnode > 0) {
+        memcpy(b->X0, x, (size_t)nnode * sizeof *x);
+        memcpy(b->Y0, y, (size_t)nnode * sizeof *y);
+        memcpy(b->Z0, z, (size_t)nnode * sizeof *z);
+    }
+    memcpy(b->conn, conn, (size_t)n * 8 * sizeof *conn);
+    const ct_idx *cs[8];
+    for (int a = 0; a < 8; a++)
+        cs[a] = b->conn + a;
+    int rc = ctd_gather_build(&b->g, n, 8, cs, 8, nnode, diag);
+    if (rc != CT_OK) {
+        ctd_brick_destroy(b);
+        return rc;
+    }
+    cti_hex_dn dN;
+    hex_dn(dN);
+    for (ct_idx e = 0; e < n; e++) {
+        ct_real X[8][3];
+        load(b->conn + 8 * (int64_t)e, x, y, z, X);
+        ct_real v = 0;
+        for (int g = 0; g < 8; g++) {
+            ct_real det = jac_inv(X, dN[g], NULL);
+            if (!(det > 0)) {
+                ctd_brick_destroy(b);
+                return cti_fail(diag, CT_ERR_DEGENERATE, e,
+                                "Brick %d has a non-positive Jacobian at Gauss point %d "
+                                "(tangled, inverted or misnumbered).",
+                                (int)e, g);
+            }
+            v += det;
+        }
+        b->vol0[e] = v;
+    }
+    return CT_OK;
+}
+
+void ctd_brick_mass(const ctd_brick *b, ct_real *m)
+{
+    for (ct_idx e = 0; e < b->n; e++)
+        for (int a = 0; a < 8; a++)
+            m[b->conn[8 * (int64_t)e + a]] += b->rho * b->vol0[e] / 8;
+}
+
+/* One element: its nodal forces (minus the internal force) into f, its
+ * strain energy into *W. Returns 0 when det F <= 0 (or NaN) somewhere. */
+static int brick_element(const ct_real X[8][3], const ct_real u[8][3], const cti_hex_dn dN,
+                         ct_real lambda, ct_real mu, ct_real f[8][3], ct_real *W)
+{
+    int ok = 1;
+    ct_real w = 0;
+    for (int a = 0; a < 8; a++)
+        f[a][0] = f[a][1] = f[a][2] = 0;
+    for (int g = 0; g < 8; g++) {
+        ct_real inv[3][3], G[8][3], H[3][3] = {{0}};
+        ct_real det0 = jac_inv(X, dN[g], inv);
+        for (int a = 0; a < 8; a++)
+            for (int j = 0; j < 3; j++)
+                G[a][j] = dN[g][a][0] * inv[0][j] + dN[g][a][1] * inv[1][j] +
+                          dN[g][a][2] * inv[2][j];
+        for (int a = 0; a < 8; a++)
+            for (int i = 0; i < 3; i++)
+                for (int j = 0; j < 3; j++)
+                    H[i][j] += u[a][i] * G[a][j];
+        /* F = I + H; Green strain from H (no cancellation at small strain). */
+        ct_real F[3][3], Es[3][3], S[3][3], P[3][3];
+        for (int i = 0; i < 3; i++)
+            for (int j = 0; j < 3; j++)
+                F[i][j] = H[i][j] + (i == j);
+        ok &= det3(F) > 0;
+        for (int i = 0; i < 3; i++)
+            for (int j = 0; j < 3; j++)
+                Es[i][j] = (H[i][j] + H[j][i] + H[0][i] * H[0][j] + H[1][i] * H[1][j] +
+                            H[2][i] * H[2][j]) / 2;
+        ct_real tr = Es[0][0] + Es[1][1] + Es[2][2];
+        ct_real ee = 0;
+        for (int i = 0; i < 3; i++)
+            for (int j = 0; j < 3; j++) {
+                S[i][j] = 2 * mu * Es[i][j] + (i == j ? lambda * tr : 0);
+                ee += Es[i][j] * Es[i][j];
+            }
+        for (int i = 0; i < 3; i++)
+            for (int j = 0; j < 3; j++)
+                P[i][j] = F[i][0] * S[0][j] + F[i][1] * S[1][j] + F[i][2] * S[2][j];
+        for (int a = 0; a < 8; a++)
+            for (int i = 0; i < 3; i++)
+                f[a][i] -= det0 * (P[i][0] * G[a][0] + P[i][1] * G[a][1] + P[i][2] * G[a][2]);
+        w += det0 * (lambda / 2 * tr * tr + mu * ee);
+    }
+    *W = w;
+    return ok && w == w;
+}
+
+int ctd_brick_forces(ctd_brick *b, const ct_real *CT_RESTRICT x, const ct_real *CT_RESTRICT y,
+                     const ct_real *CT_RESTRICT z, ct_real *CT_RESTRICT fx,
+                     ct_real *CT_RESTRICT fy, ct_real *CT_RESTRICT fz, ct_diag *diag)
+{
+    if (!b || (b->n > 0 && (!x || !y || !z || !fx || !fy || !fz)))
+        return CT_ERR_ARG;
+    cti_hex_dn dN;
+    hex_dn(dN);
+    const ct_idx n = b->n;
+    const ct_idx *conn = b->conn;
+    const ct_real *X0 = b->X0, *Y0 = b->Y0, *Z0 = b->Z0;
+    const ct_real lambda = b->lambda, mu = b->mu;
+    ct_real *sx = b->s[0], *sy = b->s[1], *sz = b->s[2], *eint = b->eint;
+    ct_idx bad = 0;
+#pragma omp parallel for schedule(static) reduction(max : bad) if (n > CTD_PAR_MIN / 32)
+    for (ct_idx e = 0; e < n; e++) {
+        const ct_idx *c = conn + 8 * (int64_t)e;
+        ct_real X[8][3], u[8][3], f[8][3], W;
+        load(c, X0, Y0, Z0, X);
+        for (int a = 0; a < 8; a++) {
+            ct_idx v = c[a];
+            u[a][0] = x[v] - X[a][0];
+            u[a][1] = y[v] - X[a][1];
+            u[a][2] = z[v] - X[a][2];
+        }
+        if (!brick_element(X, u, dN, lambda, mu, f, &W))
+            bad = CTI_MAX(bad, e + 1);
+        for (int a = 0; a < 8; a++) {
+            sx[(int64_t)a * n + e] = f[a][0];
+            sy[(int64_t)a * n + e] = f[a][1];
+            sz[(int64_t)a * n + e] = f[a][2];
+        }
+        eint[e] = W;
+    }
+    if (bad > 0) {
+        ct_idx e = bad - 1;
+        int nonfinite = !(eint[e] == eint[e]) || CTI_FABS(eint[e]) >= CTI_HUGE;
+        return cti_fail(diag, nonfinite ? CT_ERR_NONFINITE : CT_ERR_DEGENERATE, e,
+                        "Brick %d is %s.", (int)e,
+                        nonfinite ? "not finite" : "inverted (det F <= 0 at a Gauss point)");
+    }
+    ctd_gather_add(&b->g, sx, sy, sz, fx, fy, fz);
+    return CT_OK;
+}
+
+double ctd_brick_energy(const ctd_brick *b)
+{
+    double s = 0;
+    for (ct_idx e = 0; e < b->n; e++)
+        s += b->eint[e];
+    return s;
+}
+
+static ct_real volume_of(const ct_real P[8][3], const cti_hex_dn dN)
+{
+    ct_real v = 0;
+    for (int g = 0; g < 8; g++)
+        v += jac_inv(P, dN[g], NULL);
+    return v;
+}
+
+ct_real ctd_brick_volume(const ctd_brick *b, ct_idx e, const ct_real *x, const ct_real *y,
+                         const ct_real *z)
+{
+    cti_hex_dn dN;
+    hex_dn(dN);
+    ct_real P[8][3];
+    load(b->conn + 8 * (int64_t)e, x, y, z, P);
+    return volume_of(P, dN);
+}
+
+ct_real ctd_brick_dt(const ctd_brick *b, const ct_real *x, const ct_real *y, const ct_real *z,
+                     ct_idx *imin)
+{
+    cti_hex_dn dN;
+    hex_dn(dN);
+    const ct_idx n = b->n;
+    /* The bulk-mode wave speed of the fully integrated element (elements.h). */
+    const ct_real mod = CTI_MAX(b->lambda + 2 * b->mu, 3 * b->lambda + 2 * b->mu);
+    const ct_real c = CTI_SQRT(mod / b->rho);
+    ct_real *dte = b->dte;
+    ct_real best = CTD_DT_NONE;
+#pragma omp parallel for schedule(static) reduction(min : best) if (n > CTD_PAR_MIN / 8)
+    for (ct_idx e = 0; e < n; e++) {
+        ct_real P[8][3];
+        load(b->conn + 8 * (int64_t)e, x, y, z, P);
+        ct_real amax = 0;
+        for (int f = 0; f < 6; f++) {
+            const ct_real *p0 = P[FACE[f][0]], *p1 = P[FACE[f][1]], *p2 = P[FACE[f][2]],
+                          *p3 = P[FACE[f][3]];
+            ct_real d1[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
+            ct_real d2[3] = {p3[0] - p1[0], p3[1] - p1[1], p3[2] - p1[2]};
+            ct_real cx = d1[1] * d2[2] - d1[2] * d2[1], cy = d1[2] * d2[0] - d1[0] * d2[2],
+                    cz = d1[0] * d2[1] - d1[1] * d2[0];
+            amax = CTI_FMAX(amax, CTI_SQRT(cx * cx + cy * cy + cz * cz) / 2);
+        }
+        ct_real v = volume_of(P, dN);
+        /* An inverted or collapsed element gives 0 (the solver stops). */
+        ct_real dt = (v > 0 && amax > 0) ? v / amax / c : 0;
+        dte[e] = dt;
+        best = CTI_MIN(best, dt);
+    }
+    if (imin) {
+        ct_idx arg = -1;
+        for (ct_idx e = 0; e < n && arg < 0; e++)
+            if (dte[e] == best)
+                arg = e;
+        *imin = arg;
+    }
+    return best;
+}
