@@ -71,7 +71,7 @@ TESTS := $(BUILD)/bin/tests
 BENCHBIN := $(BUILD)/bin/bench
 
 # Debian packages the project needs (checked by `make deps`).
-DEB_PKGS = pkg-config libhwloc-dev libbenchmark-dev libcriterion-dev libcyaml-dev \
+DEB_PKGS = pkg-config libhwloc-dev libbenchmark-dev libcriterion-dev libcyaml-dev libyaml-dev \
            libomp-dev clang libclang-rt-14-dev gnuplot-nox python3
 ifneq ($(filter bench bench-full bench-test,$(MAKECMDGOALS)),)
 DEB_PKGS += libnanoflann-dev libcgal-dev libbullet-dev

@@ -6,8 +6,10 @@
  *                                check each against the direct search, time them
  *   contact demo                 what `make run` shows: the search comparison on
  *                                a self-contact sheet and on two plates
+ *   contact check SCENE          validate a scene file without running it
  *
- * Exit codes: 0 success, 1 bad usage or input, 3 a verification failed.
+ * Exit codes: 0 success, 1 bad usage, 2 bad input (scene), 3 a verification
+ * failed.
  */
 #include <errno.h>
 #include <stdio.h>
@@ -18,6 +20,7 @@
 #include "contact.h"
 #include "meshgen.h"
 #include "provenance.h"
+#include "scene.h"
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -320,6 +323,7 @@ static void usage(FILE *f)
                "  info      build provenance and machine topology\n"
                "  search    run and verify the contact searches on a synthetic case\n"
                "  demo      the search comparison shown by `make run`\n"
+               "  check     validate a scene file (YAML) without running it\n"
                "Run `contact <command> --help` for a command's options.\n");
 }
 
@@ -344,6 +348,14 @@ int main(int argc, char **argv)
     }
     if (!strcmp(cmd, "search"))
         return cmd_search(argc - 2, argv + 2);
+    if (!strcmp(cmd, "check")) {
+        if (argc != 3 || !strcmp(argv[2], "--help")) {
+            printf("usage: contact check SCENE\nValidates a scene file: every error names the "
+                   "file, the line and the field.\nExit codes: 0 valid, 2 bad input.\n");
+            return argc == 3 ? 0 : EXIT_USAGE;
+        }
+        return ctd_scene_check_main(argv[2]);
+    }
     if (!strcmp(cmd, "demo")) {
         if (argc > 2 && strcmp(argv[2], "--help") == 0) {
             printf("usage: contact demo\nRuns `contact search` on a folded sheet, two plates "

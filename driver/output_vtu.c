@@ -1,0 +1,364 @@
+/*
+ * output_vtu.c -- the output directory (checked at start) and the VTU + PVD
+ * series for ParaView.
+ */
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/statvfs.h>
+#include <unistd.h>
+
+#include "output_internal.h"
+
+char *cti_out_path(const char *dir, const char *name)
+{
+    size_t n = strlen(dir) + strlen(name) + 2;
+    char *p = malloc(n);
+    if (p)
+        snprintf(p, n, "%s/%s", dir, name);
+    return p;
+}
+
+int cti_out_fail(char *err, size_t len, const char *what, const char *path, int errnum)
+{
+    if (err && len)
+        snprintf(err, len, "%s '%s': %s", what, path, strerror(errnum));
+    return CT_ERR_ARG;
+}
+
+/* ---- Directory ----------------------------------------------------------- */
+
+int ctd_output_open(ctd_output **out, const ctd_output_opts *opts, char *err, size_t errlen)
+{
+    if (err && errlen)
+        err[0] = '\0';
+    if (!out || !opts || !opts->dir || !opts->dir[0]) {
+        if (err && errlen)
+            snprintf(err, errlen, "no output directory given");
+        return CT_ERR_ARG;
+    }
+    *out = NULL;
+    const char *dir = opts->dir;
+    struct stat st;
+    if (stat(dir, &st) != 0) {
+        if (errno != ENOENT)
+            return cti_out_fail(err, errlen, "cannot use output directory", dir, errno);
+        if (mkdir(dir, 0777) != 0)
+            return cti_out_fail(err, errlen, "cannot create output directory", dir, errno);
+    } else if (!S_ISDIR(st.st_mode)) {
+        return cti_out_fail(err, errlen, "output path is not a directory", dir, ENOTDIR);
+    }
+    /* Prove it writable: a probe file written, flushed and removed. */
+    char *probe = cti_out_path(dir, ".contact-probe");
+    if (!probe)
+        return CT_ERR_NOMEM;
+    errno = 0;
+    FILE *f = fopen(probe, "wb");
+    int e = 0;
+    if (!f) {
+        e = errno ? errno : EIO;
+    } else {
+        static const char zeros[4096];
+        if (fwrite(zeros, 1, sizeof zeros, f) != sizeof zeros || fflush(f) != 0)
+            e = errno ? errno : EIO;
+        if (fclose(f) != 0 && !e)
+            e = errno ? errno : EIO;
+        remove(probe);
+    }
+    free(probe);
+    if (e)
+        return cti_out_fail(err, errlen, "cannot write to output directory", dir, e);
+    struct statvfs vfs;
+    if (statvfs(dir, &vfs) == 0 && (double)vfs.f_bavail * (double)vfs.f_frsize < 1048576.0)
+        return cti_out_fail(err, errlen, "output directory is on a full disk", dir, ENOSPC);
+    ctd_output *o = calloc(1, sizeof *o);
+    if (!o)
+        return CT_ERR_NOMEM;
+    o->dir = strdup(dir);
+    o->base = strdup(opts->base ? opts->base : "state");
+    o->vtu = opts->vtu;
+    o->csv = opts->csv;
+    if (!o->dir || !o->base) {
+        ctd_output_close(o);
+        return CT_ERR_NOMEM;
+    }
+    *out = o;
+    return CT_OK;
+}
+
+void ctd_output_close(ctd_output *o)
+{
+    if (!o)
+        return;
+    if (o->csvf)
+        fclose(o->csvf);
+    free(o->dir);
+    free(o->base);
+    free(o->step_time);
+    free(o);
+}
+
+const char *ctd_output_error(const ctd_output *o) { return o ? o->err : "no output"; }
+const char *ctd_output_dir(const ctd_output *o) { return o ? o->dir : ""; }
+
+/* ---- VTU ------------------------------------------------------------------ */
+
+/* A buffered writer: numbers formatted into a block, written in one go. */
+typedef struct wbuf {
+    FILE *f;
+    char b[1 << 16];
+    size_t n;
+    int bad;
+} wbuf;
+
+static void wflush(wbuf *w)
+{
+    if (w->n && fwrite(w->b, 1, w->n, w->f) != w->n)
+        w->bad = 1;
+    w->n = 0;
+}
+
+static void wstr(wbuf *w, const char *s)
+{
+    size_t len = strlen(s);
+    if (w->n + len >= sizeof w->b)
+        wflush(w);
+    if (len >= sizeof w->b) {
+        if (fwrite(s, 1, len, w->f) != len)
+            w->bad = 1;
+        return;
+    }
+    memcpy(w->b + w->n, s, len);
+    w->n += len;
+}
+
+static void wreal(wbuf *w, double v, char sep)
+{
+    if (w->n + 40 >= sizeof w->b)
+        wflush(w);
+    int k = snprintf(w->b + w->n, 40, "%.9g%c", v, sep);
+    w->n += (size_t)k;
+}
+
+static void wint(wbuf *w, long long v, char sep)
+{
+    if (w->n + 24 >= sizeof w->b)
+        wflush(w);
+    int k = snprintf(w->b + w->n, 24, "%lld%c", v, sep);
+    w->n += (size_t)k;
+}
+
+/* A 3-component point array; b may be NULL for "a - b" (displacement). */
+static void vec3(wbuf *w, const char *name, ct_idx n, const ct_real *ax, const ct_real *ay,
+                 const ct_real *az, const ct_real *bx, const ct_real *by, const ct_real *bz)
+{
+    char h[160];
+    snprintf(h, sizeof h,
+             "        <DataArray type=\"Float64\" Name=\"%s\" NumberOfComponents=\"3\" "
+             "format=\"ascii\">\n",
+             name);
+    wstr(w, h);
+    for (ct_idx i = 0; i < n; i++) {
+        double d[3] = {ax[i], ay[i], az[i]};
+        if (bx) {
+            d[0] -= bx[i];
+            d[1] -= by[i];
+            d[2] -= bz[i];
+        }
+        wreal(w, d[0], ' ');
+        wreal(w, d[1], ' ');
+        wreal(w, d[2], '\n');
+    }
+    wstr(w, "        </DataArray>\n");
+}
+
+static void scalar_real(wbuf *w, const char *name, ct_idx n, const ct_real *a)
+{
+    char h[160];
+    snprintf(h, sizeof h, "        <DataArray type=\"Float64\" Name=\"%s\" format=\"ascii\">\n",
+             name);
+    wstr(w, h);
+    for (ct_idx i = 0; i < n; i++)
+        wreal(w, a[i], (i % 8 == 7 || i == n - 1) ? '\n' : ' ');
+    wstr(w, "        </DataArray>\n");
+}
+
+static void scalar_int(wbuf *w, const char *type, const char *name, ct_idx n, const int32_t *a,
+                       const ct_idx *ai, const uint8_t *au)
+{
+    char h[160];
+    snprintf(h, sizeof h, "        <DataArray type=\"%s\" Name=\"%s\" format=\"ascii\">\n", type,
+             name);
+    wstr(w, h);
+    for (ct_idx i = 0; i < n; i++) {
+        long long v = a ? a[i] : ai ? ai[i] : au[i];
+        wint(w, v, (i % 16 == 15 || i == n - 1) ? '\n' : ' ');
+    }
+    wstr(w, "        </DataArray>\n");
+}
+
+static int cell_nodes_ok(uint8_t type, ct_idx count)
+{
+    switch (type) {
+    case CTD_VTK_LINE: return count == 2;
+    case CTD_VTK_TRIANGLE: return count == 3;
+    case CTD_VTK_QUAD: return count == 4;
+    case CTD_VTK_HEXAHEDRON: return count == 8;
+    default: return 0;
+    }
+}
+
+int ctd_vtu_write(const char *path, const ctd_out_mesh *m, char *err, size_t errlen)
+{
+    if (!m || !m->x || !m->y || !m->z || m->nnode < 0 || m->ncell < 0 ||
+        (m->ncell > 0 && (!m->cell_type || !m->cell_off || !m->cell_node))) {
+        if (err && errlen)
+            snprintf(err, errlen, "VTU '%s': incomplete mesh (positions or cells missing)", path);
+        return CT_ERR_ARG;
+    }
+    for (ct_idx c = 0; c < m->ncell; c++) {
+        ct_idx a = m->cell_off[c], b = m->cell_off[c + 1];
+        int bad = !cell_nodes_ok(m->cell_type[c], b - a);
+        for (ct_idx k = a; k < b && !bad; k++)
+            bad = m->cell_node[k] < 0 || m->cell_node[k] >= m->nnode;
+        if (bad) {
+            if (err && errlen)
+                snprintf(err, errlen,
+                         "VTU '%s': cell %lld has type %d with %lld nodes, or a node out of "
+                         "range (expected line 2, triangle 3, quad 4, hexahedron 8 nodes < %lld)",
+                         path, (long long)c, m->cell_type[c], (long long)(b - a),
+                         (long long)m->nnode);
+            return CT_ERR_RANGE;
+        }
+    }
+    wbuf *w = malloc(sizeof *w);
+    if (!w)
+        return CT_ERR_NOMEM;
+    w->n = 0;
+    w->bad = 0;
+    w->f = fopen(path, "wb");
+    if (!w->f) {
+        free(w);
+        return cti_out_fail(err, errlen, "cannot create VTU file", path, errno);
+    }
+    const ct_idx n = m->nnode, nc = m->ncell;
+    char h[256];
+    wstr(w, "<?xml version=\"1.0\"?>\n"
+            "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
+            "header_type=\"UInt64\">\n  <UnstructuredGrid>\n");
+    snprintf(h, sizeof h, "    <Piece NumberOfPoints=\"%lld\" NumberOfCells=\"%lld\">\n",
+             (long long)n, (long long)nc);
+    wstr(w, h);
+    wstr(w, "      <Points>\n");
+    vec3(w, "Points", n, m->x, m->y, m->z, NULL, NULL, NULL);
+    wstr(w, "      </Points>\n      <PointData>\n");
+    if (m->x0 && m->y0 && m->z0)
+        vec3(w, "displacement", n, m->x, m->y, m->z, m->x0, m->y0, m->z0);
+    if (m->vx && m->vy && m->vz)
+        vec3(w, "velocity", n, m->vx, m->vy, m->vz, NULL, NULL, NULL);
+    if (m->fcx && m->fcy && m->fcz)
+        vec3(w, "contact_force", n, m->fcx, m->fcy, m->fcz, NULL, NULL, NULL);
+    if (m->pen)
+        scalar_real(w, "penetration", n, m->pen);
+    if (m->node_part)
+        scalar_int(w, "Int32", "part_id", n, m->node_part, NULL, NULL);
+    if (m->node_active)
+        scalar_int(w, "Int32", "active_pairs", n, m->node_active, NULL, NULL);
+    wstr(w, "      </PointData>\n      <CellData>\n");
+    if (m->cell_part)
+        scalar_int(w, "Int32", "part_id", nc, m->cell_part, NULL, NULL);
+    wstr(w, "      </CellData>\n      <Cells>\n");
+    scalar_int(w, "Int64", "connectivity", nc ? m->cell_off[nc] : 0, NULL, m->cell_node, NULL);
+    scalar_int(w, "Int64", "offsets", nc, NULL, m->cell_off + 1, NULL);
+    scalar_int(w, "UInt8", "types", nc, NULL, NULL, m->cell_type);
+    wstr(w, "      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n");
+    wflush(w);
+    int e = errno;
+    int bad = w->bad;
+    if (fclose(w->f) != 0) {
+        bad = 1;
+        e = errno;
+    }
+    free(w);
+    if (bad)
+        return cti_out_fail(err, errlen, "cannot write VTU file", path, e ? e : EIO);
+    return CT_OK;
+}
+
+/* ---- PVD series ------------------------------------------------------------- */
+
+static void step_name(const ctd_output *o, int k, char *buf, size_t len)
+{
+    snprintf(buf, len, "%s_%06d.vtu", o->base, k);
+}
+
+/* Rewrite the collection through a temporary file and rename (atomic). */
+static int write_pvd(ctd_output *o)
+{
+    char name[300];
+    snprintf(name, sizeof name, "%s.pvd", o->base);
+    char *path = cti_out_path(o->dir, name);
+    snprintf(name, sizeof name, "%s.pvd.tmp", o->base);
+    char *tmp = cti_out_path(o->dir, name);
+    if (!path || !tmp) {
+        free(path);
+        free(tmp);
+        return CT_ERR_NOMEM;
+    }
+    int rc = CT_OK;
+    FILE *f = fopen(tmp, "wb");
+    if (!f) {
+        rc = cti_out_fail(o->err, sizeof o->err, "cannot create PVD file", tmp, errno);
+    } else {
+        int bad = fprintf(f, "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" "
+                             "version=\"0.1\" byte_order=\"LittleEndian\">\n  <Collection>\n") < 0;
+        for (int k = 0; k < o->nstep && !bad; k++) {
+            char fn[300];
+            step_name(o, k, fn, sizeof fn);
+            bad = fprintf(f, "    <DataSet timestep=\"%.15g\" group=\"\" part=\"0\" file=\"%s\"/>\n",
+                          o->step_time[k], fn) < 0;
+        }
+        bad |= fprintf(f, "  </Collection>\n</VTKFile>\n") < 0;
+        int e = errno;
+        if (fclose(f) != 0) {
+            bad = 1;
+            e = errno;
+        }
+        if (bad)
+            rc = cti_out_fail(o->err, sizeof o->err, "cannot write PVD file", tmp, e ? e : EIO);
+        else if (rename(tmp, path) != 0)
+            rc = cti_out_fail(o->err, sizeof o->err, "cannot rename PVD file to", path, errno);
+    }
+    free(path);
+    free(tmp);
+    return rc;
+}
+
+int ctd_output_vtu(ctd_output *o, double time, const ctd_out_mesh *m)
+{
+    if (!o)
+        return CT_ERR_ARG;
+    if (!o->vtu)
+        return CT_OK;
+    if (o->nstep == o->capstep) {
+        int cap = o->capstep ? 2 * o->capstep : 64;
+        double *t = realloc(o->step_time, (size_t)cap * sizeof *t);
+        if (!t)
+            return CT_ERR_NOMEM;
+        o->step_time = t;
+        o->capstep = cap;
+    }
+    char fn[300];
+    step_name(o, o->nstep, fn, sizeof fn);
+    char *path = cti_out_path(o->dir, fn);
+    if (!path)
+        return CT_ERR_NOMEM;
+    int rc = ctd_vtu_write(path, m, o->err, sizeof o->err);
+    free(path);
+    if (rc != CT_OK)
+        return rc;
+    o->step_time[o->nstep++] = time;
+    return write_pvd(o);
+}

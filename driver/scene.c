@@ -1,0 +1,216 @@
+/*
+ * scene.c -- loading a scene file: the libyaml tree (lines), the typed load
+ * through libcyaml, then the checks (scene_validate.c); `contact check`.
+ */
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "scene_internal.h"
+
+/* ---- Names --------------------------------------------------------------- */
+
+const char *ctd_element_name(int e) { return e >= 0 && e < CTD_ELEM_NKIND ? cti_elem_names[e] : "?"; }
+const char *ctd_gen_kind_name(int k) { return k >= 0 && k < CTD_GEN_NKIND ? cti_gen_names[k] : "?"; }
+const char *ctd_bc_kind_name(int k) { return k >= 0 && k < CTD_BC_NKIND ? cti_bc_names[k] : "?"; }
+
+const ctd_scene_part *ctd_scene_part_by_id(const ctd_scene *sc, int64_t id)
+{
+    for (unsigned i = 0; sc && i < sc->parts_count; i++)
+        if (sc->parts[i].id == id)
+            return &sc->parts[i];
+    return NULL;
+}
+
+int ctd_where_eval(const ctd_where *w, double x, double y, double z)
+{
+    const double c[3] = {x, y, z};
+    for (int i = 0; i < w->n; i++) {
+        double v = c[w->axis[i]], r = w->value[i];
+        int ok = 0;
+        switch (w->op[i]) {
+        case CTD_WHERE_LT: ok = v < r; break;
+        case CTD_WHERE_LE: ok = v <= r; break;
+        case CTD_WHERE_GT: ok = v > r; break;
+        default: ok = v >= r; break;
+        }
+        if (!ok)
+            return 0;
+    }
+    return 1;
+}
+
+/* ---- libcyaml configuration with a captured log ---------------------------- */
+
+typedef struct logbuf {
+    char text[8192];
+    size_t len;
+} logbuf;
+
+static void log_capture(cyaml_log_t level, void *ctx, const char *fmt, va_list args)
+{
+    (void)level;
+    logbuf *b = ctx;
+    if (b && b->len < sizeof b->text - 1) {
+        int n = vsnprintf(b->text + b->len, sizeof b->text - b->len, fmt, args);
+        if (n > 0)
+            b->len += (size_t)n;
+        if (b->len >= sizeof b->text)
+            b->len = sizeof b->text - 1;
+    }
+}
+
+static cyaml_config_t config(logbuf *b)
+{
+    cyaml_config_t c;
+    memset(&c, 0, sizeof c);
+    c.log_fn = b ? log_capture : NULL;
+    c.log_ctx = b;
+    c.mem_fn = cyaml_mem;
+    c.log_level = CYAML_LOG_ERROR;
+    c.flags = CYAML_CFG_NO_ALIAS;
+    return c;
+}
+
+/* ---- Load / free ----------------------------------------------------------- */
+
+void ctd_scene_free(ctd_scene *sc)
+{
+    if (!sc)
+        return;
+    for (unsigned i = 0; i < sc->mesh_count; i++) {
+        ctd_scene_import *im = sc->mesh[i].import;
+        if (im) {
+            free(im->path);
+            im->path = NULL;
+            if (im->deck) {
+                ctd_deck_destroy(im->deck);
+                free(im->deck);
+                im->deck = NULL;
+            }
+        }
+    }
+    free(sc->path);
+    free(sc->dir);
+    free(sc->out_dir);
+    cti_ynode_free(sc->internal);
+    sc->path = sc->dir = sc->out_dir = NULL;
+    sc->internal = NULL;
+    cyaml_config_t c = config(NULL);
+    cyaml_free(&c, &cti_scene_schema, sc, 0);
+}
+
+int ctd_scene_load(const char *path, ctd_scene **out, ctd_scene_err *err)
+{
+    if (err)
+        memset(err, 0, sizeof *err);
+    if (out)
+        *out = NULL;
+    cti_errs e = {.file = path ? path : "(null)", .root = NULL, .out = err};
+    if (!path || !out)
+        return cti_err(&e, CT_ERR_ARG, 0, "", "no scene file given");
+    int line;
+    char field[256], msg[512];
+    cti_ynode *root = cti_yaml_read(path, &line, field, sizeof field, msg, sizeof msg);
+    if (!root)
+        return cti_err(&e, CT_ERR_ARG, line, field, "%s", msg);
+    e.root = root;
+    if (root->kind != CTI_Y_MAP) {
+        char got[96], keys[400];
+        cti_ynode_describe(root, got, sizeof got);
+        cti_schema_expect("", 1, keys, sizeof keys);
+        cti_err(&e, CT_ERR_ARG, root->line, "", "expected a mapping with keys %s, got %s", keys,
+                got);
+        cti_ynode_free(root);
+        return e.code;
+    }
+    logbuf *lb = calloc(1, sizeof *lb);
+    if (!lb) {
+        cti_ynode_free(root);
+        return cti_err(&e, CT_ERR_NOMEM, 0, "", "out of memory");
+    }
+    cyaml_config_t c = config(lb);
+    ctd_scene *sc = NULL;
+    cyaml_err_t rc = cyaml_load_file(path, &c, &cti_scene_schema, (cyaml_data_t **)&sc, NULL);
+    if (rc != CYAML_OK) {
+        if (rc == CYAML_ERR_OOM)
+            cti_err(&e, CT_ERR_NOMEM, 0, "", "out of memory");
+        else
+            cti_cyaml_error(&e, rc, lb->text);
+        free(lb);
+        if (sc) {
+            cyaml_config_t c0 = config(NULL);
+            cyaml_free(&c0, &cti_scene_schema, sc, 0);
+        }
+        cti_ynode_free(root);
+        return e.code;
+    }
+    free(lb);
+    sc->internal = root;
+    sc->path = strdup(path);
+    const char *slash = strrchr(path, '/');
+    sc->dir = slash ? strndup(path, (size_t)(slash - path + 1)) : strdup("");
+    if (!sc->path || !sc->dir) {
+        ctd_scene_free(sc);
+        return cti_err(&e, CT_ERR_NOMEM, 0, "", "out of memory");
+    }
+    int rcv = cti_scene_validate(sc, &e);
+    if (rcv != CT_OK || e.count > 0) {
+        ctd_scene_free(sc);
+        return e.code ? e.code : rcv;
+    }
+    *out = sc;
+    return CT_OK;
+}
+
+/* ---- contact check --------------------------------------------------------- */
+
+int ctd_scene_check_main(const char *path)
+{
+    ctd_scene_err *err = calloc(1, sizeof *err);
+    if (!err) {
+        fprintf(stderr, "contact check: out of memory\n");
+        return CTD_EXIT_BADINPUT;
+    }
+    ctd_scene *sc = NULL;
+    int rc = ctd_scene_load(path, &sc, err);
+    if (rc != CT_OK) {
+        int shown = err->count < CTD_SCENE_MAXERR ? err->count : CTD_SCENE_MAXERR;
+        for (int i = 0; i < shown; i++)
+            fprintf(stderr, "%s\n", err->msg[i].text);
+        if (err->count > shown)
+            fprintf(stderr, "%s: %d more errors not shown\n", path ? path : "(null)",
+                    err->count - shown);
+        fprintf(stderr, "%s: invalid scene (%d error%s)\n", path ? path : "(null)", err->count,
+                err->count == 1 ? "" : "s");
+        free(err);
+        return CTD_EXIT_BADINPUT;
+    }
+    int64_t nnode = 0;
+    int known = 1;
+    for (unsigned i = 0; i < sc->mesh_count; i++) {
+        if (sc->mesh[i].import)
+            nnode += sc->mesh[i].import->deck->mesh.nodes.n;
+        else if (sc->mesh[i].nnode >= 0)
+            nnode += sc->mesh[i].nnode;
+        else
+            known = 0;
+    }
+    printf("%s: ok: \"%s\", end_time %g, %u mesh%s (%s%lld nodes), %u part%s, %u rigid "
+           "bod%s, %u boundary condition%s, %u interface%s, output to %s\n",
+           path, sc->title ? sc->title : "", sc->end_time, sc->mesh_count,
+           sc->mesh_count == 1 ? "" : "es", known ? "" : ">= ", (long long)nnode,
+           sc->parts_count, sc->parts_count == 1 ? "" : "s", sc->rigid_bodies_count,
+           sc->rigid_bodies_count == 1 ? "y" : "ies", sc->boundary_count,
+           sc->boundary_count == 1 ? "" : "s", sc->interfaces_count,
+           sc->interfaces_count == 1 ? "" : "s", sc->out_dir);
+    for (unsigned i = 0; i < sc->mesh_count; i++) {
+        const ctd_deck *d = sc->mesh[i].import ? sc->mesh[i].import->deck : NULL;
+        if (d && ctd_deck_warning(d)[0])
+            printf("%s: warning: %s: %s\n", path, sc->mesh[i].import->path, ctd_deck_warning(d));
+    }
+    ctd_scene_free(sc);
+    free(err);
+    return CTD_EXIT_OK;
+}

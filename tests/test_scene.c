@@ -1,0 +1,259 @@
+/*
+ * test_scene.c -- scene files: a valid scene loads with the values written
+ * in it (and the documented defaults); each broken file is rejected with
+ * exit code 2 and a message naming the file, the right line and the field.
+ * The scene files are in tests/data/scenes/ (their line numbers are quoted
+ * below; the broken ones are base_ok.yaml or valid.yaml with one change).
+ */
+#include <stdio.h>
+#include <string.h>
+
+#include "scene.h"
+#include "test_util.h"
+
+#include <criterion/redirect.h>
+
+/* tests/data/scenes/NAME, found from this file's path. */
+static void scene_path(char *buf, size_t n, const char *name)
+{
+    const char *f = __FILE__, *slash = strrchr(f, '/');
+    if (slash)
+        snprintf(buf, n, "%.*s/data/scenes/%s", (int)(slash - f), f, name);
+    else
+        snprintf(buf, n, "data/scenes/%s", name);
+}
+
+static ctd_scene *load_ok(const char *name)
+{
+    char p[1024];
+    scene_path(p, sizeof p, name);
+    static ctd_scene_err err;
+    ctd_scene *sc = NULL;
+    int rc = ctd_scene_load(p, &sc, &err);
+    cr_assert_eq(rc, CT_OK, "%s: %s", name, err.count ? err.msg[0].text : "?");
+    cr_assert_not_null(sc);
+    return sc;
+}
+
+Test(scene, valid_scene_values)
+{
+    ctd_scene *sc = load_ok("valid.yaml");
+    cr_assert_str_eq(sc->title, "ball on plate");
+    cr_assert_eq(sc->end_time, 0.01);
+    cr_assert_eq(sc->refine, 2);
+    cr_assert_str_eq(sc->out_dir, "out/valid");
+    cr_assert_eq(sc->output->every, 1.0e-4);
+    cr_assert(sc->output->vtu && !sc->output->csv);
+    cr_assert_eq(sc->solver->dt_scale, 0.8);
+    cr_assert_eq(sc->solver->threads, 2);
+
+    /* Meshes: cells doubled by refine; node counts by the formulas of
+     * scene.h: block (8+1)(8+1)(2+1) = 243, ball (6+1)^3 = 343, plate 5x5. */
+    cr_assert_eq(sc->mesh_count, 3);
+    const ctd_scene_generate *b = sc->mesh[0].generate, *ball = sc->mesh[1].generate;
+    cr_assert_eq(b->kind, CTD_GEN_BLOCK);
+    cr_assert(b->cells_eff[0] == 8 && b->cells_eff[1] == 8 && b->cells_eff[2] == 2);
+    cr_assert(b->size_count == 3 && b->size[2] == 0.02);
+    cr_assert(b->origin[0] == 0 && b->origin[1] == 0 && b->origin[2] == 0);
+    cr_assert_eq(ball->kind, CTD_GEN_BALL);
+    cr_assert_eq(ball->radius, 0.03);
+    cr_assert(ball->origin[0] == 0.1 && ball->origin[2] == 0.06);
+    cr_assert_eq(ball->cells_eff[0], 6);
+    cr_assert_eq(sc->mesh[0].nnode, 243);
+    cr_assert_eq(sc->mesh[1].nnode, 343);
+    cr_assert_eq(sc->mesh[2].nnode, 25);
+    cr_assert_eq(sc->mesh[0].first_id, 1);
+    cr_assert_eq(sc->mesh[1].first_id, 244);
+    cr_assert_eq(sc->mesh[2].first_id, 587);
+    cr_assert_eq(sc->mesh[1].line, 9);
+
+    /* Parts. */
+    cr_assert_eq(sc->parts_count, 3);
+    cr_assert_eq(sc->parts[1].element, CTD_ELEM_BRICK);
+    cr_assert_eq(sc->parts[1].material.E, 7.0e10);
+    cr_assert_eq(sc->parts[1].material.nu, 0.33);
+    cr_assert_eq(sc->parts[1].material.rho, 2700);
+    cr_assert_str_eq(sc->parts[2].name, "lid");
+    cr_assert_eq(sc->parts[2].element, CTD_ELEM_RIGID);
+    cr_assert_eq(sc->parts[2].line, 19);
+    cr_assert_eq(ctd_scene_part_by_id(sc, 2), &sc->parts[1]);
+    cr_assert_null(ctd_scene_part_by_id(sc, 4));
+    cr_assert(sc->rigid_bodies_count == 1 && sc->rigid_bodies[0].part == 3);
+
+    /* Boundary conditions. */
+    cr_assert_eq(sc->boundary_count, 4);
+    const ctd_scene_bc *fx = &sc->boundary[0];
+    cr_assert_eq(fx->kind, CTD_BC_FIXED);
+    cr_assert(fx->dof[0] == 1 && fx->dof[1] == 0 && fx->dof[2] == 1);
+    cr_assert_eq(fx->nodes->part, 1);
+    cr_assert_eq(fx->nodes->where.n, 2);
+    cr_assert(ctd_where_eval(&fx->nodes->where, 0.0, 5.0, 0.0005));
+    cr_assert(!ctd_where_eval(&fx->nodes->where, 0.0, 0.0, 0.001)); /* z < 0.001 is strict */
+    cr_assert(!ctd_where_eval(&fx->nodes->where, -1e-9, 0.0, 0.0)); /* x >= 0 */
+    cr_assert_eq(sc->boundary[1].kind, CTD_BC_INITIAL_VELOCITY);
+    cr_assert(sc->boundary[1].value_count == 3 && sc->boundary[1].value[2] == -5);
+    cr_assert(sc->boundary[2].nodes->ids_count == 3 && sc->boundary[2].nodes->ids[2] == 451);
+    cr_assert_eq(sc->boundary[3].kind, CTD_BC_GRAVITY);
+    cr_assert_null(sc->boundary[3].nodes);
+    cr_assert_eq(sc->boundary[3].value[2], -9.81);
+
+    /* Interfaces: given values and the type-dependent defaults. */
+    cr_assert_eq(sc->interfaces_count, 4);
+    const ctd_scene_interface *i24 = &sc->interfaces[0], *i7 = &sc->interfaces[1],
+                              *i3 = &sc->interfaces[2], *i6 = &sc->interfaces[3];
+    cr_assert_eq(i24->type, 24);
+    cr_assert_str_eq(i24->label, "ball-plate");
+    cr_assert(i24->Istf == 2 && i24->Stfac == 1.5 && i24->gap == 0.001 && i24->Fric == 0.2);
+    cr_assert(i24->Ifiltr == 1 && i24->Xfreq == 0.5);
+    cr_assert_eq(i24->search, CT_SEARCH_BSP);
+    cr_assert_eq(i24->VisS, 1.0);
+    cr_assert_eq(i24->self, 0);
+    cr_assert_eq(i24->line, 30);
+    cr_assert_eq(i7->self, 1);
+    cr_assert_str_eq(i7->label, "if1");
+    cr_assert(i7->Stfac == 1.0 && i7->VisS == 0.05);
+    cr_assert_eq(i7->search, CT_SEARCH_BUCKET);
+    cr_assert_eq(i7->line, 33);
+    cr_assert(i3->Stfac == 0.2 && i3->VisS == 0.0);
+    cr_assert_eq(i3->search, CT_SEARCH_TOPO);
+    cr_assert_eq(i6->curve_count, 3);
+    cr_assert(i6->curve[1][0] == 0.01 && i6->curve[1][1] == 1000 && i6->curve[2][1] == 5000);
+    ctd_scene_free(sc);
+}
+
+Test(scene, defaults)
+{
+    ctd_scene *sc = load_ok("base_ok.yaml");
+    cr_assert_str_eq(sc->out_dir, "out/base_ok");
+    cr_assert_eq(sc->output->every, 0.01 / 100);
+    cr_assert(sc->output->vtu && sc->output->csv);
+    cr_assert_eq(sc->solver->dt_scale, 0.9);
+    cr_assert_eq(sc->solver->threads, 0);
+    cr_assert_eq(sc->refine, 1);
+    cr_assert_eq(sc->boundary[0].nodes->where.n, 1);
+    cr_assert(sc->boundary[0].dof[0] && sc->boundary[0].dof[1] && sc->boundary[0].dof[2]);
+    const ctd_scene_interface *f = &sc->interfaces[0];
+    cr_assert(f->Istf == 0 && f->Stfac == 1.0 && f->VisS == 1.0 && f->gap == 0 && f->Tstop == 0);
+    cr_assert_eq(f->search, CT_SEARCH_BUCKET);
+    cr_assert_eq(sc->mesh[1].first_id, 19); /* block 3 x 3 x 2 = 18 nodes first */
+    ctd_scene_free(sc);
+}
+
+Test(scene, import_deck)
+{
+    ctd_scene *sc = load_ok("import.yaml");
+    const ctd_deck *d = sc->mesh[0].import->deck;
+    cr_assert_not_null(d);
+    cr_assert_eq(d->mesh.nodes.n, 16); /* tests/data/radioss/bricks.rad */
+    cr_assert_eq(d->nbrick, 3);
+    cr_assert_eq(sc->mesh[0].nnode, 16);
+    /* The generated plate's nodes follow the deck's largest id (16). */
+    cr_assert_eq(sc->mesh[1].first_id, 17);
+    cr_assert_eq(sc->mesh[1].nnode, 9);
+    cr_assert_not_null(strstr(sc->mesh[0].import->path, "radioss/bricks.rad"));
+    ctd_scene_free(sc);
+}
+
+/* A broken file: the load fails with `code`, and the first message names
+ * the file, ":LINE:", the field, and contains `what`. */
+typedef struct broken {
+    const char *file;
+    int line;
+    const char *field;
+    const char *what;
+    int code;
+} broken;
+
+static const broken broken_files[] = {
+    {"missing_field.yaml", 8, "parts[1].material", "required field missing (expected a mapping with keys E, nu, rho)", CT_ERR_ARG},
+    {"missing_thickness.yaml", 8, "parts[1].thickness", "required field missing for element shell", CT_ERR_ARG},
+    {"missing_end_time.yaml", 1, "end_time", "required field missing (expected a number)", CT_ERR_ARG},
+    {"wrong_type.yaml", 12, "interfaces[0].Fric", "expected a number, got 'rough'", CT_ERR_ARG},
+    {"bad_block.yaml", 13, "mesh[1].generate.radius", "expected a number, got 'big'", CT_ERR_ARG},
+    {"unknown_interface.yaml", 12, "interfaces[0].type", "expected one of 3, 5, 6, 7, 11, 24, got 9", CT_ERR_ARG},
+    {"unknown_key.yaml", 12, "interfaces[0].Frik", "unknown field, expected one of type, name, main", CT_ERR_ARG},
+    {"bad_search.yaml", 12, "interfaces[0].search", "expected one of direct, topological, bucket, bsp, got 'octree'", CT_ERR_ARG},
+    {"bad_part_ref.yaml", 12, "interfaces[0].secondary.part", "part 7 does not exist", CT_ERR_RANGE},
+    {"bad_node_ref.yaml", 10, "boundary[0].nodes.ids[2]", "node 9999 does not exist", CT_ERR_RANGE},
+    {"impossible_param.yaml", 7, "parts[0].material.nu", "expected a number in (-1, 0.5), got 0.5", CT_ERR_ARG},
+    {"nan_end_time.yaml", 2, "end_time", "expected a finite number", CT_ERR_NONFINITE},
+    {"negative_gap.yaml", 13, "interfaces[0].gap", "expected a number >= 0", CT_ERR_ARG},
+    {"bad_xfreq.yaml", 12, "interfaces[0].Xfreq", "expected a number in (0, 1] for Ifiltr 1, got 1.5", CT_ERR_ARG},
+    {"bad_curve.yaml", 15, "interfaces[0].curve[2][0]", "strictly ascending order, got 0.01 after 0.02", CT_ERR_ARG},
+    {"bad_where.yaml", 10, "boundary[0].nodes.where", "got 'z << 0.001'", CT_ERR_ARG},
+    {"malformed.yaml", 5, "mesh[1].generate.origin", "malformed YAML: did not find expected ',' or ']'", CT_ERR_ARG},
+    {"import_bad_deck.yaml", 4, "mesh[0].import.file", "bad_number.rad:5: field 'y' of /NODE", CT_ERR_ARG},
+    {"import_missing_part.yaml", 4, "mesh[0].import.file", "the deck's part 3", CT_ERR_RANGE},
+};
+
+Test(scene, broken_files_name_file_line_field, .init = cr_redirect_stderr)
+{
+    static ctd_scene_err err;
+    for (size_t k = 0; k < sizeof broken_files / sizeof broken_files[0]; k++) {
+        const broken *b = &broken_files[k];
+        char p[1024], want[1200];
+        scene_path(p, sizeof p, b->file);
+        ctd_scene *sc = (ctd_scene *)1;
+        int rc = ctd_scene_load(p, &sc, &err);
+        cr_assert_eq(rc, b->code, "%s: code %d, expected %d (%s)", b->file, rc, b->code,
+                     err.msg[0].text);
+        cr_assert_null(sc, "%s", b->file);
+        cr_assert_geq(err.count, 1, "%s", b->file);
+        const ctd_scene_msg *m = &err.msg[0];
+        snprintf(want, sizeof want, "%s:%d: %s: ", p, b->line, b->field);
+        cr_assert_eq(strncmp(m->text, want, strlen(want)), 0, "%s: got \"%s\", expected it to start \"%s\"",
+                     b->file, m->text, want);
+        cr_assert_not_null(strstr(m->text, b->what), "%s: \"%s\" lacks \"%s\"", b->file, m->text,
+                           b->what);
+        cr_assert_eq(m->line, b->line, "%s", b->file);
+        cr_assert_str_eq(m->field, b->field, "%s", b->file);
+        cr_assert_eq(ctd_scene_check_main(p), CTD_EXIT_BADINPUT, "%s", b->file);
+    }
+}
+
+Test(scene, one_error_per_problem)
+{
+    /* Only the one changed line is wrong in each file: no cascade. */
+    static ctd_scene_err err;
+    const char *files[] = {"bad_part_ref.yaml", "import_bad_deck.yaml", "unknown_interface.yaml"};
+    for (int k = 0; k < 3; k++) {
+        char p[1024];
+        scene_path(p, sizeof p, files[k]);
+        ctd_scene *sc = NULL;
+        ctd_scene_load(p, &sc, &err);
+        cr_assert_eq(err.count, 1, "%s: %d errors, first %s", files[k], err.count, err.msg[0].text);
+    }
+}
+
+Test(scene, nonexistent_file, .init = cr_redirect_stderr)
+{
+    static ctd_scene_err err;
+    ctd_scene *sc = NULL;
+    const char *p = "/nonexistent/dir/scene.yaml";
+    cr_assert_eq(ctd_scene_load(p, &sc, &err), CT_ERR_ARG);
+    cr_assert_null(sc);
+    cr_assert_str_eq(err.msg[0].text,
+                     "/nonexistent/dir/scene.yaml: cannot open the scene file: No such file or "
+                     "directory");
+    cr_assert_eq(ctd_scene_check_main(p), CTD_EXIT_BADINPUT);
+    cr_assert_eq(ctd_scene_load(NULL, &sc, &err), CT_ERR_ARG);
+}
+
+Test(scene, check_main_valid, .init = cr_redirect_stdout)
+{
+    char p[1024];
+    scene_path(p, sizeof p, "valid.yaml");
+    cr_assert_eq(ctd_scene_check_main(p), CTD_EXIT_OK);
+    fflush(stdout);
+    char want[1200];
+    snprintf(want, sizeof want, "%s: ok: \"ball on plate\", end_time 0.01, 3 meshes (611 nodes), 3 parts, 1 rigid body, 4 boundary conditions, 4 interfaces, output to out/valid\n", p);
+    cr_assert_stdout_eq_str(want);
+}
+
+Test(scene, names)
+{
+    cr_assert_str_eq(ctd_element_name(CTD_ELEM_SPRING), "spring");
+    cr_assert_str_eq(ctd_gen_kind_name(CTD_GEN_FOLDED), "folded");
+    cr_assert_str_eq(ctd_bc_kind_name(CTD_BC_INITIAL_VELOCITY), "initial_velocity");
+    cr_assert_str_eq(ctd_element_name(99), "?");
+}
