@@ -29,10 +29,11 @@
  */
 #include "bench_floor.h"
 
+#include "bench_common.h"
+
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 #include <unistd.h>
 
 #include "bench_topology.h"
@@ -72,18 +73,9 @@ static struct {
     int valid, rc;
     char err[300];
     int64_t target;
-    ct_real *x, *y, *z;
-    ct_idx *sec, *n1, *n2, *n3, *n4;
-    ct_search_input in;
+    ctb_mesh m;      /* first-touched copies of the search input */
     int64_t touched; /* nnode of the byte model */
 } pm;
-
-static double now_s(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
 
 static const char *prec_name(void) { return sizeof(ct_real) == 4 ? "single" : "double"; }
 
@@ -192,9 +184,9 @@ static double triad_measure(int kind, int threads, int passes)
     double best = 0;
     triad(n, tri.a, tri.b, tri.c, 3.0);
     for (int p = 0; p < passes; p++) {
-        double t0 = now_s();
+        double t0 = ctb_now_s();
         triad(n, tri.a, tri.b, tri.c, 3.0);
-        double g = ctb_gbps(ctb_triad_bytes(n, sizeof(double)), now_s() - t0);
+        double g = ctb_gbps(ctb_triad_bytes(n, sizeof(double)), ctb_now_s() - t0);
         if (g > best)
             best = g;
     }
@@ -211,10 +203,10 @@ static void bm_triad(gb_state *st, void *arg)
         return;
     }
     triad(d->n, tri.a, tri.b, tri.c, 3.0); /* warm-up */
-    double t0 = now_s();
+    double t0 = ctb_now_s();
     while (gb_keep_running(st))
         triad(d->n, tri.a, tri.b, tri.c, 3.0);
-    double dt = now_s() - t0;
+    double dt = ctb_now_s() - t0;
     int64_t it = gb_iterations(st);
     if (it <= 0)
         return;
@@ -239,17 +231,12 @@ static void bm_triad(gb_state *st, void *arg)
 
 static void plates_clear(void)
 {
-    ctb_free(pm.x);
-    ctb_free(pm.y);
-    ctb_free(pm.z);
-    ctb_free(pm.sec);
-    ctb_free(pm.n1);
-    ctb_free(pm.n2);
-    ctb_free(pm.n3);
-    ctb_free(pm.n4);
+    ctb_mesh_clear(&pm.m);
     memset(&pm, 0, sizeof pm);
 }
 
+/* The plates case of `target` nodes as the search benchmarks build it
+ * (ctb_mesh_case: gap 0.3 h, margin 0.2 h), or the current one. */
 static void plates_get(int64_t target)
 {
     if (pm.valid && pm.target == target)
@@ -257,45 +244,18 @@ static void plates_get(int64_t target)
     plates_clear();
     pm.valid = 1;
     pm.target = target;
-    ctd_case c;
-    ct_diag diag;
-    memset(&c, 0, sizeof c);
-    memset(&diag, 0, sizeof diag);
-    int rc = ctd_case_make(&c, "plates", target, CTD_NUM_NATURAL, cfg.seed, &diag);
-    if (rc != CT_OK) {
-        pm.rc = rc;
-        snprintf(pm.err, sizeof pm.err, "mesh: %s: %s", ct_strerror(rc), diag.msg);
+    double h;
+    pm.rc = ctb_mesh_case(&pm.m, "plates", target, CTD_NUM_NATURAL, &cfg, &h, pm.err,
+                          sizeof pm.err);
+    if (pm.rc != CT_OK)
         return;
-    }
-    ct_search_input in;
-    ctd_case_input(&c, (ct_real)(0.3 * c.h_mean), (ct_real)(0.2 * c.h_mean), &in);
-    ctb_bind_threads(cfg.bind, cfg.max_threads, NULL, 0);
-    pm.x = ctb_first_touch_copy_real(in.x, (size_t)in.nnode);
-    pm.y = ctb_first_touch_copy_real(in.y, (size_t)in.nnode);
-    pm.z = ctb_first_touch_copy_real(in.z, (size_t)in.nnode);
-    pm.sec = ctb_first_touch_copy_idx(in.sec, (size_t)in.nsec);
-    pm.n1 = ctb_first_touch_copy_idx(in.n1, (size_t)in.nseg);
-    pm.n2 = ctb_first_touch_copy_idx(in.n2, (size_t)in.nseg);
-    pm.n3 = ctb_first_touch_copy_idx(in.n3, (size_t)in.nseg);
-    pm.n4 = ctb_first_touch_copy_idx(in.n4, (size_t)in.nseg);
-    pm.touched = ctb_floor_touched_nodes(in.nnode, in.nsec, in.sec, in.nseg, in.n1, in.n2,
-                                         in.n3, in.n4);
-    ctd_case_destroy(&c);
-    if (!pm.x || !pm.y || !pm.z || !pm.sec || !pm.n1 || !pm.n2 || !pm.n3 || !pm.n4 ||
-        pm.touched < 0) {
+    const ct_search_input *in = &pm.m.in;
+    pm.touched = ctb_floor_touched_nodes(in->nnode, in->nsec, in->sec, in->nseg, in->n1, in->n2,
+                                         in->n3, in->n4);
+    if (pm.touched < 0) {
         pm.rc = CT_ERR_NOMEM;
         snprintf(pm.err, sizeof pm.err, "mesh input: %s", ct_strerror(pm.rc));
-        return;
     }
-    pm.in = in;
-    pm.in.x = pm.x;
-    pm.in.y = pm.y;
-    pm.in.z = pm.z;
-    pm.in.sec = pm.sec;
-    pm.in.n1 = pm.n1;
-    pm.in.n2 = pm.n2;
-    pm.in.n3 = pm.n3;
-    pm.in.n4 = pm.n4;
 }
 
 static void bm_bucket(gb_state *st, void *arg)
@@ -325,26 +285,19 @@ static void bm_bucket(gb_state *st, void *arg)
         return;
     }
     ctb_bind_threads(cfg.bind, d->threads, where, sizeof where);
-    ct_search_params p = ct_search_default_params(CT_SEARCH_BUCKET);
-    ct_search *s = NULL;
+    const ct_search_input *in = &pm.m.in;
+    ct_search *s;
     ct_pairs out;
-    memset(&out, 0, sizeof out);
-    int rc = ct_search_init(&s, &p);
+    int rc = ctb_search_start(CT_SEARCH_BUCKET, in, &s, &out); /* untimed: workspace growth */
+    double dt = 0;
     if (rc == CT_OK)
-        rc = ct_pairs_init(&out, 0);
-    if (rc == CT_OK)
-        rc = ct_search_run(s, &pm.in, &out); /* untimed: workspace growth */
-    double t0 = now_s();
-    while (rc == CT_OK && gb_keep_running(st))
-        rc = ct_search_run(s, &pm.in, &out);
-    double dt = now_s() - t0;
+        rc = ctb_search_timed(st, s, in, &out, &dt);
     if (rc != CT_OK) {
         snprintf(msg, sizeof msg, "bucket search: %s", ct_strerror(rc));
         gb_skip_with_error(st, msg);
     }
     int64_t it = gb_iterations(st);
     if (rc == CT_OK && it > 0) {
-        const ct_search_input *in = &pm.in;
         double ns = dt * 1e9 / ((double)it * (double)in->nsec);
         ctb_floor_terms t = ctb_floor_search_bytes(in->nsec, in->nseg, pm.touched, out.n,
                                                    sizeof(ct_real), sizeof(ct_idx));

@@ -24,10 +24,13 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "bench_cycle.h"
 #include "bench_floor.h"
 #include "bench_kernels.h"
 #include "bench_peers.h"
+#include "bench_real.h"
 #include "bench_search.h"
+#include "bench_trade.h"
 #include "bench_topology.h"
 #include "contact.h"
 #include "gbench.h"
@@ -54,12 +57,18 @@ static void usage(FILE *f)
                "names: search/<family>/<algo>/<numbering>/t<threads>/<nodes>/real_time\n"
                "       kernels/<group>/<kernel>/t<threads>/<pairs>/real_time\n"
                "       floor/<triad/dram|triad/ws|bucket/plates>/t<threads>/<n>/real_time\n"
-               "env: CT_BENCH_FULL=1, CT_BENCH_BIND, CT_BENCH_DIRECT_BUDGET\n");
+               "       real/<deck>/<algo>/t<threads>/real_time\n"
+               "       cycle/<folded|crumpled>/t<threads>/<nodes>/real_time\n"
+               "env: CT_BENCH_FULL=1, CT_BENCH_BIND, CT_BENCH_DIRECT_BUDGET,\n"
+               "     CT_SHARED (the Radioss decks), CT_BENCH_MESH=deck.rad\n");
 }
 
 int main(int argc, char **argv)
 {
     int vrc = ctb_peers_verify_main(argc, argv); /* bench --verify-peers */
+    if (vrc >= 0)
+        return vrc;
+    vrc = ctb_trade_dump_main(argc, argv); /* bench --dump-narrow FILE */
     if (vrc >= 0)
         return vrc;
     ctb_search_config cfg;
@@ -159,7 +168,9 @@ int main(int argc, char **argv)
 
     int rc = 0;
     if (ctb_search_register(&cfg) < 0 || ctb_peers_register(&cfg) < 0 ||
-        ctb_kernels_register(&cfg) < 0 || ctb_floor_register(&cfg) < 0) {
+        ctb_kernels_register(&cfg) < 0 || ctb_floor_register(&cfg) < 0 ||
+        ctb_real_register(&cfg) < 0 || ctb_trade_register(&cfg) < 0 ||
+        ctb_cycle_register(&cfg) < 0) {
         fprintf(stderr, "bench: out of memory registering benchmarks\n");
         rc = 1;
     } else {
@@ -174,6 +185,9 @@ int main(int argc, char **argv)
         rc = 4; /* a peer's pairs differed from ours, or a peer failed */
     ctb_kernels_cleanup();
     ctb_floor_cleanup();
+    ctb_real_cleanup();
+    ctb_trade_cleanup();
+    ctb_cycle_cleanup();
     ctb_topology_close();
     free(args);
     return rc;

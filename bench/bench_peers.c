@@ -35,6 +35,8 @@
  */
 #include "bench_peers.h"
 
+#include "bench_common.h"
+
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -233,33 +235,6 @@ static pair_diff compare_sets(const ct_idx *pos, const ct_pairs *ref, const ct_p
     return r;
 }
 
-/* node -> position in sec (entries of other nodes are left at -1). */
-static ct_idx *position_map(const ct_search_input *in)
-{
-    ct_idx *pos = malloc(((size_t)in->nnode + 1) * sizeof *pos);
-    if (!pos)
-        return NULL;
-    for (ct_idx k = 0; k < in->nnode; k++)
-        pos[k] = -1;
-    for (ct_idx i = 0; i < in->nsec; i++)
-        pos[in->sec[i]] = i;
-    return pos;
-}
-
-/* Run our search `algo` on in (default parameters) into out. */
-static int our_search(ct_search_algo algo, const ct_search_input *in, ct_pairs *out)
-{
-    ct_search_params p = ct_search_default_params(algo);
-    ct_search *s = NULL;
-    int rc = ct_search_init(&s, &p);
-    if (rc == CT_OK)
-        rc = ct_pairs_init(out, 0);
-    if (rc == CT_OK)
-        rc = ct_search_run(s, in, out);
-    ct_search_destroy(s);
-    return rc;
-}
-
 /* ---- What a benchmark is ------------------------------------------------- */
 
 typedef struct peer_desc {
@@ -282,42 +257,21 @@ typedef struct peer_mesh {
     char err[300];
     char family[32];
     int64_t target;
-    ct_real *x, *y, *z;
-    ct_idx *sec, *n1, *n2, *n3, *n4;
-    ct_search_input in;
+    ctb_mesh m; /* first-touched copies of the search input; ref: our bucket
+                 * search's pairs (ref_state -1: failed, rc in ref_rc) */
     double h_mean;
-    int ref_state; /* 0: not yet, 1: done, -1: failed (rc in ref_rc) */
     int ref_rc;
-    ct_pairs ref;  /* our bucket search's pairs */
-    ct_idx *pos;
 } peer_mesh;
 
 static peer_mesh cur;
 
 static void mesh_clear(peer_mesh *m)
 {
-    ctb_free(m->x);
-    ctb_free(m->y);
-    ctb_free(m->z);
-    ctb_free(m->sec);
-    ctb_free(m->n1);
-    ctb_free(m->n2);
-    ctb_free(m->n3);
-    ctb_free(m->n4);
-    if (m->ref_state == 1)
-        ct_pairs_destroy(&m->ref);
-    free(m->pos);
+    ctb_mesh_clear(&m->m);
     memset(m, 0, sizeof *m);
 }
 
-/* The search distance: gap = 0.3 h, margin = 0.2 h, as bench_search.c
- * (plates: h = 1, "0.3 apart, gap + margin 0.5"). */
-static void family_gap(double h, double *gap, double *margin)
-{
-    *gap = 0.3 * h;
-    *margin = 0.2 * h;
-}
-
+/* The mesh of (family, target), natural numbering (or the current one). */
 static peer_mesh *mesh_get(const char *family, int64_t target)
 {
     if (cur.valid && cur.target == target && strcmp(cur.family, family) == 0)
@@ -326,72 +280,33 @@ static peer_mesh *mesh_get(const char *family, int64_t target)
     cur.valid = 1;
     snprintf(cur.family, sizeof cur.family, "%s", family);
     cur.target = target;
-    ctd_case c;
-    ct_diag diag;
-    memset(&c, 0, sizeof c);
-    memset(&diag, 0, sizeof diag);
-    int rc = ctd_case_make(&c, family, target, CTD_NUM_NATURAL, cfg.seed, &diag);
-    if (rc != CT_OK) {
-        cur.rc = rc;
-        snprintf(cur.err, sizeof cur.err, "mesh: %s: %s", ct_strerror(rc), diag.msg);
-        return &cur;
-    }
-    ct_search_input in;
-    memset(&in, 0, sizeof in);
-    ctd_case_input(&c, 0, 0, &in);
-    ctb_bind_threads(cfg.bind, cfg.max_threads, NULL, 0);
-    cur.x = ctb_first_touch_copy_real(in.x, (size_t)in.nnode);
-    cur.y = ctb_first_touch_copy_real(in.y, (size_t)in.nnode);
-    cur.z = ctb_first_touch_copy_real(in.z, (size_t)in.nnode);
-    cur.sec = ctb_first_touch_copy_idx(in.sec, (size_t)in.nsec);
-    cur.n1 = ctb_first_touch_copy_idx(in.n1, (size_t)in.nseg);
-    cur.n2 = ctb_first_touch_copy_idx(in.n2, (size_t)in.nseg);
-    cur.n3 = ctb_first_touch_copy_idx(in.n3, (size_t)in.nseg);
-    cur.n4 = ctb_first_touch_copy_idx(in.n4, (size_t)in.nseg);
-    double h = c.h_mean;
-    ctd_case_destroy(&c);
-    if (!cur.x || !cur.y || !cur.z || !cur.sec || !cur.n1 || !cur.n2 || !cur.n3 || !cur.n4) {
-        cur.rc = CT_ERR_NOMEM;
-        snprintf(cur.err, sizeof cur.err, "mesh input: %s", ct_strerror(cur.rc));
-        return &cur;
-    }
-    cur.in = in;
-    cur.in.x = cur.x;
-    cur.in.y = cur.y;
-    cur.in.z = cur.z;
-    cur.in.sec = cur.sec;
-    cur.in.n1 = cur.n1;
-    cur.in.n2 = cur.n2;
-    cur.in.n3 = cur.n3;
-    cur.in.n4 = cur.n4;
-    cur.h_mean = h;
-    double gap, margin;
-    family_gap(h, &gap, &margin);
-    cur.in.gap = (ct_real)gap;
-    cur.in.margin = (ct_real)margin;
+    cur.rc = ctb_mesh_case(&cur.m, family, target, CTD_NUM_NATURAL, &cfg, &cur.h_mean, cur.err,
+                           sizeof cur.err);
     return &cur;
 }
 
 /* Our bucket search's pairs on the current mesh (computed once). */
-static const ct_pairs *mesh_reference(peer_mesh *m)
+static const ct_pairs *mesh_reference(peer_mesh *pm)
 {
+    ctb_mesh *m = &pm->m;
     if (m->ref_state)
         return m->ref_state == 1 ? &m->ref : NULL;
     m->ref_state = -1;
     ctb_bind_threads(cfg.bind, cfg.max_threads, NULL, 0);
-    m->pos = position_map(&m->in);
+    m->pos = ctb_position_map(&m->in);
     if (!m->pos) {
-        m->ref_rc = CT_ERR_NOMEM;
+        pm->ref_rc = CT_ERR_NOMEM;
         return NULL;
     }
     ct_pairs out;
     memset(&out, 0, sizeof out);
-    m->ref_rc = our_search(CT_SEARCH_BUCKET, &m->in, &out);
-    if (m->ref_rc != CT_OK) {
+    pm->ref_rc = ctb_search_once(CT_SEARCH_BUCKET, &m->in, &out);
+    if (pm->ref_rc != CT_OK) {
         ct_pairs_destroy(&out);
         return NULL;
     }
     m->ref = out;
+    m->ref_algo = CT_SEARCH_BUCKET;
     m->ref_state = 1;
     return &m->ref;
 }
@@ -415,7 +330,7 @@ static void bm_peer(gb_state *st, void *arg)
         gb_skip_with_error(st, m->err);
         return;
     }
-    const ct_search_input *in = &m->in;
+    const ct_search_input *in = &m->m.in;
     const ct_pairs *ref = mesh_reference(m);
     if (!ref) {
         snprintf(msg, sizeof msg, "reference (bucket search): %s", ct_strerror(m->ref_rc));
@@ -440,7 +355,7 @@ static void bm_peer(gb_state *st, void *arg)
         ct_pairs_destroy(&out);
         return;
     }
-    pair_diff diff = compare_sets(m->pos, ref, &out);
+    pair_diff diff = compare_sets(m->m.pos, ref, &out);
     if (diff.rc != CT_OK || diff.missing || diff.extra) {
         snprintf(msg, sizeof msg,
                  "MISMATCH: peer %s (%s) against bucket: %ld pairs, %ld missing, %ld extra%s",
@@ -661,14 +576,14 @@ int ctb_peers_verify_main(int argc, char **argv)
         for (int filt = 0; filt < 2; filt++) {
             ct_search_input in;
             double gap, margin;
-            family_gap(c.h_mean, &gap, &margin);
+            ctb_search_gap(c.h_mean, &gap, &margin);
             ctd_case_input(&c, (ct_real)gap, (ct_real)margin, &in);
             in.filter = filt ? CT_FILTER_BOX : CT_FILTER_HULL;
             const char *fname = filt ? "box" : "hull";
             ct_pairs ref;
             memset(&ref, 0, sizeof ref);
-            ct_idx *pos = position_map(&in);
-            rc = pos ? our_search(CT_SEARCH_DIRECT, &in, &ref) : CT_ERR_NOMEM;
+            ct_idx *pos = ctb_position_map(&in);
+            rc = pos ? ctb_search_once(CT_SEARCH_DIRECT, &in, &ref) : CT_ERR_NOMEM;
             if (rc != CT_OK || ref.n == 0) {
                 printf("FAIL %s/%s: direct search: %s (%ld pairs)\n", families[f], fname,
                        ct_strerror(rc), (long)ref.n);

@@ -27,13 +27,14 @@
  */
 #include "bench_real.h"
 
+#include "bench_common.h"
+
 #include <glob.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
-#include <time.h>
 
 #include "bench_topology.h"
 #include "contact.h"
@@ -61,39 +62,15 @@ typedef struct real_mesh {
     char err[1400];
     char path[1024];
     const char *segkind; /* "shells" or "brick faces" */
-    ct_real *x, *y, *z;
-    ct_idx *sec, *n1, *n2, *n3, *n4;
-    ct_search_input in;
+    ctb_mesh m; /* first-touched copies of the search input, the reference */
     double h_mean;
-    /* The topological search's reference pairs, computed once. */
-    int ref_state; /* 0: not yet, 1: done, -1: failed */
-    ct_search_algo ref_algo;
-    ct_pairs ref;
-    ct_idx *pos; /* node -> position in sec */
 } real_mesh;
 
 static real_mesh cur;
 
-static double now_s(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
-
 static void mesh_clear(real_mesh *m)
 {
-    ctb_free(m->x);
-    ctb_free(m->y);
-    ctb_free(m->z);
-    ctb_free(m->sec);
-    ctb_free(m->n1);
-    ctb_free(m->n2);
-    ctb_free(m->n3);
-    ctb_free(m->n4);
-    if (m->ref_state == 1)
-        ct_pairs_destroy(&m->ref);
-    free(m->pos);
+    ctb_mesh_clear(&m->m);
     memset(m, 0, sizeof *m);
 }
 
@@ -164,37 +141,27 @@ static int deck_input(const ctd_deck *deck, real_mesh *m)
             ts[nsec++] = i;
     m->h_mean = mean_edge(me, t1, t2, t3, t4, nseg);
 
+    ct_search_input in;
+    memset(&in, 0, sizeof in);
+    in.nnode = nn;
+    in.x = me->nodes.x;
+    in.y = me->nodes.y;
+    in.z = me->nodes.z;
+    in.nsec = nsec;
+    in.sec = ts;
+    in.nseg = nseg;
+    in.n1 = t1;
+    in.n2 = t2;
+    in.n3 = t3;
+    in.n4 = t4;
+    double gap, margin;
+    ctb_search_gap(m->h_mean, &gap, &margin);
+    in.gap = (ct_real)gap;
+    in.margin = (ct_real)margin;
+    in.self = 1;
+    in.filter = CT_FILTER_HULL;
     /* First-touch copies made by the largest team the runs use. */
-    ctb_bind_threads(cfg.bind, cfg.max_threads, NULL, 0);
-    m->x = ctb_first_touch_copy_real(me->nodes.x, (size_t)nn);
-    m->y = ctb_first_touch_copy_real(me->nodes.y, (size_t)nn);
-    m->z = ctb_first_touch_copy_real(me->nodes.z, (size_t)nn);
-    m->sec = ctb_first_touch_copy_idx(ts, (size_t)nsec);
-    m->n1 = ctb_first_touch_copy_idx(t1, (size_t)nseg);
-    m->n2 = ctb_first_touch_copy_idx(t2, (size_t)nseg);
-    m->n3 = ctb_first_touch_copy_idx(t3, (size_t)nseg);
-    m->n4 = ctb_first_touch_copy_idx(t4, (size_t)nseg);
-    if (!m->x || !m->y || !m->z || !m->sec || !m->n1 || !m->n2 || !m->n3 || !m->n4) {
-        rc = CT_ERR_NOMEM;
-        goto done;
-    }
-    ct_search_input *in = &m->in;
-    memset(in, 0, sizeof *in);
-    in->nnode = nn;
-    in->x = m->x;
-    in->y = m->y;
-    in->z = m->z;
-    in->nsec = nsec;
-    in->sec = m->sec;
-    in->nseg = nseg;
-    in->n1 = m->n1;
-    in->n2 = m->n2;
-    in->n3 = m->n3;
-    in->n4 = m->n4;
-    in->gap = (ct_real)(0.3 * m->h_mean);
-    in->margin = (ct_real)(0.2 * m->h_mean);
-    in->self = 1;
-    in->filter = CT_FILTER_HULL;
+    rc = ctb_mesh_copy(&m->m, &in, cfg.bind, cfg.max_threads);
 done:
     if (rc == CT_ERR_NOMEM)
         snprintf(m->err, sizeof m->err, "deck %s: %s", m->path, ct_strerror(rc));
@@ -230,158 +197,19 @@ static real_mesh *mesh_get(const real_desc *d)
     return &cur;
 }
 
-static double pair_tests(const ct_search_input *in) { return (double)in->nsec * (double)in->nseg; }
-
-/* The reference pairs of the current deck: direct when within its budget,
- * else bucket, else bsp (all three report the same set). */
-static const ct_pairs *mesh_reference(real_mesh *m)
-{
-    if (m->ref_state)
-        return m->ref_state == 1 ? &m->ref : NULL;
-    m->ref_state = -1;
-    const ct_search_algo order[] = {CT_SEARCH_DIRECT, CT_SEARCH_BUCKET, CT_SEARCH_BSP};
-    ctb_bind_threads(cfg.bind, cfg.max_threads, NULL, 0);
-    for (int k = 0; k < 3; k++) {
-        if (order[k] == CT_SEARCH_DIRECT && pair_tests(&m->in) > cfg.direct_budget)
-            continue;
-        ct_search_params p = ct_search_default_params(order[k]);
-        ct_search *s = NULL;
-        if (ct_search_init(&s, &p) != CT_OK)
-            continue;
-        ct_pairs out;
-        int rc = ct_pairs_init(&out, 0);
-        if (rc == CT_OK)
-            rc = ct_search_run(s, &m->in, &out);
-        ct_search_destroy(s);
-        if (rc != CT_OK) {
-            ct_pairs_destroy(&out);
-            continue;
-        }
-        m->pos = malloc(((size_t)m->in.nnode + 1) * sizeof *m->pos);
-        if (!m->pos) {
-            ct_pairs_destroy(&out);
-            return NULL;
-        }
-        for (ct_idx i = 0; i < m->in.nsec; i++)
-            m->pos[m->in.sec[i]] = i;
-        m->ref = out;
-        m->ref_algo = order[k];
-        m->ref_state = 1;
-        return &m->ref;
-    }
-    return NULL;
-}
-
-/* Count the reference pairs absent from got (*missing) and the pairs of got
- * absent from the reference (*extra); both lists are in the searches'
- * canonical order (secondary position, then segment), so one merge pass. */
-static void count_differences(const ct_idx *pos, const ct_pairs *ref, const ct_pairs *got,
-                              int64_t *missing, int64_t *extra)
-{
-    int64_t a = 0, b = 0, miss = 0, more = 0;
-    while (a < ref->n && b < got->n) {
-        ct_idx pa = pos[ref->node[a]], pb = pos[got->node[b]];
-        if (pa == pb && ref->seg[a] == got->seg[b]) {
-            a++;
-            b++;
-        } else if (pa < pb || (pa == pb && ref->seg[a] < got->seg[b])) {
-            miss++;
-            a++;
-        } else {
-            more++;
-            b++;
-        }
-    }
-    *missing = miss + (ref->n - a);
-    *extra = more + (got->n - b);
-}
-
 /* ---- The benchmark ------------------------------------------------------- */
 
 static void bm_real(gb_state *st, void *arg)
 {
     const real_desc *d = arg;
-    char msg[1400];
-
     real_mesh *m = mesh_get(d);
     if (m->rc != CT_OK) {
         gb_skip_with_error(st, m->err);
         return;
     }
-    const ct_search_input *in = &m->in;
-    if (d->algo == CT_SEARCH_DIRECT && pair_tests(in) > cfg.direct_budget) {
-        snprintf(msg, sizeof msg,
-                 "skipped: over budget (nsec=%ld nseg=%ld, nsec*nseg=%.3g > %.3g)",
-                 (long)in->nsec, (long)in->nseg, pair_tests(in), cfg.direct_budget);
-        gb_skip_with_error(st, msg);
-        return;
-    }
-    /* The reference is computed before binding this run's threads. */
-    const ct_pairs *ref = d->algo == CT_SEARCH_TOPO ? mesh_reference(m) : NULL;
-
-    char where[256];
-    ctb_bind_threads(cfg.bind, d->threads, where, sizeof where);
-
-    ct_search_params p = ct_search_default_params(d->algo);
-    ct_search *s = NULL;
-    ct_pairs out;
-    memset(&out, 0, sizeof out);
-    int rc = ct_search_init(&s, &p);
-    if (rc == CT_OK)
-        rc = ct_pairs_init(&out, 0);
-    /* Untimed: grows the workspace; the topological search's full search. */
-    if (rc == CT_OK)
-        rc = ct_search_run(s, in, &out);
-    if (rc != CT_OK) {
-        snprintf(msg, sizeof msg, "search %s: %s", ct_search_algo_name(d->algo), ct_strerror(rc));
-        gb_skip_with_error(st, msg);
-        ct_search_destroy(s);
-        ct_pairs_destroy(&out);
-        return;
-    }
-
-    double t0 = now_s();
-    while (gb_keep_running(st)) {
-        rc = ct_search_run(s, in, &out);
-        if (rc != CT_OK) {
-            snprintf(msg, sizeof msg, "search %s: %s", ct_search_algo_name(d->algo),
-                     ct_strerror(rc));
-            gb_skip_with_error(st, msg);
-            break;
-        }
-    }
-    double t1 = now_s();
-    int64_t iters = gb_iterations(st);
-
-    if (rc == CT_OK && iters > 0) {
-        gb_set_counter(st, "ns_per_node", (t1 - t0) * 1e9 / ((double)iters * (double)in->nsec),
-                       GB_PLAIN);
-        gb_set_counter(st, "nsec", (double)in->nsec, GB_PLAIN);
-        gb_set_counter(st, "nseg", (double)in->nseg, GB_PLAIN);
-        gb_set_counter(st, "pairs", (double)out.n, GB_PLAIN);
-        gb_set_counter(st, "bytes_per_node", (double)ct_search_memory(s) / (double)in->nsec,
-                       GB_PLAIN);
-        gb_set_counter(st, "threads", (double)d->threads, GB_PLAIN);
-        gb_set_items_processed(st, iters * (int64_t)in->nsec);
-        char mis[96] = "";
-        if (d->algo == CT_SEARCH_TOPO && ref) {
-            int64_t missing = 0, extra = 0;
-            count_differences(m->pos, ref, &out, &missing, &extra);
-            gb_set_counter(st, "misses", (double)missing, GB_PLAIN);
-            if (extra)
-                gb_set_counter(st, "extra", (double)extra, GB_PLAIN);
-            snprintf(mis, sizeof mis, " misses_vs=%s%s", ct_search_algo_name(m->ref_algo),
-                     extra ? " EXTRA_PAIRS" : "");
-        } else if (d->algo == CT_SEARCH_TOPO) {
-            snprintf(mis, sizeof mis, " misses_vs=none");
-        }
-        snprintf(msg, sizeof msg, "self %s h=%.4g gap=%.4g margin=%.4g %s[%s]%s", m->segkind,
-                 m->h_mean, (double)in->gap, (double)in->margin, ctb_bind_name(cfg.bind), where,
-                 mis);
-        gb_set_label(st, msg);
-    }
-    ct_search_destroy(s);
-    ct_pairs_destroy(&out);
+    char prefix[64];
+    snprintf(prefix, sizeof prefix, "self %s ", m->segkind);
+    ctb_search_bench(st, &m->m, &cfg, d->algo, d->threads, m->h_mean, prefix);
 }
 
 /* ---- Registration -------------------------------------------------------- */

@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Turn the Google Benchmark JSON of `make bench` into Markdown tables.
 
-Usage: python3 bench/report.py build/bench.json [build/bench-single.json ...] > /tmp/x.md
+Usage: python3 bench/report.py build/bench.json [build/bench-single.json ...]
+       [build/trade_precision.json] > /tmp/x.md
 
 Several files (e.g. a double and a single precision run) are merged: the
 kernel and floor tables show them side by side (the precision of a file is
@@ -37,6 +38,13 @@ present, else the median of the repetition rows), and prints:
     our bucket search's): build and query ns per node, and the ratio of the
     peer's cost to our best search on the same family and size (natural
     numbering, any thread count);
+  - the speed/accuracy trade (trade/<knob>/<setting>, bench_trade.c): one row
+    per knob setting with its cost and accuracy counters, the measures named
+    by the label ("knob=K setting=S; cost: ...; accuracy: ...; prec=P case"),
+    the x_* counters as further figures; the precision rows merge the files'
+    trade/precision/<prec> runs, and their accuracy comes from the output of
+    bench/trade_precision.py --json when that file is given too (a file with
+    a top-level "trade_precision" key is that output, not a benchmark run);
   - any other benchmark as name / median time.
 Standard library only.
 """
@@ -69,11 +77,23 @@ FLOOR_RE = re.compile(
     r"^floor/(?P<what>triad/dram|triad/ws|bucket/plates)/t(?P<threads>\d+)/(?P<n>\d+)"
     r"(?:/iterations:\d+)?(?:/(?:real_time|manual_time))?$")
 KERNEL_GROUPS = ["narrow", "force", "prepare", "assemble"]
+# The speed/accuracy trade (bench_trade.c).
+TRADE_RE = re.compile(
+    r"^trade/(?P<knob>[^/]+)/(?P<setting>[^/]+)(?:/iterations:\d+)?"
+    r"(?:/(?:real_time|manual_time))?$")
+TRADE_KNOBS = ["search", "filter", "margin", "quad", "precision", "assembly", "stiffness",
+               "safety"]
+COUNTERS += ["cost", "accuracy"]
 PREC_ORDER = ["double", "single"]
 
 
 def base_name(run_name):
     return re.sub(r"(/iterations:\d+)?/(real_time|manual_time)$", "", run_name)
+
+
+def counter_names(b):
+    """The counters to keep of one JSON row: the known ones, then any x_*."""
+    return COUNTERS + [k for k in b if k.startswith("x_") and k not in COUNTERS]
 
 
 def collect(benchmarks):
@@ -103,7 +123,7 @@ def collect(benchmarks):
         if src is not None:
             rec["time_ns"] = src["real_time"] * TIME_NS[src.get("time_unit", "ns")]
             rec["label"] = src.get("label", "")
-            for c in COUNTERS:
+            for c in counter_names(src):
                 if c in src:
                     rec["counters"][c] = float(src[c])
         elif r["reps"]:
@@ -111,7 +131,7 @@ def collect(benchmarks):
             rec["time_ns"] = statistics.median(
                 x["real_time"] * TIME_NS[x.get("time_unit", "ns")] for x in reps)
             rec["label"] = reps[-1].get("label", "")
-            for c in COUNTERS:
+            for c in counter_names(reps[0]):
                 vals = [float(x[c]) for x in reps if c in x]
                 if vals:
                     rec["counters"][c] = statistics.median(vals)
@@ -413,6 +433,99 @@ def print_peers(peers, search, out):
     out.append("")
 
 
+def parse_trade(other, prec):
+    """Split the trade records (trade/<knob>/<setting>) from the others and
+    parse their labels."""
+    trade, rest = [], []
+    for r in other:
+        m = TRADE_RE.match(r["name"])
+        if not m:
+            rest.append(r)
+            continue
+        r.update(m.groupdict())
+        lab = r["label"] or ""
+        parts = [p.strip() for p in lab.split("; ", 3)]
+        r["cost_what"], r["acc_what"], r["case"] = "", "", ""
+        for p in parts[1:]:
+            if p.startswith("cost: "):
+                r["cost_what"] = p[6:]
+            elif p.startswith("accuracy: "):
+                r["acc_what"] = p[10:]
+            else:
+                r["case"] = p
+        lm = re.search(r"prec=(\w+)", lab)
+        r["prec"] = lm.group(1) if lm else prec
+        r["case"] = re.sub(r"^prec=\w+\s*", "", r["case"])
+        trade.append(r)
+    return trade, rest
+
+
+def fmt_val(v):
+    if v is None:
+        return "-"
+    if v == 0:
+        return "0"
+    if abs(v) >= 1e5 or abs(v) < 1e-3:
+        return "%.2e" % v
+    return "%.4g" % v
+
+
+def print_trade(trade, compare, out):
+    """The speed/accuracy table: one row per knob setting (and precision)."""
+    if not trade:
+        return
+    korder = {k: i for i, k in enumerate(TRADE_KNOBS)}
+    rows = sorted(enumerate(trade), key=lambda ir: (korder.get(ir[1]["knob"], 99), ir[0]))
+    out.append("## Speed/accuracy trade\n")
+    out.append("One row per setting of each knob (DESIGN.md section 10): the cost and the "
+               "accuracy figure the knob changes, both measured in the benchmark run "
+               "(median of the repetitions; the measures are named in each row, the cases "
+               "under the table). Other figures are the run's further counters.\n")
+    out.append("| knob | setting | precision | cost | cost measure | accuracy | accuracy measure "
+               "| other figures |")
+    out.append("|---|---|---|---:|---|---:|---|---|")
+    cost_double = {}
+    for r in trade:
+        if r["knob"] == "precision" and r["prec"] == "double" and not r["error"]:
+            cost_double[r["knob"]] = r["counters"].get("cost")
+    cases = []
+    for _, r in rows:
+        head = "| %s | %s | %s " % (r["knob"], r["setting"], r["prec"])
+        if r["error"]:
+            out.append(head + "| - | - | - | - | %s |" % r["error"])
+            continue
+        c = r["counters"]
+        acc = fmt_val(c.get("accuracy"))
+        other = ["%s=%s" % (k[2:], fmt_val(v)) for k, v in c.items() if k.startswith("x_")]
+        if r["knob"] == "precision":
+            cd = cost_double.get("precision")
+            if r["prec"] == "double":
+                acc = "0 (reference)"
+            elif compare and compare.get("other") == r["prec"]:
+                acc = fmt_val(compare.get("max_rel_pen"))
+                other += ["max_dpen_over_gap=%s" % fmt_val(compare.get("max_pen_err_gap")),
+                          "max_dnormal=%s" % fmt_val(compare.get("max_normal_diff")),
+                          "max_ddist_over_h=%s" % fmt_val(compare.get("max_dist_err_h")),
+                          "active_mismatch=%d" % compare.get("active_mismatch", 0),
+                          "unmatched=%d+%d" % (compare.get("only_reference", 0),
+                                               compare.get("only_other", 0))]
+            else:
+                acc = "- (run bench/trade_precision.py)"
+            if cd and c.get("cost") and r["prec"] != "double":
+                other.append("cost_vs_double=%.2f" % (c["cost"] / cd))
+        out.append(head + "| %s | %s | %s | %s | %s |" % (
+            fmt_val(c.get("cost")), r["cost_what"], acc, r["acc_what"], ", ".join(other)))
+        note = (r["knob"], r["case"])
+        if r["case"] and note not in cases:
+            cases.append(note)
+    out.append("")
+    if cases:
+        out.append("Cases:\n")
+        for knob, case in cases:
+            out.append("- %s: %s" % (knob, case))
+        out.append("")
+
+
 def print_other(other, out):
     if not other:
         return
@@ -601,8 +714,9 @@ def report_search(data, search, out):
     print_speedup(families, search, out)
 
 
-def report(datas, names=None):
-    """datas: one parsed JSON file, or a list of them (merged)."""
+def report(datas, names=None, compare=None):
+    """datas: one parsed JSON file, or a list of them (merged); compare: the
+    "trade_precision" object of bench/trade_precision.py, or None."""
     if isinstance(datas, dict):
         datas = [datas]
     names = names or ["file %d" % (i + 1) for i in range(len(datas))]
@@ -619,8 +733,10 @@ def report(datas, names=None):
         search, rest = parse_search(collect(data.get("benchmarks", [])))
         kern, flo, other = split_records(rest, tag)
         peers, other = parse_peers(other)
+        trade, other = parse_trade(other, tag)
         files.append({"tag": tag, "name": name, "data": data, "search": search,
-                      "kern": kern, "flo": flo, "other": other, "peers": peers})
+                      "kern": kern, "flo": flo, "other": other, "peers": peers,
+                      "trade": trade})
     for f in files:
         if multi:
             out.append("# %s precision (%s)\n" % (f["tag"], f["name"]))
@@ -640,6 +756,7 @@ def report(datas, names=None):
                 out)
     for f in files:
         print_peers(f["peers"], f["search"], out)
+    print_trade([r for f in files for r in f["trade"]], compare, out)
     for f in files:
         print_other(f["other"], out)
     return "\n".join(out)
@@ -649,15 +766,23 @@ def main(argv):
     if len(argv) < 2:
         sys.stderr.write("usage: report.py BENCH.json [BENCH2.json ...]\n")
         return 2
-    datas = []
+    datas, names, compare = [], [], None
     for path in argv[1:]:
         try:
             with open(path) as f:
-                datas.append(json.load(f))
+                data = json.load(f)
         except (OSError, ValueError) as e:
             sys.stderr.write("report.py: cannot read %s: %s\n" % (path, e))
             return 1
-    sys.stdout.write(report(datas, argv[1:]) + "\n")
+        if isinstance(data, dict) and "trade_precision" in data:
+            compare = data["trade_precision"]
+            continue
+        datas.append(data)
+        names.append(path)
+    if not datas:
+        sys.stderr.write("report.py: no benchmark file given\n")
+        return 2
+    sys.stdout.write(report(datas, names, compare) + "\n")
     return 0
 
 

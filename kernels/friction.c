@@ -3,20 +3,8 @@
  * predictor and return to the Coulomb cone, the tangential filter, and the
  * carrying of per-pair history across re-sorts (DESIGN.md section 7).
  */
-#include "ct_internal.h"
+#include "pair_force_body.h"
 
-/* "omp simd" on loops that call sqrt: they vectorise only when sqrt need
- * not set errno (-fno-math-errno, which defines __NO_MATH_ERRNO__); with
- * errno semantics gcc and clang cannot vectorise them and clang would warn
- * that the requested vectorisation failed. */
-#if defined(__NO_MATH_ERRNO__)
-#define CTI_SIMD_SQRT _Pragma("omp simd")
-#else
-#define CTI_SIMD_SQRT
-#endif
-
-/* Loops shorter than this run on one thread. */
-#define CTI_PAR_MIN 8192
 /* Block of new pairs one binary search serves in ct_pair_match. */
 #define CTI_MATCH_BLOCK 4096
 
@@ -129,73 +117,17 @@ cti_friction_block(int64_t i0, int64_t i1, const ct_real *restrict ax,
                    ct_real *restrict hy, ct_real *restrict hz, ct_real *restrict od,
                    const int has_mu, const int has_kt, const int has_d, const int filt)
 {
-    const ct_real beta = (ct_real)1 - alpha;
 CTI_SIMD_SQRT
     for (int64_t i = i0; i < i1; i++) {
-        ct_real n0 = ax[i], n1 = ay[i], n2 = az[i];
-        ct_real f = f_n[i] > 0 ? f_n[i] : 0;
-        ct_real m = has_mu ? m_[i] : mu0;
-        m = m > 0 ? m : 0;
-        ct_real k = has_kt ? k_[i] : kt0;
-        k = k > 0 ? k : 0;
-        ct_real lim = m * f;
-        /* Old force, rotated into the current tangent plane by projection. */
-        ct_real o0 = hx[i], o1 = hy[i], o2 = hz[i];
-        ct_real on = o0 * n0 + o1 * n1 + o2 * n2;
-        o0 -= on * n0;
-        o1 -= on * n1;
-        o2 -= on * n2;
-        /* Tangential slip velocity and the elastic trial. */
-        ct_real v0 = ux[i], v1 = uy[i], v2 = uz[i];
-        ct_real vnn = v0 * n0 + v1 * n1 + v2 * n2;
-        ct_real kd = k * dt;
-        ct_real t0 = o0 - kd * (v0 - vnn * n0);
-        ct_real t1 = o1 - kd * (v1 - vnn * n1);
-        ct_real t2 = o2 - kd * (v2 - vnn * n2);
-        ct_real tt = t0 * t0 + t1 * t1 + t2 * t2;
-        /* NaN or overflow anywhere in the trial: no force (below). The flag
-         * is kept as a force, not an int, because gcc 12 cannot vectorise a
-         * select on an int flag built from double compares. */
-        ct_real fok = tt <= CTI_HUGE ? f : 0;
-        tt = tt > 0 ? tt : 0; /* lets the compiler drop the errno path of sqrt */
-        ct_real tn = CTI_SQRT(tt);
-        /* Return to the cone along the trial direction. */
-        /* (Divisions are unconditional, on safe denominators, so that the
-         * loop if-converts and vectorises.) */
-        ct_real den = tn > lim ? tn : lim;
-        ct_real rq = lim / (den > 0 ? den : (ct_real)1);
-        ct_real r = den > 0 ? rq : (ct_real)1;
-        ct_real g0 = r * t0, g1 = r * t1, g2 = r * t2;
-        if (filt) {
-            g0 = alpha * g0 + beta * o0;
-            g1 = alpha * g1 + beta * o1;
-            g2 = alpha * g2 + beta * o2;
-            ct_real gg = g0 * g0 + g1 * g1 + g2 * g2;
-            gg = gg > 0 ? gg : 0;
-            ct_real gn = CTI_SQRT(gg);
-            ct_real gd = gn > lim ? gn : lim;
-            ct_real sq = lim / (gd > 0 ? gd : (ct_real)1);
-            ct_real s = gd > 0 ? sq : (ct_real)1;
-            g0 *= s;
-            g1 *= s;
-            g2 *= s;
-        }
-        ct_real slip = tn - lim;
-        ct_real slq = slip / (k > 0 ? k : (ct_real)1);
-        slip = (slip > 0 && k > 0) ? slq : 0;
-        /* Out of contact, or a NaN anywhere in the trial: no force. */
-        g0 = fok > 0 ? g0 : 0;
-        g1 = fok > 0 ? g1 : 0;
-        g2 = fok > 0 ? g2 : 0;
+        ct_real g0 = hx[i], g1 = hy[i], g2 = hz[i];
+        ct_real d = cti_friction_pair(ax[i], ay[i], az[i], ux[i], uy[i], uz[i], f_n[i],
+                                      has_mu ? m_[i] : mu0, has_kt ? k_[i] : kt0, dt, alpha,
+                                      filt, &g0, &g1, &g2);
         hx[i] = g0;
         hy[i] = g1;
         hz[i] = g2;
-        if (has_d) {
-            ct_real gg = g0 * g0 + g1 * g1 + g2 * g2;
-            gg = gg > 0 ? gg : 0;
-            ct_real d = CTI_SQRT(gg) * slip;
-            od[i] = d > 0 ? d : 0;
-        }
+        if (has_d)
+            od[i] = d;
     }
 }
 
@@ -216,20 +148,15 @@ int ct_friction_step(ct_idx npair, const ct_real *nx, const ct_real *ny, const c
     const int64_t nblk = ((int64_t)npair + CTI_FRIC_BLOCK - 1) / CTI_FRIC_BLOCK;
 #pragma omp parallel for schedule(static) if (npair > CTI_PAR_MIN)
     for (int64_t b = 0; b < nblk; b++) {
-        int64_t i0 = b * CTI_FRIC_BLOCK, i1 = i0 + CTI_FRIC_BLOCK;
-        i1 = i1 < npair ? i1 : npair;
+        int64_t i0, i1;
+        cti_block_range(b, CTI_FRIC_BLOCK, npair, &i0, &i1);
 #define CTI_FRIC_CASE(V)                                                                   \
     case V:                                                                                \
         cti_friction_block(i0, i1, nx, ny, nz, vx, vy, vz, fn, mu, mu0, kt, kt0, dt, alpha, \
                            ftx, fty, ftz, dissip, (V)&1, ((V) >> 1) & 1, ((V) >> 2) & 1,    \
                            ((V) >> 3) & 1);                                                \
         break;
-        switch (variant) {
-            CTI_FRIC_CASE(0) CTI_FRIC_CASE(1) CTI_FRIC_CASE(2) CTI_FRIC_CASE(3)
-            CTI_FRIC_CASE(4) CTI_FRIC_CASE(5) CTI_FRIC_CASE(6) CTI_FRIC_CASE(7)
-            CTI_FRIC_CASE(8) CTI_FRIC_CASE(9) CTI_FRIC_CASE(10) CTI_FRIC_CASE(11)
-            CTI_FRIC_CASE(12) CTI_FRIC_CASE(13) CTI_FRIC_CASE(14) CTI_FRIC_CASE(15)
-        }
+        switch (variant) { CTI_CASES16(CTI_FRIC_CASE) }
 #undef CTI_FRIC_CASE
     }
     return CT_OK;

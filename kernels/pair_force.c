@@ -6,24 +6,12 @@
  *
  * The two-kernel composition reads the normals twice and writes fn only for
  * the friction pass to read it back; at 10^6 pairs both passes stream from
- * memory, so the fused pass moves fewer bytes. Each expression below is
- * written exactly as in penalty.c and friction.c, in the same order, so the
- * results are bit-identical to the composition (tests/test_friction.c
- * checks this with memcmp); a change to either kernel's arithmetic must be
- * made here too.
+ * memory, so the fused pass moves fewer bytes. The per-pair arithmetic is
+ * that of pair_force_body.h, shared with penalty.c and friction.c, so the
+ * results are bit-identical to the composition by construction
+ * (tests/test_friction.c checks this with memcmp).
  */
-#include "ct_internal.h"
-
-/* "omp simd" on loops that call sqrt: they vectorise only when sqrt need
- * not set errno (-fno-math-errno, which defines __NO_MATH_ERRNO__). */
-#if defined(__NO_MATH_ERRNO__)
-#define CTI_SIMD_SQRT _Pragma("omp simd")
-#else
-#define CTI_SIMD_SQRT
-#endif
-
-/* Loops shorter than this run on one thread. */
-#define CTI_PAR_MIN 8192
+#include "pair_force_body.h"
 
 /* Pairs per block. A thread keeps 7 stack arrays of this length: the
  * per-pair stiffness, friction coefficient and tangential stiffness filled
@@ -31,14 +19,6 @@
  * outputs not asked for, so that one loop serves every combination (28 KB
  * in double; they stay in L1). */
 #define CTI_PF_BLOCK 512
-
-/* The reduced mass as in penalty.c: without a segment mass,
- * ms / (1 + ms/inf) = ms. */
-static inline ct_real cti_pf_reduced_mass(ct_real ms, ct_real mm)
-{
-    ct_real m2 = mm > 0 ? mm : (ct_real)INFINITY;
-    return ms / ((ct_real)1 + ms / m2);
-}
 
 /* One block of n pairs; every pointer already points at the block's first
  * pair. has_vn, has_mm and filt are constants after inlining. */
@@ -56,85 +36,27 @@ cti_pair_force_block(int64_t n, const ct_real *restrict pp, const ct_real *restr
                      ct_real *restrict otd, const int has_vn, const int has_mm,
                      const int filt)
 {
-    const ct_real beta = (ct_real)1 - alpha;
 CTI_SIMD_SQRT
     for (int64_t i = 0; i < n; i++) {
         ct_real n0 = ax[i], n1 = ay[i], n2 = az[i];
         ct_real v0 = ux[i], v1 = uy[i], v2 = uz[i];
-        ct_real vnn = v0 * n0 + v1 * n1 + v2 * n2;
-        ct_real w = has_vn ? vnp[i] : vnn;
-        /* Normal force: F = K q with damping, clamped compressive. */
-        ct_real q = pp[i] > 0 ? pp[i] : 0;
-        ct_real k = kk[i];
-        k = k > 0 ? k : 0;
-        ct_real fe = k * q;
-        ct_real m = has_mm ? cti_pf_reduced_mass(m1[i], m2[i]) : m1[i];
-        ct_real a = (ct_real)2 * k * m;
-        a = a > 0 ? a : 0;
-        ct_real c = vs * CTI_SQRT(a);
-        ct_real ft = fe - c * w;
-        ft = ft > 0 ? ft : 0;
-        ft = q > 0 ? ft : 0;
+        ct_real w = has_vn ? vnp[i] : v0 * n0 + v1 * n1 + v2 * n2;
+        ct_real m = has_mm ? cti_reduced_mass(m1[i], m2[i]) : m1[i];
+        ct_real e, d;
+        ct_real ft = cti_normal_pair(pp[i], kk[i], m, vs, w, dt, &e, &d);
         ox[i] = ft * n0;
         oy[i] = ft * n1;
         oz[i] = ft * n2;
         ofn[i] = ft;
-        oe[i] = (ct_real)0.5 * fe * q;
-        ct_real dd = (fe - ft) * w * dt;
-        od[i] = dd > 0 ? dd : 0;
-        /* Friction: elastic predictor and return to the cone on fn = ft. */
-        ct_real f = ft > 0 ? ft : 0;
-        ct_real mu = m_[i];
-        mu = mu > 0 ? mu : 0;
-        ct_real kt = k_[i];
-        kt = kt > 0 ? kt : 0;
-        ct_real lim = mu * f;
-        ct_real o0 = hx[i], o1 = hy[i], o2 = hz[i];
-        ct_real on = o0 * n0 + o1 * n1 + o2 * n2;
-        o0 -= on * n0;
-        o1 -= on * n1;
-        o2 -= on * n2;
-        ct_real kd = kt * dt;
-        ct_real t0 = o0 - kd * (v0 - vnn * n0);
-        ct_real t1 = o1 - kd * (v1 - vnn * n1);
-        ct_real t2 = o2 - kd * (v2 - vnn * n2);
-        ct_real tt = t0 * t0 + t1 * t1 + t2 * t2;
-        /* NaN or overflow in the trial: no force (a force-valued flag, as
-         * in friction.c, so that gcc vectorises the selects). */
-        ct_real fok = tt <= CTI_HUGE ? f : 0;
-        tt = tt > 0 ? tt : 0;
-        ct_real tn = CTI_SQRT(tt);
-        ct_real den = tn > lim ? tn : lim;
-        ct_real rq = lim / (den > 0 ? den : (ct_real)1);
-        ct_real r = den > 0 ? rq : (ct_real)1;
-        ct_real g0 = r * t0, g1 = r * t1, g2 = r * t2;
-        if (filt) {
-            g0 = alpha * g0 + beta * o0;
-            g1 = alpha * g1 + beta * o1;
-            g2 = alpha * g2 + beta * o2;
-            ct_real gg = g0 * g0 + g1 * g1 + g2 * g2;
-            gg = gg > 0 ? gg : 0;
-            ct_real gn = CTI_SQRT(gg);
-            ct_real gd = gn > lim ? gn : lim;
-            ct_real sq = lim / (gd > 0 ? gd : (ct_real)1);
-            ct_real s = gd > 0 ? sq : (ct_real)1;
-            g0 *= s;
-            g1 *= s;
-            g2 *= s;
-        }
-        ct_real slip = tn - lim;
-        ct_real slq = slip / (kt > 0 ? kt : (ct_real)1);
-        slip = (slip > 0 && kt > 0) ? slq : 0;
-        g0 = fok > 0 ? g0 : 0;
-        g1 = fok > 0 ? g1 : 0;
-        g2 = fok > 0 ? g2 : 0;
+        oe[i] = e;
+        od[i] = d;
+        /* Friction on the normal force just computed. */
+        ct_real g0 = hx[i], g1 = hy[i], g2 = hz[i];
+        otd[i] = cti_friction_pair(n0, n1, n2, v0, v1, v2, ft, m_[i], k_[i], dt, alpha, filt,
+                                   &g0, &g1, &g2);
         hx[i] = g0;
         hy[i] = g1;
         hz[i] = g2;
-        ct_real gg = g0 * g0 + g1 * g1 + g2 * g2;
-        gg = gg > 0 ? gg : 0;
-        ct_real d = CTI_SQRT(gg) * slip;
-        otd[i] = d > 0 ? d : 0;
     }
 }
 
@@ -165,8 +87,8 @@ int ct_pair_force_linear_coulomb(
         }
 #pragma omp for schedule(static)
         for (int64_t b = 0; b < nblk; b++) {
-            int64_t i0 = b * CTI_PF_BLOCK, i1 = i0 + CTI_PF_BLOCK;
-            i1 = i1 < npair ? i1 : npair;
+            int64_t i0, i1;
+            cti_block_range(b, CTI_PF_BLOCK, npair, &i0, &i1);
             int64_t len = i1 - i0;
             const ct_real *kb = K ? K + i0 : bk, *mub = mu ? mu + i0 : bmu,
                           *ktb = kt ? kt + i0 : bkt, *vnb = vn ? vn + i0 : NULL,
@@ -180,10 +102,7 @@ int ct_pair_force_linear_coulomb(
                              fx + i0, fy + i0, fz + i0, fnb, eb, db, ftx + i0, fty + i0,   \
                              ftz + i0, tdb, (V)&1, ((V) >> 1) & 1, ((V) >> 2) & 1);        \
         break;
-            switch (variant) {
-                CTI_PF_CASE(0) CTI_PF_CASE(1) CTI_PF_CASE(2) CTI_PF_CASE(3)
-                CTI_PF_CASE(4) CTI_PF_CASE(5) CTI_PF_CASE(6) CTI_PF_CASE(7)
-            }
+            switch (variant) { CTI_CASES8(CTI_PF_CASE) }
 #undef CTI_PF_CASE
         }
     }

@@ -4,20 +4,7 @@
  * law, the TYPE6 user curve, normal damping, and the fused linear fast path
  * (DESIGN.md section 7). The formulas are documented in ct_force.h.
  */
-#include "ct_internal.h"
-
-/* "omp simd" on loops that call sqrt: they vectorise only when sqrt need
- * not set errno (-fno-math-errno, which defines __NO_MATH_ERRNO__); with
- * errno semantics gcc and clang cannot vectorise them and clang would warn
- * that the requested vectorisation failed. */
-#if defined(__NO_MATH_ERRNO__)
-#define CTI_SIMD_SQRT _Pragma("omp simd")
-#else
-#define CTI_SIMD_SQRT
-#endif
-
-/* Loops shorter than this run on one thread. */
-#define CTI_PAR_MIN 8192
+#include "pair_force_body.h"
 
 /* Blocks of the deterministic sums (fixed: the order depends on n only). */
 #define CTI_SUM_BLOCKS 64
@@ -291,13 +278,6 @@ int ct_penalty_type6(ct_idx npair, const ct_real *p, ct_idx ncurve, const ct_rea
 
 /* ---- Damping and the force vector ----------------------------------------- */
 
-static inline ct_real cti_reduced_mass(ct_real ms, ct_real mm)
-{
-    /* Without a segment mass, ms / (1 + ms/inf) = ms (branch-free). */
-    ct_real m2 = mm > 0 ? mm : (ct_real)INFINITY;
-    return ms / ((ct_real)1 + ms / m2);
-}
-
 ct_real ct_damping_coef(ct_real viss, ct_real K, ct_real ms, ct_real mm)
 {
     ct_real m = cti_reduced_mass(ms, mm);
@@ -358,30 +338,18 @@ cti_normal_block(int64_t i0, int64_t i1, const ct_real *restrict pp,
 {
 CTI_SIMD_SQRT
     for (int64_t i = i0; i < i1; i++) {
-        ct_real q = pp[i] > 0 ? pp[i] : 0;
-        ct_real k = has_k ? kk[i] : K0;
-        k = k > 0 ? k : 0;
-        ct_real fe = k * q;
         ct_real m = has_mm ? cti_reduced_mass(m1[i], m2[i]) : m1[i];
-        ct_real a = (ct_real)2 * k * m;
-        a = a > 0 ? a : 0;
-        ct_real c = vs * CTI_SQRT(a);
-        ct_real ft = fe - c * v[i];
-        /* Two selects, not (ft > 0 && q > 0): gcc 12 turns the && into a
-         * select on a bool that it cannot vectorise. */
-        ft = ft > 0 ? ft : 0;
-        ft = q > 0 ? ft : 0;
+        ct_real e, d;
+        ct_real ft = cti_normal_pair(pp[i], has_k ? kk[i] : K0, m, vs, v[i], dt, &e, &d);
         ox[i] = ft * ax[i];
         oy[i] = ft * ay[i];
         oz[i] = ft * az[i];
         if (has_fn)
             ofn[i] = ft;
         if (has_e)
-            oe[i] = (ct_real)0.5 * fe * q;
-        if (has_d) {
-            ct_real d = (fe - ft) * v[i] * dt;
-            od[i] = d > 0 ? d : 0;
-        }
+            oe[i] = e;
+        if (has_d)
+            od[i] = d;
     }
 }
 
@@ -403,24 +371,15 @@ int ct_normal_force(ct_idx npair, const ct_real *p, const ct_real *nx, const ct_
     const int64_t nblk = ((int64_t)npair + CTI_NORMAL_BLOCK - 1) / CTI_NORMAL_BLOCK;
 #pragma omp parallel for schedule(static) if (npair > CTI_PAR_MIN)
     for (int64_t b = 0; b < nblk; b++) {
-        int64_t i0 = b * CTI_NORMAL_BLOCK, i1 = i0 + CTI_NORMAL_BLOCK;
-        i1 = i1 < npair ? i1 : npair;
+        int64_t i0, i1;
+        cti_block_range(b, CTI_NORMAL_BLOCK, npair, &i0, &i1);
 #define CTI_NF_CASE(V)                                                                     \
     case V:                                                                                \
         cti_normal_block(i0, i1, p, nx, ny, nz, vn, K, K0, ms, mm, vs, dt, fx, fy, fz, fn,  \
                          energy, dissip, (V)&1, ((V) >> 1) & 1, ((V) >> 2) & 1,             \
                          ((V) >> 3) & 1, ((V) >> 4) & 1);                                  \
         break;
-        switch (variant) {
-            CTI_NF_CASE(0) CTI_NF_CASE(1) CTI_NF_CASE(2) CTI_NF_CASE(3)
-            CTI_NF_CASE(4) CTI_NF_CASE(5) CTI_NF_CASE(6) CTI_NF_CASE(7)
-            CTI_NF_CASE(8) CTI_NF_CASE(9) CTI_NF_CASE(10) CTI_NF_CASE(11)
-            CTI_NF_CASE(12) CTI_NF_CASE(13) CTI_NF_CASE(14) CTI_NF_CASE(15)
-            CTI_NF_CASE(16) CTI_NF_CASE(17) CTI_NF_CASE(18) CTI_NF_CASE(19)
-            CTI_NF_CASE(20) CTI_NF_CASE(21) CTI_NF_CASE(22) CTI_NF_CASE(23)
-            CTI_NF_CASE(24) CTI_NF_CASE(25) CTI_NF_CASE(26) CTI_NF_CASE(27)
-            CTI_NF_CASE(28) CTI_NF_CASE(29) CTI_NF_CASE(30) CTI_NF_CASE(31)
-        }
+        switch (variant) { CTI_CASES32(CTI_NF_CASE) }
 #undef CTI_NF_CASE
     }
     return CT_OK;

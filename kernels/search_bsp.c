@@ -40,75 +40,7 @@
  */
 #include <stdlib.h>
 
-#include "ct_internal.h"
-
-#define BSP_MAX_DEPTH 96
-
-/*
- * The tree works in float, in coordinates relative to an origin o: a node's
- * tree coordinate is fl32(fl64(x - o)) (rounded to nearest), a segment
- * bound is fl64(lo - o) rounded down to float (upper bounds up). Each step
- * is monotone, so x >= lo implies tree(x) >= tree(lo): a node inside a
- * segment's inflated box is inside it in tree coordinates too, and the
- * partition stays conservative while it moves half the bytes of double.
- * The exact decision is always the shared predicate on the input arrays.
- */
-typedef float bsp_f;
-
-static inline bsp_f bsp_down(double v)
-{
-    bsp_f f = (bsp_f)v;
-    return (double)f > v ? nextafterf(f, -INFINITY) : f;
-}
-
-static inline bsp_f bsp_up(double v)
-{
-    bsp_f f = (bsp_f)v;
-    return (double)f < v ? nextafterf(f, INFINITY) : f;
-}
-#define BSP_BLOCKS 64
-#ifndef BSP_TASKS_PER_THREAD
-#define BSP_TASKS_PER_THREAD 16
-#endif
-
-typedef struct bsp_box {
-    bsp_f lo[3], hi[3];
-} bsp_box;
-
-/* A thread's private stack of segment lists (offsets, not pointers, since
- * it may move when it grows). Padded so two threads never share a line. */
-typedef struct bsp_stack {
-    ct_idx *a;
-    size_t cap;
-    bsp_f *lb;       /* a leaf's segment boxes, 6 arrays of lbcap */
-    unsigned char *hit; /* a node's box-test results, lbcap + 8 */
-    size_t lbcap;
-    char pad[64 - 2 * sizeof(size_t) - 3 * sizeof(void *)];
-} bsp_stack;
-
-typedef struct bsp_state {
-    size_t nodecap, segcap, arenacap;
-    bsp_f *nx, *ny, *nz; /* coordinates of the nodes in tree order */
-    ct_idx *nid;           /* their positions in in->sec */
-    bsp_f *sb;           /* per segment: inflated box lo[3], hi[3] */
-    ct_idx *arena;         /* segment lists of the boxes above the cutoff */
-    int64_t arenatop;
-    int nthr;
-    bsp_stack *stk;
-    int64_t blk[2 * BSP_BLOCKS + 2];
-} bsp_state;
-
-typedef struct bsp_ctx {
-    const ct_search_input *in;
-    bsp_state *st;
-    cti_collect *col;
-    ct_real d;
-    bsp_f minbox;
-    double o[3]; /* origin of the tree coordinates */
-    int64_t leaf, task_min;
-    int err;      /* CT_ERR_NOMEM when a buffer could not grow */
-    int overflow; /* the shared arena was too small */
-} bsp_ctx;
+#include "search_bsp_internal.h"
 
 static void bsp_free(void *p)
 {
@@ -213,123 +145,6 @@ static int bsp_prepare(ct_search *s, const ct_search_input *in, bsp_state **out)
     return CT_OK;
 }
 
-static inline int box_meets(const bsp_f *restrict b, const bsp_box *restrict x)
-{
-    /* Bitwise and: no branch to mispredict. */
-    return (b[0] <= x->hi[0]) & (b[3] >= x->lo[0]) & (b[1] <= x->hi[1]) & (b[4] >= x->lo[1]) &
-           (b[2] <= x->hi[2]) & (b[5] >= x->lo[2]);
-}
-
-static inline void box_empty(bsp_box *b)
-{
-    for (int k = 0; k < 3; k++) {
-        b->lo[k] = (bsp_f)INFINITY;
-        b->hi[k] = -(bsp_f)INFINITY;
-    }
-}
-
-static inline void box_add(bsp_box *b, bsp_f x, bsp_f y, bsp_f z)
-{
-    /* NaN compares false and leaves the box alone. */
-    b->lo[0] = x < b->lo[0] ? x : b->lo[0];
-    b->hi[0] = x > b->hi[0] ? x : b->hi[0];
-    b->lo[1] = y < b->lo[1] ? y : b->lo[1];
-    b->hi[1] = y > b->hi[1] ? y : b->hi[1];
-    b->lo[2] = z < b->lo[2] ? z : b->lo[2];
-    b->hi[2] = z > b->hi[2] ? z : b->hi[2];
-}
-
-/* Test every node of [n0, n1) against the sorted segment list. The
- * segment boxes are gathered into arrays so the box test of one node
- * against all segments is a vector loop; the few that pass go to the shared
- * predicate in increasing segment order. A node's candidates go straight
- * into this thread's collector buffer; the shared length is written once
- * per leaf. */
-static void bsp_leaf(bsp_ctx *c, ct_idx n0, ct_idx n1, const ct_idx *restrict segs,
-                     ct_idx ns)
-{
-    const ct_search_input *in = c->in;
-    const bsp_state *st = c->st;
-    cti_collect *col = c->col;
-    const int t = cti_thread_id();
-    bsp_stack *sk = &st->stk[t];
-    if ((size_t)ns + 16 > sk->lbcap) {
-        size_t cap = (size_t)ns + (size_t)ns / 2 + 64;
-        bsp_f *lb = ct_calloc(6 * cap, sizeof *lb);
-        unsigned char *hit = ct_calloc(cap + 8, 1);
-        if (!lb || !hit) {
-            ct_free(lb);
-            ct_free(hit);
-#pragma omp atomic write
-            c->err = CT_ERR_NOMEM;
-            return;
-        }
-        ct_free(sk->lb);
-        ct_free(sk->hit);
-        sk->lb = lb;
-        sk->hit = hit;
-        sk->lbcap = cap;
-    }
-    const size_t w = sk->lbcap;
-    bsp_f *restrict l0 = sk->lb, *restrict l1 = l0 + w, *restrict l2 = l1 + w;
-    bsp_f *restrict h0 = l2 + w, *restrict h1 = h0 + w, *restrict h2 = h1 + w;
-    unsigned char *restrict hit = sk->hit;
-    const bsp_f *restrict sb = st->sb;
-    for (ct_idx q = 0; q < ns; q++) {
-        const bsp_f *b = sb + 6 * (size_t)segs[q];
-        l0[q] = b[0];
-        l1[q] = b[1];
-        l2[q] = b[2];
-        h0[q] = b[3];
-        h1[q] = b[4];
-        h2[q] = b[5];
-    }
-    /* Pad to a multiple of 16 with empty boxes so the vector loop has no
-     * scalar remainder (the capacity is at least ns + 16). */
-    const ct_idx ns16 = (ns + 15) & ~(ct_idx)15;
-    for (ct_idx q = ns; q < ns16; q++) {
-        l0[q] = l1[q] = l2[q] = (bsp_f)INFINITY;
-        h0[q] = h1[q] = h2[q] = -(bsp_f)INFINITY;
-    }
-    for (ct_idx q = ns16; q < ns16 + 8; q++)
-        hit[q] = 0;
-    const ct_real *restrict x = in->x, *restrict y = in->y, *restrict z = in->z;
-    size_t len = col->len[t];
-    for (ct_idx k = n0; k < n1; k++) {
-        if (len + (size_t)ns > col->cap[t]) {
-            col->len[t] = len;
-            if (cti_collect_room(col, t, (size_t)ns) != CT_OK)
-                return;
-        }
-        ct_idx *restrict buf = col->buf[t];
-        const bsp_f px = st->nx[k], py = st->ny[k], pz = st->nz[k];
-        const ct_idx pos = st->nid[k], node = in->sec[pos];
-#pragma omp simd
-        for (ct_idx q = 0; q < ns16; q++)
-            hit[q] = (unsigned char)((px >= l0[q]) & (px <= h0[q]) & (py >= l1[q]) &
-                                     (py <= h1[q]) & (pz >= l2[q]) & (pz <= h2[q]));
-        size_t start = len;
-        for (ct_idx q0 = 0; q0 < ns16; q0 += 8) {
-            uint64_t m;
-            memcpy(&m, hit + q0, sizeof m);
-            while (m) {
-                ct_idx q = q0 + (ct_idx)(__builtin_ctzll(m) >> 3);
-                m &= m - 1;
-                ct_idx j = segs[q];
-                if (cti_pair_test_f(x, y, z, node, in->n1[j], in->n2[j], in->n3[j], in->n4[j],
-                                    c->d, in->self, in->filter))
-                    buf[len++] = j;
-            }
-        }
-        if (len > start) {
-            col->owner[pos] = t;
-            col->start[pos] = (int64_t)start;
-            col->count[pos] = (ct_idx)(len - start);
-        }
-    }
-    col->len[t] = len;
-}
-
 /* Partition nodes [n0, n1) in place about `mid` on axis `ax` (below: left),
  * and return the split index with the children's tight boxes. */
 static ct_idx bsp_split_nodes(bsp_state *st, ct_idx n0, ct_idx n1, int ax, bsp_f mid,
@@ -411,6 +226,51 @@ static int bsp_is_leaf(const bsp_ctx *c, int64_t nn, int64_t ns, int depth)
     return nn * ns <= c->leaf * (nn + ns) || depth >= BSP_MAX_DEPTH;
 }
 
+/* A split of a box: nodes [n0, m) go left, [m, n1) right, with their tight
+ * boxes and the counts of the two segment lists. */
+typedef struct bsp_cut {
+    ct_idx m, nl, nr;
+    bsp_box bl, br;
+} bsp_cut;
+
+/* Split the box of nodes [n0, n1) with segment list segs[0..ns-1]: the
+ * axes are tried from the longest until one reduces the segment count (the
+ * nodes are partitioned in place, the lists written to l and r, each with
+ * room for ns). Returns 1 with the split in *k, or 0 when the box must be a
+ * leaf. */
+static int bsp_split(const bsp_ctx *c, ct_idx n0, ct_idx n1, const bsp_box *box,
+                     const ct_idx *segs, ct_idx ns, ct_idx *l, ct_idx *r, bsp_cut *k)
+{
+    int tried = 0;
+    for (;;) {
+        bsp_f mid;
+        int ax = bsp_axis(c, box, tried, &mid);
+        if (ax < 0)
+            return 0;
+        tried |= 1 << ax;
+        k->m = bsp_split_nodes(c->st, n0, n1, ax, mid, &k->bl, &k->br);
+        bsp_split_segs(c->st->sb, segs, ns, &k->bl, &k->br, l, r, &k->nl, &k->nr);
+        if (!(k->nl == ns && k->nr == ns))
+            return 1; /* else no reduction: try another axis */
+    }
+}
+
+/* Room for n entries in a thread's stack of segment lists, keeping its
+ * first `keep`; 0 (and the error flag) when it cannot grow. */
+static int bsp_stack_room(bsp_ctx *c, bsp_stack *sk, size_t n, size_t keep)
+{
+    if (n <= sk->cap)
+        return 1;
+    void *p = sk->a;
+    if (cti_grow(&p, &sk->cap, n, sizeof(ct_idx), keep) != CT_OK) {
+#pragma omp atomic write
+        c->err = CT_ERR_NOMEM;
+        return 0;
+    }
+    sk->a = p;
+    return 1;
+}
+
 /* Subtree below the task cutoff, on this thread: the segment list is at
  * offset `off` of this thread's stack and `base` is the stack's first free
  * entry (lists of the enclosing boxes live below it). */
@@ -420,40 +280,22 @@ static void bsp_serial(bsp_ctx *c, bsp_stack *sk, ct_idx n0, ct_idx n1, const bs
     if (n1 <= n0 || ns == 0)
         return;
     if (bsp_is_leaf(c, n1 - n0, ns, depth)) {
-        bsp_leaf(c, n0, n1, sk->a + off, ns);
+        cti_bsp_leaf(c, n0, n1, sk->a + off, ns);
         return;
     }
-    if (base + 2 * (size_t)ns > sk->cap) {
-        void *p = sk->a;
-        if (cti_grow(&p, &sk->cap, base + 2 * (size_t)ns, sizeof(ct_idx), base) != CT_OK) {
-#pragma omp atomic write
-            c->err = CT_ERR_NOMEM;
-            return;
-        }
-        sk->a = p;
-    }
-    int tried = 0;
-    for (;;) {
-        bsp_f mid;
-        int ax = bsp_axis(c, box, tried, &mid);
-        if (ax < 0)
-            break;
-        tried |= 1 << ax;
-        bsp_box bl, br;
-        ct_idx m = bsp_split_nodes(c->st, n0, n1, ax, mid, &bl, &br);
-        ct_idx nl, nr;
-        ct_idx *l = sk->a + base;
-        bsp_split_segs(c->st->sb, sk->a + off, ns, &bl, &br, l, l + ns, &nl, &nr);
-        if (nl == ns && nr == ns)
-            continue; /* no reduction: try another axis */
-        /* Pack the right list after the left one. */
-        memmove(l + nl, l + ns, (size_t)nr * sizeof *l);
-        size_t nb = base + (size_t)nl + (size_t)nr;
-        bsp_serial(c, sk, n0, m, &bl, base, nl, nb, depth + 1);
-        bsp_serial(c, sk, m, n1, &br, base + (size_t)nl, nr, nb, depth + 1);
+    if (!bsp_stack_room(c, sk, base + 2 * (size_t)ns, base))
+        return;
+    ct_idx *l = sk->a + base;
+    bsp_cut k;
+    if (!bsp_split(c, n0, n1, box, sk->a + off, ns, l, l + ns, &k)) {
+        cti_bsp_leaf(c, n0, n1, sk->a + off, ns);
         return;
     }
-    bsp_leaf(c, n0, n1, sk->a + off, ns);
+    /* Pack the right list after the left one. */
+    memmove(l + k.nl, l + ns, (size_t)k.nr * sizeof *l);
+    size_t nb = base + (size_t)k.nl + (size_t)k.nr;
+    bsp_serial(c, sk, n0, k.m, &k.bl, base, k.nl, nb, depth + 1);
+    bsp_serial(c, sk, k.m, n1, &k.br, base + (size_t)k.nl, k.nr, nb, depth + 1);
 }
 
 /* Room for n entries in the shared arena, or NULL (and the overflow flag). */
@@ -483,89 +325,39 @@ static void bsp_task(bsp_ctx *c, ct_idx n0, ct_idx n1, bsp_box box, const ct_idx
     if ((int64_t)(n1 - n0) + ns < c->task_min) {
         /* Run the subtree here: copy the list to this thread's stack. */
         bsp_stack *sk = &c->st->stk[cti_thread_id()];
-        if ((size_t)ns > sk->cap) {
-            void *p = sk->a;
-            if (cti_grow(&p, &sk->cap, (size_t)ns, sizeof(ct_idx), 0) != CT_OK) {
-#pragma omp atomic write
-                c->err = CT_ERR_NOMEM;
-                return;
-            }
-            sk->a = p;
-        }
+        if (!bsp_stack_room(c, sk, (size_t)ns, 0))
+            return;
         memcpy(sk->a, segs, (size_t)ns * sizeof *segs);
         bsp_serial(c, sk, n0, n1, &box, 0, ns, (size_t)ns, depth);
         return;
     }
     if (bsp_is_leaf(c, n1 - n0, ns, depth)) {
-        bsp_leaf(c, n0, n1, segs, ns);
+        cti_bsp_leaf(c, n0, n1, segs, ns);
         return;
     }
     /* Split into this thread's stack (no task switch can happen until the
      * lists are copied), then move the exact lists into the shared arena. */
     bsp_stack *sk = &c->st->stk[cti_thread_id()];
-    if (2 * (size_t)ns > sk->cap) {
-        void *p = sk->a;
-        if (cti_grow(&p, &sk->cap, 2 * (size_t)ns, sizeof(ct_idx), 0) != CT_OK) {
-#pragma omp atomic write
-            c->err = CT_ERR_NOMEM;
-            return;
-        }
-        sk->a = p;
-    }
-    int tried = 0;
-    for (;;) {
-        bsp_f mid;
-        int ax = bsp_axis(c, &box, tried, &mid);
-        if (ax < 0)
-            break;
-        tried |= 1 << ax;
-        bsp_box bl, br;
-        ct_idx m = bsp_split_nodes(c->st, n0, n1, ax, mid, &bl, &br);
-        ct_idx nl, nr;
-        bsp_split_segs(c->st->sb, segs, ns, &bl, &br, sk->a, sk->a + ns, &nl, &nr);
-        if (nl == ns && nr == ns)
-            continue;
-        ct_idx *l = bsp_arena(c, (size_t)nl + (size_t)nr);
-        if (!l)
-            return;
-        memcpy(l, sk->a, (size_t)nl * sizeof *l);
-        memcpy(l + nl, sk->a + ns, (size_t)nr * sizeof *l);
-        const ct_idx *r = l + nl;
-#pragma omp task default(none) firstprivate(c, n0, m, bl, l, nl, depth)
-        bsp_task(c, n0, m, bl, l, nl, depth + 1);
-#pragma omp task default(none) firstprivate(c, m, n1, br, r, nr, depth)
-        bsp_task(c, m, n1, br, r, nr, depth + 1);
-#pragma omp taskwait
+    if (!bsp_stack_room(c, sk, 2 * (size_t)ns, 0))
+        return;
+    bsp_cut k;
+    if (!bsp_split(c, n0, n1, &box, segs, ns, sk->a, sk->a + ns, &k)) {
+        cti_bsp_leaf(c, n0, n1, segs, ns);
         return;
     }
-    bsp_leaf(c, n0, n1, segs, ns);
-}
-
-/* Inflated, slightly widened segment boxes in tree coordinates. The bounds
- * are computed as the predicate computes them, then shifted by the origin
- * and rounded outward to float; a NaN bound becomes infinite so such a
- * segment reaches every leaf and the predicate decides. */
-static void bsp_seg_boxes(const ct_search_input *in, ct_real d, const double o[3],
-                          bsp_f *restrict sb)
-{
-    const ct_real *restrict x = in->x, *restrict y = in->y, *restrict z = in->z;
-    const ct_real w = 8 * CTI_EPS;
-#pragma omp parallel for schedule(static)
-    for (ct_idx j = 0; j < in->nseg; j++) {
-        const ct_real *cc[3] = {x, y, z};
-        ct_idx i1 = in->n1[j], i2 = in->n2[j], i3 = in->n3[j], i4 = in->n4[j];
-        for (int k = 0; k < 3; k++) {
-            const ct_real *v = cc[k];
-            ct_real a = v[i1], b = v[i2], e = v[i3], f = v[i4];
-            ct_real lo = CTI_MIN(CTI_MIN(a, b), CTI_MIN(e, f));
-            ct_real hi = CTI_MAX(CTI_MAX(a, b), CTI_MAX(e, f));
-            ct_real l = lo - d, h = hi + d;
-            l -= w * (CTI_FABS(lo) + d);
-            h += w * (CTI_FABS(hi) + d);
-            sb[6 * (size_t)j + k] = l == l ? bsp_down((double)l - o[k]) : -(bsp_f)INFINITY;
-            sb[6 * (size_t)j + 3 + k] = h == h ? bsp_up((double)h - o[k]) : (bsp_f)INFINITY;
-        }
-    }
+    const ct_idx m = k.m, nl = k.nl, nr = k.nr;
+    const bsp_box bl = k.bl, br = k.br;
+    ct_idx *l = bsp_arena(c, (size_t)nl + (size_t)nr);
+    if (!l)
+        return;
+    memcpy(l, sk->a, (size_t)nl * sizeof *l);
+    memcpy(l + nl, sk->a + ns, (size_t)nr * sizeof *l);
+    const ct_idx *r = l + nl;
+#pragma omp task default(none) firstprivate(c, n0, m, bl, l, nl, depth)
+    bsp_task(c, n0, m, bl, l, nl, depth + 1);
+#pragma omp task default(none) firstprivate(c, m, n1, br, r, nr, depth)
+    bsp_task(c, m, n1, br, r, nr, depth + 1);
+#pragma omp taskwait
 }
 
 int cti_search_bsp(ct_search *s, const ct_search_input *in, ct_pairs *out)
@@ -588,90 +380,11 @@ int cti_search_bsp(ct_search *s, const ct_search_input *in, ct_pairs *out)
     c.task_min =
         CTI_MAX((int64_t)4096, ((int64_t)nsec + nseg) / (BSP_TASKS_PER_THREAD * (int64_t)nt));
 
-    /* Tree coordinates are float, relative to an origin inside the model
-     * (a corner of the first segment) so that they keep their precision
-     * whatever the offset of the model. */
-    c.o[0] = c.o[1] = c.o[2] = 0;
-    if (nseg > 0) {
-        ct_idx a = in->n1[0];
-        double q[3] = {(double)in->x[a], (double)in->y[a], (double)in->z[a]};
-        if (isfinite(q[0]) && isfinite(q[1]) && isfinite(q[2]))
-            c.o[0] = q[0], c.o[1] = q[1], c.o[2] = q[2];
-    }
-    bsp_seg_boxes(in, c.d, c.o, st->sb);
-
-    /* The union of the segment boxes (per fixed block, so the result does
-     * not depend on the thread count; min and max are exact anyway). */
-    bsp_box ub[BSP_BLOCKS], nbx[BSP_BLOCKS];
-    const int64_t sbl = ((int64_t)nseg + BSP_BLOCKS - 1) / BSP_BLOCKS;
-#pragma omp parallel for schedule(static)
-    for (int b = 0; b < BSP_BLOCKS; b++) {
-        box_empty(&ub[b]);
-        int64_t lo = b * sbl, hi = CTI_MIN((int64_t)nseg, lo + sbl);
-        for (int64_t j = lo; j < hi; j++) {
-            const bsp_f *q = st->sb + 6 * j;
-            box_add(&ub[b], q[0], q[1], q[2]);
-            box_add(&ub[b], q[3], q[4], q[5]);
-        }
-    }
-    bsp_box u;
-    box_empty(&u);
-    for (int b = 0; b < BSP_BLOCKS; b++) {
-        box_add(&u, ub[b].lo[0], ub[b].lo[1], ub[b].lo[2]);
-        box_add(&u, ub[b].hi[0], ub[b].hi[1], ub[b].hi[2]);
-    }
-
-    /* Keep the nodes inside that union (the others cannot pair), in block
-     * order: count, prefix, scatter. NaN coordinates fail the test. */
-    int64_t *cnt = st->blk;
-    const int64_t nbl = ((int64_t)nsec + BSP_BLOCKS - 1) / BSP_BLOCKS;
-    const ct_real *restrict x = in->x, *restrict y = in->y, *restrict z = in->z;
-#define BSP_INSIDE(p, q, r)                                                                \
-    ((p) >= u.lo[0] && (p) <= u.hi[0] && (q) >= u.lo[1] && (q) <= u.hi[1] &&              \
-     (r) >= u.lo[2] && (r) <= u.hi[2])
-#pragma omp parallel for schedule(static)
-    for (int b = 0; b < BSP_BLOCKS; b++) {
-        int64_t lo = b * nbl, hi = CTI_MIN((int64_t)nsec, lo + nbl), n = 0;
-        for (int64_t i = lo; i < hi; i++) {
-            ct_idx k = in->sec[i];
-            bsp_f p = (bsp_f)((double)x[k] - c.o[0]), q = (bsp_f)((double)y[k] - c.o[1]);
-            bsp_f r = (bsp_f)((double)z[k] - c.o[2]);
-            n += BSP_INSIDE(p, q, r);
-        }
-        cnt[b] = n;
-    }
-    int64_t run = 0;
-    for (int b = 0; b < BSP_BLOCKS; b++) {
-        int64_t t = cnt[b];
-        cnt[b] = run;
-        run += t;
-    }
-    const ct_idx nkeep = (ct_idx)run;
-#pragma omp parallel for schedule(static)
-    for (int b = 0; b < BSP_BLOCKS; b++) {
-        int64_t lo = b * nbl, hi = CTI_MIN((int64_t)nsec, lo + nbl), o = cnt[b];
-        box_empty(&nbx[b]);
-        for (int64_t i = lo; i < hi; i++) {
-            ct_idx k = in->sec[i];
-            bsp_f p = (bsp_f)((double)x[k] - c.o[0]), q = (bsp_f)((double)y[k] - c.o[1]);
-            bsp_f r = (bsp_f)((double)z[k] - c.o[2]);
-            if (BSP_INSIDE(p, q, r)) {
-                st->nx[o] = p;
-                st->ny[o] = q;
-                st->nz[o] = r;
-                st->nid[o] = (ct_idx)i;
-                o++;
-                box_add(&nbx[b], p, q, r);
-            }
-        }
-    }
-#undef BSP_INSIDE
+    /* Tree coordinates (search_bsp_leaf.c): the segment boxes, and the
+     * nodes that can pair with their tight box, the root. */
     bsp_box root;
-    box_empty(&root);
-    for (int b = 0; b < BSP_BLOCKS; b++) {
-        box_add(&root, nbx[b].lo[0], nbx[b].lo[1], nbx[b].lo[2]);
-        box_add(&root, nbx[b].hi[0], nbx[b].hi[1], nbx[b].hi[2]);
-    }
+    const ct_idx nkeep = cti_bsp_tree_coords(&c, &root);
+    const int64_t sbl = ((int64_t)nseg + BSP_BLOCKS - 1) / BSP_BLOCKS;
 
     for (;;) {
         rc = cti_collect_begin(c.col, nsec);

@@ -39,11 +39,47 @@ static int cti_dt_result(ct_idx n, ct_real best, ct_idx bi, ct_idx nan_idx, ct_r
     return CT_OK;
 }
 
-int ct_dt_nodal(ct_idx n, const ct_idx *idx, const ct_real *m, const ct_real *kelem,
-                const ct_real *kcont, ct_real *dt, ct_real *dtmin, ct_idx *imin)
+/* The inputs of the per-item limits. */
+struct cti_dt_nodal_in {
+    const ct_idx *idx;
+    const ct_real *m, *kelem, *kcont;
+};
+struct cti_dt_type7_in {
+    const ct_real *p, *g, *vn;
+};
+enum { CTI_DT_NODAL, CTI_DT_TYPE7 };
+struct cti_dt_in {
+    int kind; /* CTI_DT_NODAL or CTI_DT_TYPE7: which of the two is read */
+    struct cti_dt_nodal_in nodal;
+    struct cti_dt_type7_in type7;
+};
+
+/* The nodal step of node i (ct_dt_nodal); *nan is set if an input is NaN. */
+static inline ct_real cti_dt_nodal_item(const struct cti_dt_nodal_in *in, ct_idx i, int *nan)
 {
-    if (n < 0 || (n > 0 && (!m || !kcont)))
-        return CT_ERR_ARG;
+    ct_idx j = in->idx ? in->idx[i] : i;
+    ct_real mi = in->m[j], k = (in->kelem ? in->kelem[j] : 0) + in->kcont[i];
+    *nan = mi != mi || k != k;
+    return (mi > 0 && k > 0) ? CTI_SQRT((ct_real)2 * mi / k) : CT_DT_NONE;
+}
+
+/* The TYPE7 kinematic step of pair i (ct_dt_type7_kinematic). */
+static inline ct_real cti_dt_type7_item(const struct cti_dt_type7_in *in, ct_idx i, int *nan)
+{
+    const ct_real xc = (ct_real)1 - (ct_real)CT_TYPE7_RMIN;
+    ct_real pi = in->p[i], gi = in->g[i], v = in->vn[i];
+    int lim = pi > 0 && gi > 0 && pi < gi * xc && v < 0;
+    *nan = pi != pi || gi != gi || v != v;
+    return lim ? (gi - pi) / ((ct_real)2 * -v) : CT_DT_NONE;
+}
+
+/* The scan shared by the per-item limits: dt[i] = the step of item i
+ * (CT_DT_NONE where an input is NaN), the minimum and its lowest index, or
+ * CT_ERR_NONFINITE with the first NaN item. (The kind is tested inside the
+ * loop, which the compiler unswitches: no indirect call per item.) */
+static int cti_dt_scan(ct_idx n, const struct cti_dt_in *in, ct_real *dt, ct_real *dtmin,
+                       ct_idx *imin)
+{
     ct_real best = CT_DT_NONE;
     ct_idx bi = -1, nan_idx = n;
 #pragma omp parallel if (n > CTI_PAR_MIN)
@@ -52,10 +88,10 @@ int ct_dt_nodal(ct_idx n, const ct_idx *idx, const ct_real *m, const ct_real *ke
         ct_idx li = -1, ln = n;
 #pragma omp for schedule(static) nowait
         for (ct_idx i = 0; i < n; i++) {
-            ct_idx j = idx ? idx[i] : i;
-            ct_real mi = m[j], k = (kelem ? kelem[j] : 0) + kcont[i];
-            ct_real d = (mi > 0 && k > 0) ? CTI_SQRT((ct_real)2 * mi / k) : CT_DT_NONE;
-            if (mi != mi || k != k) {
+            int nan = 0;
+            ct_real d = in->kind == CTI_DT_NODAL ? cti_dt_nodal_item(&in->nodal, i, &nan)
+                                                 : cti_dt_type7_item(&in->type7, i, &nan);
+            if (nan) {
                 ln = i < ln ? i : ln;
                 d = CT_DT_NONE;
             }
@@ -70,6 +106,15 @@ int ct_dt_nodal(ct_idx n, const ct_idx *idx, const ct_real *m, const ct_real *ke
         cti_dt_fold(lb, li, ln, &best, &bi, &nan_idx);
     }
     return cti_dt_result(n, best, bi, nan_idx, dtmin, imin);
+}
+
+int ct_dt_nodal(ct_idx n, const ct_idx *idx, const ct_real *m, const ct_real *kelem,
+                const ct_real *kcont, ct_real *dt, ct_real *dtmin, ct_idx *imin)
+{
+    if (n < 0 || (n > 0 && (!m || !kcont)))
+        return CT_ERR_ARG;
+    const struct cti_dt_in in = {.kind = CTI_DT_NODAL, .nodal = {idx, m, kelem, kcont}};
+    return cti_dt_scan(n, &in, dt, dtmin, imin);
 }
 
 ct_real ct_type7_tangent(ct_real K0, ct_real g, ct_real p)
@@ -88,33 +133,8 @@ int ct_dt_type7_kinematic(ct_idx npair, const ct_real *p, const ct_real *g,
 {
     if (npair < 0 || (npair > 0 && (!p || !g || !vn)))
         return CT_ERR_ARG;
-    const ct_real xc = (ct_real)1 - (ct_real)CT_TYPE7_RMIN;
-    ct_real best = CT_DT_NONE;
-    ct_idx bi = -1, nan_idx = npair;
-#pragma omp parallel if (npair > CTI_PAR_MIN)
-    {
-        ct_real lb = CT_DT_NONE;
-        ct_idx li = -1, ln = npair;
-#pragma omp for schedule(static) nowait
-        for (ct_idx i = 0; i < npair; i++) {
-            ct_real pi = p[i], gi = g[i], v = vn[i];
-            int lim = pi > 0 && gi > 0 && pi < gi * xc && v < 0;
-            ct_real d = lim ? (gi - pi) / ((ct_real)2 * -v) : CT_DT_NONE;
-            if (pi != pi || gi != gi || v != v) {
-                ln = i < ln ? i : ln;
-                d = CT_DT_NONE;
-            }
-            if (dt)
-                dt[i] = d;
-            if (d < lb) {
-                lb = d;
-                li = i;
-            }
-        }
-#pragma omp critical(cti_dt)
-        cti_dt_fold(lb, li, ln, &best, &bi, &nan_idx);
-    }
-    return cti_dt_result(npair, best, bi, nan_idx, dtmin, imin);
+    const struct cti_dt_in in = {.kind = CTI_DT_TYPE7, .type7 = {p, g, vn}};
+    return cti_dt_scan(npair, &in, dt, dtmin, imin);
 }
 
 ct_real ct_dt_type6(ct_real mmin, ct_real p, ct_idx ncurve, const ct_real *cx,

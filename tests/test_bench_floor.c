@@ -9,11 +9,11 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include "floor.h"
 #include "meshgen.h"
+#include "test_run.h"
 #include "test_util.h"
 
 /* Byte counts are integers far below 2^53: exact in double. */
@@ -112,27 +112,6 @@ static const char *write_file(const char *dir, const char *name, const char *tex
     return path;
 }
 
-static char *run_cmd(const char *cmd, int *status)
-{
-    FILE *p = popen(cmd, "r");
-    cr_assert(p != NULL, "popen(%s) failed", cmd);
-    size_t cap = 1 << 16, len = 0, got;
-    char *buf = malloc(cap);
-    cr_assert(buf != NULL);
-    while ((got = fread(buf + len, 1, cap - 1 - len, p)) > 0) {
-        len += got;
-        if (len + 1 == cap) {
-            cap *= 2;
-            buf = realloc(buf, cap);
-            cr_assert(buf != NULL);
-        }
-    }
-    buf[len] = '\0';
-    int st = pclose(p);
-    *status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-    return buf;
-}
-
 #define KROW(name, ns, extra)                                                                 \
     "{\"name\": \"" name "\", \"run_name\": \"" name "\", \"run_type\": \"iteration\", "      \
     "\"real_time\": 1000, \"time_unit\": \"ns\", \"ns_per_pair\": " #ns ", "                  \
@@ -177,7 +156,7 @@ Test(bench_floor, report_merges_precisions)
     write_file(dir, "s.json", sgl, p2, sizeof p2);
     snprintf(cmd, sizeof cmd, "python3 bench/report.py %s %s 2>&1", p1, p2);
     int status = -1;
-    char *out = run_cmd(cmd, &status);
+    char *out = ctt_run_cmd(cmd, &status);
     cr_assert_eq(status, 0, "report.py failed:\n%s", out);
     const char *row = "| narrow/4tri | node-quad 4tri | 1000 | 12.0 | 8.0 | 75% | 6.0 | 4.0 | "
                       "75% | 2.00 |";

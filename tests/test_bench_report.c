@@ -11,9 +11,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
+#include "test_run.h"
 #include "test_util.h"
 
 #define REPORT "bench/report.py"
@@ -27,24 +27,7 @@ static char *run_report(const char *arg, int *status)
               "%s not found: run the tests from the repository's top directory", REPORT);
     char cmd[512];
     snprintf(cmd, sizeof cmd, "python3 %s %s 2>&1", REPORT, arg);
-    FILE *p = popen(cmd, "r");
-    cr_assert(p != NULL, "popen(%s) failed", cmd);
-    size_t cap = 1 << 16, len = 0;
-    char *buf = malloc(cap);
-    cr_assert(buf != NULL);
-    size_t got;
-    while ((got = fread(buf + len, 1, cap - 1 - len, p)) > 0) {
-        len += got;
-        if (len + 1 == cap) {
-            cap *= 2;
-            buf = realloc(buf, cap);
-            cr_assert(buf != NULL);
-        }
-    }
-    buf[len] = '\0';
-    int st = pclose(p);
-    *status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-    return buf;
+    return ctt_run_cmd(cmd, status);
 }
 
 static void expect_line(const char *out, const char *line)

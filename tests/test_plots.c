@@ -15,9 +15,9 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
+#include "test_run.h"
 #include "test_util.h"
 
 #define PLOTS "bench/plots.py"
@@ -61,23 +61,7 @@ static char *run_plots(const plot_dir *d, const char *files, int *status)
     char cmd[512];
     snprintf(cmd, sizeof cmd, "python3 %s %s --out '%s' --data '%s' 2>&1", PLOTS, files, d->out,
              d->data);
-    FILE *p = popen(cmd, "r");
-    cr_assert(p != NULL, "popen(%s) failed", cmd);
-    size_t cap = 1 << 16, len = 0, got;
-    char *buf = malloc(cap);
-    cr_assert(buf != NULL);
-    while ((got = fread(buf + len, 1, cap - 1 - len, p)) > 0) {
-        len += got;
-        if (len + 1 == cap) {
-            cap *= 2;
-            buf = realloc(buf, cap);
-            cr_assert(buf != NULL);
-        }
-    }
-    buf[len] = '\0';
-    int st = pclose(p);
-    *status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-    return buf;
+    return ctt_run_cmd(cmd, status);
 }
 
 static char *read_text(const char *path)

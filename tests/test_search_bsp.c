@@ -6,74 +6,31 @@
 #include <stdint.h>
 #include <string.h>
 
-#include "test_util.h"
-
-typedef struct bscene {
-    ct_idx nn, ns, nsec, capn, caps;
-    ct_real *x, *y, *z;
-    ct_idx *n1, *n2, *n3, *n4, *sec;
-} bscene;
-
-static void bs_init(bscene *s, ct_idx capn, ct_idx caps)
-{
-    memset(s, 0, sizeof *s);
-    s->capn = capn;
-    s->caps = caps;
-    s->x = calloc((size_t)capn + 1, sizeof(ct_real));
-    s->y = calloc((size_t)capn + 1, sizeof(ct_real));
-    s->z = calloc((size_t)capn + 1, sizeof(ct_real));
-    s->sec = calloc((size_t)capn + 1, sizeof(ct_idx));
-    s->n1 = calloc((size_t)caps + 1, sizeof(ct_idx));
-    s->n2 = calloc((size_t)caps + 1, sizeof(ct_idx));
-    s->n3 = calloc((size_t)caps + 1, sizeof(ct_idx));
-    s->n4 = calloc((size_t)caps + 1, sizeof(ct_idx));
-}
-
-static void bs_free(bscene *s)
-{
-    free(s->x), free(s->y), free(s->z), free(s->sec);
-    free(s->n1), free(s->n2), free(s->n3), free(s->n4);
-}
-
-static ct_idx bs_node(bscene *s, double x, double y, double z)
-{
-    cr_assert_lt(s->nn, s->capn);
-    s->x[s->nn] = (ct_real)x, s->y[s->nn] = (ct_real)y, s->z[s->nn] = (ct_real)z;
-    return s->nn++;
-}
-
-static void bs_seg(bscene *s, ct_idx a, ct_idx b, ct_idx c, ct_idx d)
-{
-    cr_assert_lt(s->ns, s->caps);
-    s->n1[s->ns] = a, s->n2[s->ns] = b, s->n3[s->ns] = c, s->n4[s->ns] = d;
-    s->ns++;
-}
-
-static void bs_sec(bscene *s, ct_idx node) { s->sec[s->nsec++] = node; }
+#include "test_search_scene.h"
 
 /* Grid of nodes x = xs[i], y = ys[j] at height z; segments (quads, or two
  * triangles per cell) when segs. Returns the first node. */
-static ct_idx bs_grid(bscene *s, int nx, int ny, const double *xs, const double *ys, double z,
+static ct_idx bs_grid(ctt_scene *s, int nx, int ny, const double *xs, const double *ys, double z,
                       int segs, int tri)
 {
     ct_idx base = s->nn;
     for (int j = 0; j < ny; j++)
         for (int i = 0; i < nx; i++)
-            bs_node(s, xs[i], ys[j], z);
+            ctt_scene_node(s, xs[i], ys[j], z);
     for (int j = 0; segs && j + 1 < ny; j++)
         for (int i = 0; i + 1 < nx; i++) {
             ct_idx a = base + j * nx + i, b = a + 1, c = a + nx + 1, d = a + nx;
             if (tri) {
-                bs_seg(s, a, b, c, c);
-                bs_seg(s, a, c, d, d);
+                ctt_scene_seg(s, a, b, c, c);
+                ctt_scene_seg(s, a, c, d, d);
             } else {
-                bs_seg(s, a, b, c, d);
+                ctt_scene_seg(s, a, b, c, d);
             }
         }
     return base;
 }
 
-static ct_idx bs_plate(bscene *s, int nx, int ny, double ox, double oy, double z, double h,
+static ct_idx bs_plate(ctt_scene *s, int nx, int ny, double ox, double oy, double z, double h,
                        int segs, int tri)
 {
     double *xs = malloc(sizeof(double) * (size_t)nx), *ys = malloc(sizeof(double) * (size_t)ny);
@@ -89,13 +46,13 @@ static ct_idx bs_plate(bscene *s, int nx, int ny, double ox, double oy, double z
 
 /* The classic two plates: main quads (or triangles) at z = 0, a node plate
  * at z = dz shifted in-plane by (0.25, 0.35) element. */
-static void bs_two_plates(bscene *s, int n, double dz, int tri)
+static void bs_two_plates(ctt_scene *s, int n, double dz, int tri)
 {
-    bs_init(s, 2 * n * n, 2 * n * n);
+    ctt_scene_init(s, 2 * n * n, 2 * n * n);
     bs_plate(s, n, n, 0, 0, 0, 1.0, 1, tri);
     ct_idx b = bs_plate(s, n, n, 0.25, 0.35, dz, 1.0, 0, 0);
     for (ct_idx i = 0; i < n * n; i++)
-        bs_sec(s, b + i);
+        ctt_scene_sec(s, b + i);
 }
 
 static uint64_t rng_state;
@@ -105,40 +62,6 @@ static double rnd(void)
     return (double)(rng_state >> 11) / 9007199254740992.0;
 }
 
-static ct_search_input bs_input(const bscene *s, double gap, double margin, int self)
-{
-    ct_search_input in;
-    memset(&in, 0, sizeof in);
-    in.nnode = s->nn;
-    in.x = s->x, in.y = s->y, in.z = s->z;
-    in.nsec = s->nsec, in.sec = s->sec;
-    in.nseg = s->ns;
-    in.n1 = s->n1, in.n2 = s->n2, in.n3 = s->n3, in.n4 = s->n4;
-    in.gap = (ct_real)gap, in.margin = (ct_real)margin;
-    in.self = self;
-    in.filter = CT_FILTER_HULL;
-    return in;
-}
-
-static void run_algo(ct_search_algo a, int leaf, double minbox, const ct_search_input *in,
-                     ct_pairs *out)
-{
-    ct_search_params p = ct_search_default_params(a);
-    p.leaf_size = leaf;
-    p.min_box = minbox;
-    ct_search *s;
-    cr_assert_eq(ct_search_init(&s, &p), CT_OK);
-    int rc = ct_search_run(s, in, out);
-    cr_assert_eq(rc, CT_OK, "%s search failed: %s", ct_search_algo_name(a), ct_strerror(rc));
-    ct_search_destroy(s);
-}
-
-static int same_pairs(const ct_pairs *a, const ct_pairs *b)
-{
-    return a->n == b->n && memcmp(a->node, b->node, sizeof(ct_idx) * (size_t)a->n) == 0 &&
-           memcmp(a->seg, b->seg, sizeof(ct_idx) * (size_t)a->n) == 0;
-}
-
 /* bsp (default parameters and a few leaf sizes / box thresholds) against
  * direct; returns the number of pairs. */
 static ct_idx check_bsp(const ct_search_input *in, const char *what)
@@ -146,15 +69,15 @@ static ct_idx check_bsp(const ct_search_input *in, const char *what)
     ct_pairs ref, got;
     ct_pairs_init(&ref, 0);
     ct_pairs_init(&got, 0);
-    run_algo(CT_SEARCH_DIRECT, 0, 0, in, &ref);
+    ctt_search_tuned(CT_SEARCH_DIRECT, 0, 0, in, &ref);
     const int leaves[] = {0, 1, 7, 1000};
     const double boxes[] = {0, 1e-3, 0.7};
     for (int a = 0; a < 4; a++)
         for (int b = 0; b < 3; b++) {
             if (a > 0 && b > 0 && a != b)
                 continue; /* a representative set of combinations */
-            run_algo(CT_SEARCH_BSP, leaves[a], boxes[b], in, &got);
-            cr_assert(same_pairs(&ref, &got),
+            ctt_search_tuned(CT_SEARCH_BSP, leaves[a], boxes[b], in, &got);
+            cr_assert(ctt_same_pairs(&ref, &got),
                       "%s: bsp (leaf %d, min_box %g) gives %d pairs, direct %d (or a different "
                       "list)",
                       what, leaves[a], boxes[b], got.n, ref.n);
@@ -169,12 +92,12 @@ static int small(void) { return ctt_checking(); }
 
 Test(search_bsp, two_plates_several_gaps)
 {
-    bscene s;
+    ctt_scene s;
     int n = small() ? 14 : 40;
     bs_two_plates(&s, n, 0.3, 0);
     const double gaps[] = {0.0, 0.1, 0.25, 0.45, 1.0, 2.6};
     for (int g = 0; g < 6; g++) {
-        ct_search_input in = bs_input(&s, gaps[g], 0.05, 0);
+        ct_search_input in = ctt_scene_input(&s, gaps[g], 0.05, 0);
         ct_idx np = check_bsp(&in, "two plates");
         /* Not vacuous: from gap + margin 0.3 on every node has its quad. */
         if (gaps[g] + 0.05 >= 0.3)
@@ -182,130 +105,132 @@ Test(search_bsp, two_plates_several_gaps)
         else
             cr_assert_eq(np, 0);
     }
-    bs_free(&s);
+    ctt_scene_free(&s);
 }
 
 Test(search_bsp, triangles)
 {
-    bscene s;
+    ctt_scene s;
     bs_two_plates(&s, small() ? 12 : 35, 0.2, 1);
     for (int g = 0; g < 3; g++) {
-        ct_search_input in = bs_input(&s, 0.15 + 0.3 * g, 0.1, 0);
+        ct_search_input in = ctt_scene_input(&s, 0.15 + 0.3 * g, 0.1, 0);
         cr_assert_gt(check_bsp(&in, "triangles"), 0);
     }
-    bs_free(&s);
+    ctt_scene_free(&s);
 }
 
 /* A sheet folded back over itself (z = 0 going out, z = 0.3 coming back):
  * self contact, every node a secondary of the same surface. */
 Test(search_bsp, folded_sheet_self_contact)
 {
-    bscene s;
+    ctt_scene s;
     int n = small() ? 10 : 24, w = small() ? 6 : 12;
     int nu = 2 * n + 1;
-    bs_init(&s, nu * w, nu * w);
+    ctt_scene_init(&s, nu * w, nu * w);
     for (int j = 0; j < w; j++)
         for (int i = 0; i < nu; i++) {
             double u = i <= n ? i : 2 * n - i + 0.5;
             double z = i <= n ? 0 : 0.3;
-            bs_node(&s, u * 0.5, j * 0.5, z);
+            ctt_scene_node(&s, u * 0.5, j * 0.5, z);
         }
     for (int j = 0; j + 1 < w; j++)
         for (int i = 0; i + 1 < nu; i++) {
             ct_idx a = j * nu + i;
-            bs_seg(&s, a, a + 1, a + nu + 1, a + nu);
+            ctt_scene_seg(&s, a, a + 1, a + nu + 1, a + nu);
         }
     for (ct_idx i = 0; i < s.nn; i++)
-        bs_sec(&s, i);
-    ct_search_input in = bs_input(&s, 0.25, 0.1, 1);
+        ctt_scene_sec(&s, i);
+    ct_search_input in = ctt_scene_input(&s, 0.25, 0.1, 1);
     ct_idx np = check_bsp(&in, "folded self");
     cr_assert_gt(np, 0);
-    bs_free(&s);
+    ctt_scene_free(&s);
 }
 
 /* Every secondary in one tiny box (1e-9 wide), and all at one point. */
 Test(search_bsp, all_nodes_in_one_tiny_box)
 {
-    bscene s;
-    bs_init(&s, 2000, 400);
+    ctt_scene s;
+    ctt_scene_init(&s, 2000, 400);
     bs_plate(&s, 12, 12, -5, -5, 0, 1.0, 1, 0);
     rng_state = 7;
     for (int i = 0; i < 500; i++)
-        bs_sec(&s, bs_node(&s, 0.3 + 1e-9 * rnd(), 0.2 + 1e-9 * rnd(), 0.1 + 1e-9 * rnd()));
+        ctt_scene_sec(&s, ctt_scene_node(&s, 0.3 + 1e-9 * rnd(), 0.2 + 1e-9 * rnd(),
+                                         0.1 + 1e-9 * rnd()));
     for (int i = 0; i < 500; i++)
-        bs_sec(&s, bs_node(&s, 1.5, 1.5, 0.2));
-    ct_search_input in = bs_input(&s, 0.2, 0.05, 0);
+        ctt_scene_sec(&s, ctt_scene_node(&s, 1.5, 1.5, 0.2));
+    ct_search_input in = ctt_scene_input(&s, 0.2, 0.05, 0);
     ct_idx np = check_bsp(&in, "tiny box");
     cr_assert_geq(np, 1000); /* every node is over a quad at 0.1 or 0.2 */
     in.margin = 0;
     in.gap = 0;
     check_bsp(&in, "tiny box, zero gap");
-    bs_free(&s);
+    ctt_scene_free(&s);
 }
 
 /* Coplanar (nodes in the plane of the segments) and collinear nodes. */
 Test(search_bsp, coplanar_and_collinear)
 {
-    bscene s;
-    bs_init(&s, 2000, 400);
+    ctt_scene s;
+    ctt_scene_init(&s, 2000, 400);
     bs_plate(&s, 15, 15, 0, 0, 0, 1.0, 1, 0);
     rng_state = 11;
     for (int i = 0; i < 300; i++)
-        bs_sec(&s, bs_node(&s, 16 * rnd() - 0.5, 16 * rnd() - 0.5, 0.0)); /* coplanar */
+        /* coplanar */
+        ctt_scene_sec(&s, ctt_scene_node(&s, 16 * rnd() - 0.5, 16 * rnd() - 0.5, 0.0));
     for (int i = 0; i < 300; i++)
-        bs_sec(&s, bs_node(&s, 0.05 * i - 0.5, 3.5, 0.2)); /* collinear along x */
+        ctt_scene_sec(&s, ctt_scene_node(&s, 0.05 * i - 0.5, 3.5, 0.2)); /* collinear along x */
     for (int i = 0; i < 100; i++)
-        bs_sec(&s, bs_node(&s, 7.0, 7.0, 0.01 * i)); /* collinear along z */
-    ct_search_input in = bs_input(&s, 0.1, 0.1, 0);
+        ctt_scene_sec(&s, ctt_scene_node(&s, 7.0, 7.0, 0.01 * i)); /* collinear along z */
+    ct_search_input in = ctt_scene_input(&s, 0.1, 0.1, 0);
     cr_assert_gt(check_bsp(&in, "coplanar/collinear"), 300);
     /* Main nodes on one line too: degenerate (zero-area) segments. */
-    bscene t;
-    bs_init(&t, 500, 100);
+    ctt_scene t;
+    ctt_scene_init(&t, 500, 100);
     for (int i = 0; i < 40; i++)
-        bs_node(&t, 0.5 * i, 0, 0);
+        ctt_scene_node(&t, 0.5 * i, 0, 0);
     for (int i = 0; i + 3 < 40; i += 2)
-        bs_seg(&t, i, i + 1, i + 2, i + 3);
+        ctt_scene_seg(&t, i, i + 1, i + 2, i + 3);
     for (int i = 0; i < 200; i++)
-        bs_sec(&t, bs_node(&t, 0.1 * i - 0.5, 0.05 * (i % 7), 0));
-    ct_search_input it = bs_input(&t, 0.1, 0.05, 0);
+        ctt_scene_sec(&t, ctt_scene_node(&t, 0.1 * i - 0.5, 0.05 * (i % 7), 0));
+    ct_search_input it = ctt_scene_input(&t, 0.1, 0.05, 0);
     cr_assert_gt(check_bsp(&it, "collinear main"), 0);
-    bs_free(&s);
-    bs_free(&t);
+    ctt_scene_free(&s);
+    ctt_scene_free(&t);
 }
 
 /* Nodes repeated at the same coordinates (main and secondary). */
 Test(search_bsp, duplicate_coordinates)
 {
-    bscene s;
-    bs_init(&s, 3000, 600);
+    ctt_scene s;
+    ctt_scene_init(&s, 3000, 600);
     bs_plate(&s, 10, 10, 0, 0, 0, 1.0, 1, 0);
     bs_plate(&s, 10, 10, 0, 0, 0, 1.0, 1, 1); /* the same plate again, as triangles */
     for (int k = 0; k < 3; k++) {
         ct_idx b = bs_plate(&s, 10, 10, 0.5, 0.5, 0.2, 1.0, 0, 0);
         for (ct_idx i = 0; i < 100; i++)
-            bs_sec(&s, b + i);
+            ctt_scene_sec(&s, b + i);
     }
-    ct_search_input in = bs_input(&s, 0.3, 0.1, 0);
+    ct_search_input in = ctt_scene_input(&s, 0.3, 0.1, 0);
     cr_assert_gt(check_bsp(&in, "duplicates"), 300);
-    bs_free(&s);
+    ctt_scene_free(&s);
 }
 
 /* One segment 1000 times larger than the others. */
 Test(search_bsp, one_huge_segment)
 {
-    bscene s;
-    bs_init(&s, 3000, 1000);
+    ctt_scene s;
+    ctt_scene_init(&s, 3000, 1000);
     bs_plate(&s, 20, 20, 0, 0, 0, 0.1, 1, 0);
-    ct_idx a = bs_node(&s, -50, -50, 0.5), b = bs_node(&s, 50, -50, 0.5);
-    ct_idx c = bs_node(&s, 50, 50, 0.5), d = bs_node(&s, -50, 50, 0.5);
-    bs_seg(&s, a, b, c, d);
+    ct_idx a = ctt_scene_node(&s, -50, -50, 0.5), b = ctt_scene_node(&s, 50, -50, 0.5);
+    ct_idx c = ctt_scene_node(&s, 50, 50, 0.5), d = ctt_scene_node(&s, -50, 50, 0.5);
+    ctt_scene_seg(&s, a, b, c, d);
     ct_idx p = bs_plate(&s, 30, 30, -0.5, -0.5, 0.3, 0.1, 0, 0);
     for (ct_idx i = 0; i < 900; i++)
-        bs_sec(&s, p + i);
-    ct_search_input in = bs_input(&s, 0.2, 0.05, 0);
+        ctt_scene_sec(&s, p + i);
+    ct_search_input in = ctt_scene_input(&s, 0.2, 0.05, 0);
     ct_idx np = check_bsp(&in, "huge segment");
     cr_assert_geq(np, 900); /* every node is 0.2 below the huge quad */
-    bs_free(&s);
+    ctt_scene_free(&s);
 }
 
 /* The same scene offset by 1e6 (and 1e9) and scaled by 1e-6 (gap scaled
@@ -316,8 +241,8 @@ Test(search_bsp, offset_and_scaled_coordinates)
 {
     const double off[3] = {1e6, 0, 1e9}, sc[3] = {1, 1e-6, 1};
     for (int v = 0; v < 3; v++) {
-        bscene s;
-        bs_init(&s, 2000, 2000);
+        ctt_scene s;
+        ctt_scene_init(&s, 2000, 2000);
         rng_state = 99 + (uint64_t)v;
         int n = 16;
         double *xs = malloc(sizeof(double) * n);
@@ -325,50 +250,51 @@ Test(search_bsp, offset_and_scaled_coordinates)
             xs[i] = off[v] + sc[v] * i;
         bs_grid(&s, n, n, xs, xs, off[v], 1, 0);
         for (int i = 0; i < 600; i++)
-            bs_sec(&s, bs_node(&s, off[v] + sc[v] * (n * rnd() - 0.5),
-                               off[v] + sc[v] * (n * rnd() - 0.5),
-                               off[v] + sc[v] * (0.6 * rnd() - 0.3)));
+            ctt_scene_sec(&s, ctt_scene_node(&s, off[v] + sc[v] * (n * rnd() - 0.5),
+                                             off[v] + sc[v] * (n * rnd() - 0.5),
+                                             off[v] + sc[v] * (0.6 * rnd() - 0.3)));
         if (v == 2 && !CTT_SINGLE) {
-            ct_idx a = bs_node(&s, 1e40, 1e40, 1e40), b = bs_node(&s, 1e40 + 1, 1e40, 1e40);
-            ct_idx c = bs_node(&s, 1e40, 1e40 + 1, 1e40);
-            bs_seg(&s, a, b, c, c);
-            bs_sec(&s, bs_node(&s, 1e40, 1e40, 1e40));
+            ct_idx a = ctt_scene_node(&s, 1e40, 1e40, 1e40),
+                   b = ctt_scene_node(&s, 1e40 + 1, 1e40, 1e40);
+            ct_idx c = ctt_scene_node(&s, 1e40, 1e40 + 1, 1e40);
+            ctt_scene_seg(&s, a, b, c, c);
+            ctt_scene_sec(&s, ctt_scene_node(&s, 1e40, 1e40, 1e40));
         }
-        ct_search_input in = bs_input(&s, 0.2 * sc[v], 0.05 * sc[v], 0);
+        ct_search_input in = ctt_scene_input(&s, 0.2 * sc[v], 0.05 * sc[v], 0);
         const char *name[3] = {"offset 1e6", "scaled 1e-6", "offset 1e9"};
         cr_assert_gt(check_bsp(&in, name[v]), 100);
         free(xs);
-        bs_free(&s);
+        ctt_scene_free(&s);
     }
 }
 
 Test(search_bsp, empty_inputs)
 {
-    bscene s;
+    ctt_scene s;
     bs_two_plates(&s, 5, 0.1, 0);
-    ct_search_input in = bs_input(&s, 0.3, 0.1, 0);
+    ct_search_input in = ctt_scene_input(&s, 0.3, 0.1, 0);
     ct_pairs got;
     ct_pairs_init(&got, 0);
     in.nsec = 0;
-    run_algo(CT_SEARCH_BSP, 0, 0, &in, &got);
+    ctt_search_tuned(CT_SEARCH_BSP, 0, 0, &in, &got);
     cr_assert_eq(got.n, 0);
     in.nsec = s.nsec;
     in.nseg = 0;
-    run_algo(CT_SEARCH_BSP, 0, 0, &in, &got);
+    ctt_search_tuned(CT_SEARCH_BSP, 0, 0, &in, &got);
     cr_assert_eq(got.n, 0);
     in.nsec = 0;
-    run_algo(CT_SEARCH_BSP, 0, 0, &in, &got);
+    ctt_search_tuned(CT_SEARCH_BSP, 0, 0, &in, &got);
     cr_assert_eq(got.n, 0);
     ct_pairs_destroy(&got);
-    bs_free(&s);
+    ctt_scene_free(&s);
 }
 
 /* Element sizes growing geometrically by 100x across the plate in x and y. */
 Test(search_bsp, strongly_graded_mesh)
 {
-    bscene s;
+    ctt_scene s;
     int n = small() ? 20 : 45;
-    bs_init(&s, 2 * n * n, n * n);
+    ctt_scene_init(&s, 2 * n * n, n * n);
     double *xs = malloc(sizeof(double) * n);
     double r = pow(100.0, 1.0 / (n - 2)), h = 0.01;
     xs[0] = 0;
@@ -380,14 +306,14 @@ Test(search_bsp, strongly_graded_mesh)
         ys[i] = xs[i] * 0.97 + 0.003;
     ct_idx b = bs_grid(&s, n, n, ys, ys, 0.02, 0, 0);
     for (ct_idx i = 0; i < n * n; i++)
-        bs_sec(&s, b + i);
-    ct_search_input in = bs_input(&s, 0.02, 0.01, 0);
+        ctt_scene_sec(&s, b + i);
+    ct_search_input in = ctt_scene_input(&s, 0.02, 0.01, 0);
     cr_assert_gt(check_bsp(&in, "graded"), n * n / 2);
     in.gap = 0.5;
     check_bsp(&in, "graded, large gap");
     free(xs);
     free(ys);
-    bs_free(&s);
+    ctt_scene_free(&s);
 }
 
 /* Random soups: quads and triangles of random sizes and orientations,
@@ -400,39 +326,40 @@ Test(search_bsp, random_soups_many_seeds, .timeout = 120)
         int nseg = 20 + (int)(rnd() * 300), nfree = (int)(rnd() * 400);
         int self = seed % 3 == 0;
         double box = 1 + 9 * rnd();
-        bscene s;
-        bs_init(&s, 4 * nseg + nfree, nseg);
+        ctt_scene s;
+        ctt_scene_init(&s, 4 * nseg + nfree, nseg);
         for (int k = 0; k < nseg; k++) {
             double c[3] = {box * rnd(), box * rnd(), box * rnd() * (seed % 4 == 1 ? 0 : 1)};
             double size = exp(log(0.01) + rnd() * log(200.0)) * (seed % 5 == 0 ? 10 : 1);
             ct_idx v[4];
             for (int q = 0; q < 4; q++)
-                v[q] = bs_node(&s, c[0] + size * (rnd() - 0.5), c[1] + size * (rnd() - 0.5),
-                               c[2] + size * (rnd() - 0.5) * (seed % 4 == 1 ? 0 : 1));
+                v[q] = ctt_scene_node(&s, c[0] + size * (rnd() - 0.5),
+                                      c[1] + size * (rnd() - 0.5),
+                                      c[2] + size * (rnd() - 0.5) * (seed % 4 == 1 ? 0 : 1));
             if (rnd() < 0.4)
-                bs_seg(&s, v[0], v[1], v[2], v[2]);
+                ctt_scene_seg(&s, v[0], v[1], v[2], v[2]);
             else
-                bs_seg(&s, v[0], v[1], v[2], v[3]);
+                ctt_scene_seg(&s, v[0], v[1], v[2], v[3]);
         }
         for (int k = 0; k < nfree; k++)
-            bs_node(&s, box * rnd(), box * rnd(), box * rnd());
+            ctt_scene_node(&s, box * rnd(), box * rnd(), box * rnd());
         for (ct_idx i = 0; i < s.nn; i++)
             if (self || i >= 4 * nseg || rnd() < 0.2)
-                bs_sec(&s, i);
+                ctt_scene_sec(&s, i);
         double gap = rnd() < 0.2 ? 0 : box * 0.1 * rnd();
-        ct_search_input in = bs_input(&s, gap, rnd() < 0.5 ? 0 : gap * 0.3, self);
+        ct_search_input in = ctt_scene_input(&s, gap, rnd() < 0.5 ? 0 : gap * 0.3, self);
         ct_pairs ref, got;
         ct_pairs_init(&ref, 0);
         ct_pairs_init(&got, 0);
-        run_algo(CT_SEARCH_DIRECT, 0, 0, &in, &ref);
+        ctt_search_tuned(CT_SEARCH_DIRECT, 0, 0, &in, &ref);
         int leaf = (int)(rnd() * 40);
         double mb = rnd() < 0.5 ? 0 : box * 0.2 * rnd();
-        run_algo(CT_SEARCH_BSP, leaf, mb, &in, &got);
-        cr_assert(same_pairs(&ref, &got), "seed %d (self %d, leaf %d, min_box %g): %d vs %d",
+        ctt_search_tuned(CT_SEARCH_BSP, leaf, mb, &in, &got);
+        cr_assert(ctt_same_pairs(&ref, &got), "seed %d (self %d, leaf %d, min_box %g): %d vs %d",
                   seed, self, leaf, mb, got.n, ref.n);
         ct_pairs_destroy(&ref);
         ct_pairs_destroy(&got);
-        bs_free(&s);
+        ctt_scene_free(&s);
     }
 }
 
@@ -442,10 +369,10 @@ Test(search_bsp, random_soups_many_seeds, .timeout = 120)
  * buffers may still grow on later calls, as the task schedule varies). */
 Test(search_bsp, one_and_two_threads_identical)
 {
-    bscene s;
+    ctt_scene s;
     int n = small() ? 50 : 80;
     bs_two_plates(&s, n, 0.3, 0);
-    ct_search_input in = bs_input(&s, 0.3, 0.2, 0);
+    ct_search_input in = ctt_scene_input(&s, 0.3, 0.2, 0);
     ct_pairs p1, p2, ref;
     ct_pairs_init(&p1, 0);
     ct_pairs_init(&p2, 0);
@@ -461,13 +388,13 @@ Test(search_bsp, one_and_two_threads_identical)
     ctt_threads(2);
     for (int rep = 0; rep < 3; rep++) {
         cr_assert_eq(ct_search_run(w, &in, &p2), CT_OK);
-        cr_assert(same_pairs(&p1, &p2), "1 thread %d pairs, 2 threads %d", p1.n, p2.n);
+        cr_assert(ctt_same_pairs(&p1, &p2), "1 thread %d pairs, 2 threads %d", p1.n, p2.n);
     }
-    run_algo(CT_SEARCH_DIRECT, 0, 0, &in, &ref);
-    cr_assert(same_pairs(&ref, &p1));
+    ctt_search_tuned(CT_SEARCH_DIRECT, 0, 0, &in, &ref);
+    cr_assert(ctt_same_pairs(&ref, &p1));
     ct_search_destroy(w);
     ct_pairs_destroy(&p1);
     ct_pairs_destroy(&p2);
     ct_pairs_destroy(&ref);
-    bs_free(&s);
+    ctt_scene_free(&s);
 }

@@ -3,7 +3,7 @@
  * synthetic family, at several sizes, gaps and numberings, and the same
  * bytes for 1 and 2 threads.
  */
-#include "test_scene.h"
+#include "test_search_scene.h"
 
 #include <string.h>
 
@@ -113,6 +113,40 @@ Test(search_families, thread_count_does_not_change_bytes, .timeout = 240)
             ct_pairs_destroy(&p1);
             ct_pairs_destroy(&p2);
         }
+        ctd_case_destroy(&c);
+    }
+}
+
+/* Self contact: a node's own neighbourhood cannot be its closest main node
+ * (its segments are excluded), so the topological search must look across
+ * the fold. On the crushed tube, whose facing walls are smooth, it must find
+ * every pair the direct search finds; on the folded sheet it must find
+ * pairs (it used to find none) and never one the direct search rejects. */
+Test(search_families, topological_in_self_contact)
+{
+    const char *fams[] = {"tube", "folded"};
+    for (int f = 0; f < 2; f++) {
+        ctd_case c;
+        ct_diag d = {0};
+        cr_assert_eq(ctd_case_make(&c, fams[f], ctt_checking() ? 2000 : 6000, CTD_NUM_NATURAL, 1, &d),
+                     CT_OK, "%s", d.msg);
+        cr_assert_eq(c.self, 1);
+        ct_search_input in;
+        ctd_case_input(&c, (ct_real)(0.4 * c.h_mean), (ct_real)(0.1 * c.h_mean), &in);
+        ct_pairs ref, got;
+        ct_pairs_init(&ref, 0);
+        ct_pairs_init(&got, 0);
+        ctt_search(CT_SEARCH_DIRECT, &in, &ref);
+        ctt_search(CT_SEARCH_TOPO, &in, &got);
+        cr_assert_gt(ref.n, 0);
+        cr_assert_eq(missing(&got, &ref), 0, "%s: topological reports pairs direct rejects", fams[f]);
+        if (f == 0)
+            cr_assert(ctt_same_pairs(&ref, &got), "tube: topological finds %d of %d pairs", got.n, ref.n);
+        else
+            cr_assert_gt(got.n, ref.n / 4, "folded: topological finds only %d of %d pairs", got.n,
+                         ref.n);
+        ct_pairs_destroy(&ref);
+        ct_pairs_destroy(&got);
         ctd_case_destroy(&c);
     }
 }

@@ -8,95 +8,25 @@
 #include <stdint.h>
 #include <string.h>
 
-#include "test_util.h"
-
-typedef struct tscene {
-    ct_idx nn, ns, nsec, capn, caps;
-    ct_real *x, *y, *z;
-    ct_idx *n1, *n2, *n3, *n4, *sec;
-} tscene;
-
-static void ts_init(tscene *s, ct_idx capn, ct_idx caps)
-{
-    memset(s, 0, sizeof *s);
-    s->capn = capn;
-    s->caps = caps;
-    s->x = calloc((size_t)capn + 1, sizeof(ct_real));
-    s->y = calloc((size_t)capn + 1, sizeof(ct_real));
-    s->z = calloc((size_t)capn + 1, sizeof(ct_real));
-    s->sec = calloc((size_t)capn + 1, sizeof(ct_idx));
-    s->n1 = calloc((size_t)caps + 1, sizeof(ct_idx));
-    s->n2 = calloc((size_t)caps + 1, sizeof(ct_idx));
-    s->n3 = calloc((size_t)caps + 1, sizeof(ct_idx));
-    s->n4 = calloc((size_t)caps + 1, sizeof(ct_idx));
-}
-
-static void ts_free(tscene *s)
-{
-    free(s->x), free(s->y), free(s->z), free(s->sec);
-    free(s->n1), free(s->n2), free(s->n3), free(s->n4);
-}
-
-static ct_idx ts_node(tscene *s, double x, double y, double z)
-{
-    cr_assert_lt(s->nn, s->capn);
-    s->x[s->nn] = (ct_real)x, s->y[s->nn] = (ct_real)y, s->z[s->nn] = (ct_real)z;
-    return s->nn++;
-}
-
-static void ts_seg(tscene *s, ct_idx a, ct_idx b, ct_idx c, ct_idx d)
-{
-    cr_assert_lt(s->ns, s->caps);
-    s->n1[s->ns] = a, s->n2[s->ns] = b, s->n3[s->ns] = c, s->n4[s->ns] = d;
-    s->ns++;
-}
+#include "test_search_scene.h"
 
 /* Main surface: an (nx+1) x (ny+1) grid of unit quads, z = f(x); node (i, j)
  * is number j*(nx+1) + i and quad (i, j) is number j*nx + i. */
 static double curve_a;
 static double surf(double x) { return curve_a * (x - 10) * (x - 10); }
 
-static void ts_main(tscene *s, int nx, int ny)
+static void ts_main(ctt_scene *s, int nx, int ny)
 {
     for (int j = 0; j <= ny; j++)
         for (int i = 0; i <= nx; i++)
-            ts_node(s, i, j, surf(i));
+            ctt_scene_node(s, i, j, surf(i));
     for (int j = 0; j < ny; j++)
         for (int i = 0; i < nx; i++) {
             ct_idx a = j * (nx + 1) + i;
-            ts_seg(s, a, a + 1, a + nx + 2, a + nx + 1);
+            ctt_scene_seg(s, a, a + 1, a + nx + 2, a + nx + 1);
         }
 }
 
-static ct_search_input ts_input(const tscene *s, double gap, double margin)
-{
-    ct_search_input in;
-    memset(&in, 0, sizeof in);
-    in.nnode = s->nn;
-    in.x = s->x, in.y = s->y, in.z = s->z;
-    in.nsec = s->nsec, in.sec = s->sec;
-    in.nseg = s->ns;
-    in.n1 = s->n1, in.n2 = s->n2, in.n3 = s->n3, in.n4 = s->n4;
-    in.gap = (ct_real)gap, in.margin = (ct_real)margin;
-    in.filter = CT_FILTER_HULL;
-    return in;
-}
-
-static void run_once(ct_search_algo a, const ct_search_input *in, ct_pairs *out)
-{
-    ct_search_params p = ct_search_default_params(a);
-    ct_search *s;
-    cr_assert_eq(ct_search_init(&s, &p), CT_OK);
-    int rc = ct_search_run(s, in, out);
-    cr_assert_eq(rc, CT_OK, "%s: %s", ct_search_algo_name(a), ct_strerror(rc));
-    ct_search_destroy(s);
-}
-
-static int same_pairs(const ct_pairs *a, const ct_pairs *b)
-{
-    return a->n == b->n && memcmp(a->node, b->node, sizeof(ct_idx) * (size_t)a->n) == 0 &&
-           memcmp(a->seg, b->seg, sizeof(ct_idx) * (size_t)a->n) == 0;
-}
 
 static int has_pair(const ct_pairs *p, ct_idx node, ct_idx seg)
 {
@@ -134,13 +64,13 @@ static int subset(const ct_pairs *a, const ct_pairs *b)
 static void sliding(double a, int exact)
 {
     curve_a = a;
-    tscene s;
-    ts_init(&s, 600, 400);
+    ctt_scene s;
+    ctt_scene_init(&s, 600, 400);
     ts_main(&s, 20, 20);
     ct_idx base = s.nn;
     for (int j = 0; j < 10; j++)
         for (int i = 0; i < 10; i++) {
-            ct_idx k = ts_node(&s, 0, 0, 0);
+            ct_idx k = ctt_scene_node(&s, 0, 0, 0);
             s.sec[s.nsec++] = k;
         }
     ct_pairs got[2], ref, inner;
@@ -152,7 +82,7 @@ static void sliding(double a, int exact)
     ct_search_params p = ct_search_default_params(CT_SEARCH_TOPO);
     cr_assert_eq(ct_search_init(&w[0], &p), CT_OK);
     cr_assert_eq(ct_search_init(&w[1], &p), CT_OK);
-    ct_search_input in = ts_input(&s, 0.3, 0.2);
+    ct_search_input in = ctt_scene_input(&s, 0.3, 0.2, 0);
     int64_t total = 0;
     for (int step = 0; step < 30; step++) {
         for (int j = 0; j < 10; j++)
@@ -165,16 +95,16 @@ static void sliding(double a, int exact)
             ctt_threads(t + 1);
             cr_assert_eq(ct_search_run(w[t], &in, &got[t]), CT_OK);
         }
-        cr_assert(same_pairs(&got[0], &got[1]), "step %d: 1 and 2 threads differ", step);
-        run_once(CT_SEARCH_DIRECT, &in, &ref);
+        cr_assert(ctt_same_pairs(&got[0], &got[1]), "step %d: 1 and 2 threads differ", step);
+        ctt_search(CT_SEARCH_DIRECT, &in, &ref);
         cr_assert(subset(&got[0], &ref), "step %d: topo reports a pair direct rejects", step);
         if (exact) {
-            cr_assert(same_pairs(&got[0], &ref), "step %d: topo %d pairs, direct %d", step,
+            cr_assert(ctt_same_pairs(&got[0], &ref), "step %d: topo %d pairs, direct %d", step,
                       got[0].n, ref.n);
         } else {
             ct_search_input in2 = in;
             in2.margin = (ct_real)0.05;
-            run_once(CT_SEARCH_DIRECT, &in2, &inner);
+            ctt_search(CT_SEARCH_DIRECT, &in2, &inner);
             cr_assert(subset(&inner, &got[0]), "step %d: topo misses a pair within 0.35", step);
         }
         total += got[0].n;
@@ -186,7 +116,7 @@ static void sliding(double a, int exact)
     ct_pairs_destroy(&got[1]);
     ct_pairs_destroy(&ref);
     ct_pairs_destroy(&inner);
-    ts_free(&s);
+    ctt_scene_free(&s);
 }
 
 Test(search_topo, sliding_flat_equals_direct) { sliding(0, 1); }
@@ -206,17 +136,17 @@ Test(search_topo, sliding_curved_keeps_close_pairs) { sliding(0.02, 0); }
 Test(search_topo, undetected_impact)
 {
     curve_a = 0;
-    tscene s;
-    ts_init(&s, 64, 32);
+    ctt_scene s;
+    ctt_scene_init(&s, 64, 32);
     ts_main(&s, 10, 2);
-    ct_idx N = ts_node(&s, 2.3, 0.4, 1.5);
+    ct_idx N = ctt_scene_node(&s, 2.3, 0.4, 1.5);
     s.sec[s.nsec++] = N;
     const ct_idx S = 5; /* quad (5, 0) */
     const double path[3][3] = {{2.3, 0.4, 1.5}, {3.4, 0.4, 1.5}, {5.6, 0.4, 0.2}};
     ct_search_params p = ct_search_default_params(CT_SEARCH_TOPO);
     ct_search *w;
     cr_assert_eq(ct_search_init(&w, &p), CT_OK);
-    ct_search_input in = ts_input(&s, 0.2, 0.1);
+    ct_search_input in = ctt_scene_input(&s, 0.2, 0.1, 0);
     ct_pairs got, ref;
     ct_pairs_init(&got, 0);
     ct_pairs_init(&ref, 0);
@@ -237,7 +167,7 @@ Test(search_topo, undetected_impact)
             cr_assert(best != s.n1[S] && best != s.n2[S] && best != s.n3[S] && best != s.n4[S]);
         }
         cr_assert_eq(ct_search_run(w, &in, &got), CT_OK);
-        run_once(CT_SEARCH_DIRECT, &in, &ref);
+        ctt_search(CT_SEARCH_DIRECT, &in, &ref);
         cr_assert(subset(&got, &ref));
         if (t < 2)
             cr_assert_eq(ref.n, 0, "nothing is near at t%d", t);
@@ -250,19 +180,19 @@ Test(search_topo, undetected_impact)
     /* The bucket and bsp searches find it. */
     ct_pairs other;
     ct_pairs_init(&other, 0);
-    run_once(CT_SEARCH_BUCKET, &in, &other);
+    ctt_search(CT_SEARCH_BUCKET, &in, &other);
     cr_assert(has_pair(&other, N, S), "bucket misses the impact");
-    run_once(CT_SEARCH_BSP, &in, &other);
+    ctt_search(CT_SEARCH_BSP, &in, &other);
     cr_assert(has_pair(&other, N, S), "bsp misses the impact");
     /* A reset forces a full search, which finds it. */
     ct_search_reset(w);
     cr_assert_eq(ct_search_run(w, &in, &got), CT_OK);
-    cr_assert(same_pairs(&got, &ref));
+    cr_assert(ctt_same_pairs(&got, &ref));
     ct_pairs_destroy(&other);
     ct_pairs_destroy(&got);
     ct_pairs_destroy(&ref);
     ct_search_destroy(w);
-    ts_free(&s);
+    ctt_scene_free(&s);
 }
 
 static uint64_t rng;
@@ -286,11 +216,11 @@ Test(search_topo, full_search_is_brute_force_closest)
     int nm = ctt_checking() ? 300 : 2000, nsec = ctt_checking() ? 400 : 3000;
     for (int seed = 1; seed <= 3; seed++) {
         rng = (uint64_t)seed * 1234567;
-        tscene s;
-        ts_init(&s, nm + nsec + 4, nm);
+        ctt_scene s;
+        ctt_scene_init(&s, nm + nsec + 4, nm);
         int spread = seed == 3 ? 4 : 30; /* seed 3: very many ties */
         for (int i = 0; i < nm; i++)
-            ts_node(&s, irnd(spread), irnd(spread), seed == 2 ? 0 : irnd(spread));
+            ctt_scene_node(&s, irnd(spread), irnd(spread), seed == 2 ? 0 : irnd(spread));
         for (int k = 0; k < nm / 2; k++) {
             ct_idx v[4];
             for (int q = 0; q < 4; q++) {
@@ -302,12 +232,12 @@ Test(search_topo, full_search_is_brute_force_closest)
                         dup |= v[r] == v[q];
                 } while (dup);
             }
-            ts_seg(&s, v[0], v[1], v[2], k % 3 ? v[3] : v[2]);
+            ctt_scene_seg(&s, v[0], v[1], v[2], k % 3 ? v[3] : v[2]);
         }
         for (int i = 0; i < nsec; i++) {
             double h = 0.5 * irnd(3);
-            s.sec[s.nsec++] = ts_node(&s, irnd(spread + 10) - 5 + h, irnd(spread + 10) - 5,
-                                      irnd(spread + 10) - 5 - h);
+            s.sec[s.nsec++] = ctt_scene_node(&s, irnd(spread + 10) - 5 + h,
+                                             irnd(spread + 10) - 5, irnd(spread + 10) - 5 - h);
         }
         /* Which main nodes have segments. */
         char *used = calloc((size_t)s.nn, 1);
@@ -336,13 +266,13 @@ Test(search_topo, full_search_is_brute_force_closest)
                     exp.n++;
                 }
         }
-        ct_search_input in = ts_input(&s, 1e6, 0);
-        run_once(CT_SEARCH_TOPO, &in, &got);
-        cr_assert(same_pairs(&exp, &got), "seed %d: %d pairs, expected %d", seed, got.n, exp.n);
+        ct_search_input in = ctt_scene_input(&s, 1e6, 0, 0);
+        ctt_search(CT_SEARCH_TOPO, &in, &got);
+        cr_assert(ctt_same_pairs(&exp, &got), "seed %d: %d pairs, expected %d", seed, got.n, exp.n);
         free(used);
         ct_pairs_destroy(&exp);
         ct_pairs_destroy(&got);
-        ts_free(&s);
+        ctt_scene_free(&s);
     }
 }
 
@@ -354,40 +284,40 @@ Test(search_topo, full_search_is_brute_force_closest)
 Test(search_topo, reset_forces_full_search)
 {
     curve_a = 0;
-    tscene s;
-    ts_init(&s, 600, 400);
+    ctt_scene s;
+    ctt_scene_init(&s, 600, 400);
     ts_main(&s, 20, 20);
-    ct_idx N = ts_node(&s, 2.3, 2.4, 0.2);
+    ct_idx N = ctt_scene_node(&s, 2.3, 2.4, 0.2);
     s.sec[s.nsec++] = N;
     ct_search_params p = ct_search_default_params(CT_SEARCH_TOPO);
     ct_search *w;
     cr_assert_eq(ct_search_init(&w, &p), CT_OK);
-    ct_search_input in = ts_input(&s, 0.2, 0.1);
+    ct_search_input in = ctt_scene_input(&s, 0.2, 0.1, 0);
     ct_pairs got, ref;
     ct_pairs_init(&got, 0);
     ct_pairs_init(&ref, 0);
     cr_assert_eq(ct_search_run(w, &in, &got), CT_OK);
-    run_once(CT_SEARCH_DIRECT, &in, &ref);
-    cr_assert(same_pairs(&got, &ref));
+    ctt_search(CT_SEARCH_DIRECT, &in, &ref);
+    cr_assert(ctt_same_pairs(&got, &ref));
     cr_assert_gt(ref.n, 0);
     s.x[N] = 15.3, s.y[N] = 14.4; /* quad (15, 14) below */
     const ct_idx Q = 14 * 20 + 15;
     cr_assert_eq(ct_search_run(w, &in, &got), CT_OK);
-    run_once(CT_SEARCH_DIRECT, &in, &ref);
+    ctt_search(CT_SEARCH_DIRECT, &in, &ref);
     cr_assert(has_pair(&ref, N, Q));
     cr_assert(!has_pair(&got, N, Q), "one hop cannot follow a 12-element jump");
     ct_search_reset(w);
     cr_assert_eq(ct_search_run(w, &in, &got), CT_OK);
-    cr_assert(same_pairs(&got, &ref), "after a reset: %d pairs, direct %d", got.n, ref.n);
+    cr_assert(ctt_same_pairs(&got, &ref), "after a reset: %d pairs, direct %d", got.n, ref.n);
     /* Jump back; then a new secondary array (same content) also restarts. */
     s.x[N] = 2.3, s.y[N] = 2.4;
-    run_once(CT_SEARCH_DIRECT, &in, &ref);
+    ctt_search(CT_SEARCH_DIRECT, &in, &ref);
     ct_idx sec2[1] = {N};
     in.sec = sec2;
     cr_assert_eq(ct_search_run(w, &in, &got), CT_OK);
-    cr_assert(same_pairs(&got, &ref), "a new secondary array must force a full search");
+    cr_assert(ctt_same_pairs(&got, &ref), "a new secondary array must force a full search");
     ct_pairs_destroy(&got);
     ct_pairs_destroy(&ref);
     ct_search_destroy(w);
-    ts_free(&s);
+    ctt_scene_free(&s);
 }
