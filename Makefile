@@ -145,26 +145,44 @@ test: deps
 	@$(MAKE) --no-print-directory build-tests run-tests
 
 # MESH=path adds a Radioss deck of yours to the real-mesh benchmarks.
+# `make bench` runs the double-precision benchmarks, then the precision-
+# sensitive ones (kernels, the precision trade row) in single precision,
+# compares the narrow phase of both builds on one case, and writes the
+# Markdown tables (build/bench.md) and the plots (docs/*.png).
 BENCH_ARGS ?=
 BENCH_ENV = CT_SHARED=$(abspath ../shared) $(if $(MESH),CT_BENCH_MESH=$(abspath $(MESH)))
+SINGLE_BUILD = build/$(CCNAME)-single$(if $(strip $(ARCH)),,-portable)
+BENCH_SINGLE = $(SINGLE_BUILD)/bin/bench
+BENCH_OUT = build/bench
 bench: deps
 	@$(MAKE) --no-print-directory $(BENCHBIN)
-	$(BENCH_ENV) $(BENCHBIN) $(BENCH_ARGS)
+	@$(MAKE) --no-print-directory PRECISION=single $(BENCH_SINGLE)
+	$(BENCH_ENV) $(BENCHBIN) --benchmark_out=$(BENCH_OUT).json $(BENCH_ARGS)
+	$(BENCH_ENV) $(BENCH_SINGLE) --benchmark_filter='^(kernels/(narrow|force)|trade/precision)' \
+	  --benchmark_out=$(BENCH_OUT)-single.json --benchmark_repetitions=3
+	$(BENCHBIN) --dump-narrow $(BENCH_OUT)-narrow-double.txt
+	$(BENCH_SINGLE) --dump-narrow $(BENCH_OUT)-narrow-single.txt
+	python3 bench/trade_precision.py $(BENCH_OUT)-narrow-double.txt $(BENCH_OUT)-narrow-single.txt \
+	  --json $(BENCH_OUT)-precision.json
+	python3 bench/report.py $(BENCH_OUT).json $(BENCH_OUT)-single.json $(BENCH_OUT)-precision.json > $(BENCH_OUT).md
+	python3 bench/plots.py $(BENCH_OUT).json $(BENCH_OUT)-single.json --out docs/
+	@echo "bench: tables in $(BENCH_OUT).md, plots in docs/, raw results in $(BENCH_OUT)*.json"
+
+bench-full: deps
+	@$(MAKE) --no-print-directory $(BENCHBIN)
+	$(BENCH_ENV) CT_BENCH_FULL=1 $(BENCHBIN) --benchmark_repetitions=3 --benchmark_out=$(BENCH_OUT)-full.json $(BENCH_ARGS)
+	python3 bench/report.py $(BENCH_OUT)-full.json > $(BENCH_OUT)-full.md
+
+# PNG plots in docs/ from the last bench run(s).
+.PHONY: plots
+plots:
+	python3 bench/plots.py $(BENCH_OUT).json $(wildcard $(BENCH_OUT)-single.json) --out docs/
 
 # The harness's own correctness: every peer's pair set against the direct
 # search on small meshes (no timing).
 bench-test: deps
 	@$(MAKE) --no-print-directory $(BENCHBIN)
 	$(BENCHBIN) --verify-peers
-
-bench-full: deps
-	@$(MAKE) --no-print-directory $(BENCHBIN)
-	$(BENCH_ENV) CT_BENCH_FULL=1 $(BENCHBIN) --benchmark_repetitions=3 $(BENCH_ARGS)
-
-# PNG plots in docs/ from the last bench run(s).
-.PHONY: plots
-plots:
-	python3 bench/plots.py build/bench.json $(wildcard build/bench-single.json) --out docs/
 
 # ---- Sanitizers -------------------------------------------------------------
 # ASan+UBSan with gcc. The race check uses clang's ThreadSanitizer with LLVM's
