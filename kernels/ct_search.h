@@ -70,6 +70,11 @@ int ct_search_algo_from_name(const char *name);
 
 typedef struct ct_search_params {
     ct_search_algo algo;
+    /* bucket: 1 (default) the lean design (segments binned per cell, nodes
+     * query their cell, cell order for scattered numbering); 0 the baseline
+     * (nodes binned, segments scan; kept to measure against). Both give
+     * the same pairs. */
+    int variant;
     /* bucket: cells per unit length = cell_factor * 0.75 *
      * sqrt(nseg / (LxLy + LyLz + LzLx)) (Radioss sizing; 0 -> 1.0), total
      * cells capped at max_cells (0 -> 2 * (nsec + nseg) + 1024). */

@@ -30,6 +30,7 @@ ct_search_params ct_search_default_params(ct_search_algo algo)
     ct_search_params p;
     memset(&p, 0, sizeof p);
     p.algo = algo;
+    p.variant = 1;
     p.cell_factor = 1.0;
     p.max_cells = 0;
     p.leaf_size = 32;
@@ -42,7 +43,8 @@ int ct_search_init(ct_search **s, const ct_search_params *p)
     if (!s)
         return CT_ERR_ARG;
     *s = NULL;
-    if (p && (p->algo < 0 || p->algo >= CT_SEARCH_NALGO || !(p->cell_factor >= 0) ||
+    if (p && (p->algo < 0 || p->algo >= CT_SEARCH_NALGO || p->variant < 0 || p->variant > 1 ||
+              !(p->cell_factor >= 0) ||
               p->max_cells < 0 || p->leaf_size < 0 || !(p->min_box >= 0)))
         return CT_ERR_ARG;
     ct_search *w = calloc(1, sizeof *w);

@@ -1,71 +1,111 @@
 /*
  * search_bucket.c -- the bucket (uniform voxel grid) candidate search.
  *
- * Direction chosen: secondary nodes are counting-sorted into the cells
- * (one entry per node), and each main segment scans the cells its box,
- * inflated by gap + margin, covers. The alternative (segments binned into
- * every cell they cover, nodes looking up their own cell) writes one entry
- * per segment and covered cell: on the plates case with the Radioss sizing
- * (cell about 1.33 segment lengths, inflated box 2 long) that is about 6
- * entries per segment against 1 per node here, for the same number of box
- * tests, and the cost of turning segment-major pairs into node-major output
- * (one counting sort of the pairs by secondary position) is below the cost
- * of writing and reading those extra entries (reasoned, not measured: only
- * this direction was built). On the plates case (10^6 nodes, 3 accepted
- * pairs per node) the time is dominated by the exact predicate (about
- * 20 ns a call) and, with a shuffled numbering, by memory latency.
+ * Direction: main SEGMENTS are binned into every cell their box, inflated
+ * by d = gap + margin, covers; each secondary node then tests the segments
+ * of its own cell. A cell's list is in increasing segment order (a stable
+ * counting sort over blocks of consecutive segments) and holds a segment at
+ * most once, so a node's accepted segments come out sorted and unique.
  *
  * Passes (all parallel, none allocates once the sizes are stable):
- *  1. bounding boxes of the secondaries and of the main segments, with a
- *     finiteness and index-range check folded in;
- *  2. the grid: the secondaries' box intersected with the main box inflated
- *     by d = gap + margin, cells per unit length from the Radioss sizing,
- *     total capped;
- *  3. nodes into cells: count per (cell, block), prefix sum, scatter of the
- *     node coordinates into cell-ordered arrays (a stable counting sort);
- *  3b. segments counting-sorted by the cell of their box centre, so the
- *     scan below runs in spatial order whatever the numbering;
- *  4. segments scan their cells: the nodes of one row of cells are
- *     contiguous, a box test that is exactly the predicate's first step and
- *     a provably conservative version of its second reject most nodes, the
- *     shared predicate decides the rest; pairs go to per-thread buffers;
- *  5. pairs to canonical order: count per (secondary, thread), prefix sum,
- *     scatter into the output, then each node's few segments are sorted
- *     (the set is fixed by the predicate and the order by the sort, so the
- *     bytes do not depend on the thread count or the schedule).
+ *  1. per segment: index and finiteness checks, the box of its corners
+ *     (exact, kept for CT_FILTER_BOX) and that box inflated by d as the
+ *     predicate computes it, rounded outward to float (a 32-byte record for
+ *     a one-instruction vector pre-test); the box of all segments
+ *     (search_bucket_grid.c);
+ *  2. the grid over the main box inflated by d: cells per unit length from
+ *     the Radioss sizing times cell_factor, total capped (nodes outside it
+ *     can pair with nothing);
+ *  3. count: per block of consecutive segments, per cell, the segments
+ *     covering it (counters of its own per block; the packed cell range of
+ *     each segment is kept for pass 5);
+ *  4. offsets: one two-pass parallel scan over the cells;
+ *  5. scatter the segment numbers into the cells;
+ *  6. query, in one of two orders chosen per input by sampling whether
+ *     consecutive secondaries lie in neighbouring cells
+ *     (cti_bucket_local):
+ *     - secondary order (ordered numberings): static blocks of consecutive
+ *       positions; block 0 writes straight into the output and the other
+ *       blocks into buffers of their own, copied after it in parallel: the
+ *       output is canonical as written, with no collector and no sort;
+ *     - cell order (scattered numberings, where a node's cell, its list and
+ *       its segments' records would all be random accesses): the
+ *       secondaries counting-sorted by cell, visited with prefetching, and
+ *       the collector (pairs.c) restores the secondary order.
+ *     Per candidate: the float pre-test, then CT_FILTER_HULL: the shared
+ *     predicate (cti_pair_test_f); CT_FILTER_BOX: the predicate's first
+ *     step exactly, its sum of squares, and the predicate itself
+ *     (ct_pair_box_near on the exact box, whose minima and maxima are the
+ *     corners') whenever that sum is within rounding of d^2.
  *
  * Conservative cells: the cell of a coordinate is a monotone function of it
- * (subtract, multiply by a positive factor, clamp, truncate), the same
- * function for nodes and for segment boxes, and the segment range is taken
- * from its inflated box widened by a few ulps of the coordinates' magnitude;
- * a node inside the inflated box is therefore always in a scanned cell.
+ * (subtract, multiply by a positive factor, clamp, truncate), the same for
+ * nodes and for the ends of a segment's range, and those ends are the float
+ * box, which contains the predicate's own fl(lo - d), fl(hi + d): a node
+ * the predicate does not reject by its first step lies in a cell of the
+ * range. If the entries would exceed a bound linear in the input (segments
+ * far larger than the cells), the grid is coarsened and the count redone,
+ * so memory stays O(N).
+ *
+ * Measured on "plates" 10^6 (1 and 2 threads; see the change's report):
+ * versus the previous design (nodes binned, segments scanning cells, pairs
+ * counting-sorted by position and each node's list sorted) this removes the
+ * node binning, the 96-byte corner records, the pair transposition and the
+ * per-node sorts on ordered numberings; the hull filter stays bound by the
+ * predicate itself (about 4 calls and 1300 instructions per node).
  */
 #include <stdlib.h>
 
 #include "ct_internal.h"
 
-/* A thread's pair buffer: secondary positions and segments. */
-typedef struct bk_buf {
-    ct_idx *pos, *seg;
+#if defined(__AVX__)
+#include <immintrin.h>
+#endif
+
+int cti_bucket_boxes(const ct_search_input *in, ct_real *restrict box, float *restrict fbox,
+                     ct_real *restrict srec, ct_real mb[6]);
+int cti_bucket_scattered(const ct_search_input *in);
+int cti_bucket_check_sec(const ct_search_input *in);
+int64_t cti_bucket_offsets(ct_idx *cnt, int nb, size_t stride, int64_t ncell, ct_idx *start);
+int cti_bucket_bin_nodes(const ct_search_input *in, const ct_real lo[3], const ct_real hi[3],
+                         const ct_real inv[3], const ct_idx n[3], int nb, ct_idx *cnt,
+                         size_t stride, ct_idx *ncl, ct_idx *ord, ct_idx *ordc,
+                         ct_idx *nbinned);
+int cti_bucket_local(const ct_search_input *in, const ct_real lo[3], const ct_real hi[3],
+                     const ct_real inv[3], const ct_idx n[3]);
+void cti_bucket_size(const ct_real lo[3], const ct_real hi[3], ct_idx nseg, double factor,
+                     int64_t maxc, ct_idx n[3], ct_real inv[3]);
+
+/* One block's pair output (block 0's is the output's own arrays). Padded to
+ * a cache line so that blocks never share one. */
+typedef struct bk_out {
+    ct_idx *node, *seg;
     size_t n, cap;
-} bk_buf;
+    char pad[64 - 2 * sizeof(ct_idx *) - 2 * sizeof(size_t)];
+} bk_out;
 
 typedef struct bk_state {
-    int maxthr;
-    ct_idx *cell;          /* per secondary position: its cell, or -1 */
-    size_t cell_cap;
-    ct_real *px, *py, *pz; /* binned nodes, cell order */
-    ct_idx *ppos;          /* their secondary positions */
-    size_t px_cap, py_cap, pz_cap, ppos_cap;
-    ct_idx *hist; /* node binning: count per (cell, block), then offsets */
-    size_t hist_cap;
-    ct_idx *phist; /* pair transposition: per (secondary, thread) */
-    size_t phist_cap;
-    ct_real *srec; /* per segment: its 4 corners, 12 values, segment order */
+    int maxblk;
+    ct_real *box; /* per segment: lo x y z, hi x y z */
+    size_t box_cap;
+    float *fbox; /* per segment: fl(lo - d) rounded down (x y z 0), then
+                    -fl(hi + d) rounded up (x y z 0): a float pre-test */
+    size_t fbox_cap;
+    uint64_t *rng; /* per segment: its cell range, packed (BK_SKIP, BK_WIDE) */
+    size_t rng_cap;
+    ct_real *srec; /* per segment: its 4 corners (hull filter, scattered
+                      numberings only) */
     size_t srec_cap;
-    ct_idx *skey, *sorder, *shist; /* segments sorted by the cell of their centre */
-    size_t skey_cap, sorder_cap, shist_cap;
-    bk_buf *buf;   /* thread t uses buf[4 * t], on lines of its own */
+    ct_idx *cnt; /* per block: counters per cell, then offsets (stride cstride) */
+    size_t cnt_cap;
+    ct_idx *start; /* per cell: first entry; start[ncell] = entries */
+    size_t start_cap;
+    ct_idx *ent; /* segment numbers, cell by cell */
+    size_t ent_cap;
+    ct_idx *ncl, *ord, *ordc; /* cell order: node cells, positions, cells */
+    size_t ncl_cap, ord_cap, ordc_cap;
+    bk_out *buf; /* per block; buf[0] is unused (block 0 writes the output) */
+    int srec_on;  /* srec holds this call's corners */
 } bk_state;
 
 static void bk_free(void *v)
@@ -73,20 +113,19 @@ static void bk_free(void *v)
     bk_state *st = v;
     if (!st)
         return;
-    ct_free(st->cell);
-    ct_free(st->px);
-    ct_free(st->py);
-    ct_free(st->pz);
-    ct_free(st->ppos);
-    ct_free(st->hist);
-    ct_free(st->phist);
+    ct_free(st->box);
+    ct_free(st->fbox);
+    ct_free(st->rng);
     ct_free(st->srec);
-    ct_free(st->skey);
-    ct_free(st->sorder);
-    ct_free(st->shist);
-    for (int t = 0; t < st->maxthr; t++) {
-        ct_free(st->buf[4 * t].pos);
-        ct_free(st->buf[4 * t].seg);
+    ct_free(st->cnt);
+    ct_free(st->start);
+    ct_free(st->ent);
+    ct_free(st->ncl);
+    ct_free(st->ord);
+    ct_free(st->ordc);
+    for (int b = 0; b < st->maxblk; b++) {
+        ct_free(st->buf[b].node);
+        ct_free(st->buf[b].seg);
     }
     ct_free(st->buf);
     free(st);
@@ -95,17 +134,18 @@ static void bk_free(void *v)
 static size_t bk_memory(const void *v)
 {
     const bk_state *st = v;
-    size_t b = sizeof *st;
-    b += (st->cell_cap + st->ppos_cap + st->hist_cap + st->phist_cap) * sizeof(ct_idx);
-    b += (st->skey_cap + st->sorder_cap + st->shist_cap) * sizeof(ct_idx);
-    b += (st->px_cap + st->py_cap + st->pz_cap + st->srec_cap) * sizeof(ct_real);
-    for (int t = 0; t < st->maxthr; t++)
-        b += 2 * st->buf[4 * t].cap * sizeof(ct_idx);
+    size_t b = sizeof *st + (size_t)st->maxblk * sizeof(bk_out);
+    b += st->box_cap * sizeof(ct_real) + st->fbox_cap * sizeof(float);
+    b += st->rng_cap * sizeof(uint64_t) + st->srec_cap * sizeof(ct_real);
+    b += (st->cnt_cap + st->start_cap + st->ent_cap) * sizeof(ct_idx);
+    b += (st->ncl_cap + st->ord_cap + st->ordc_cap) * sizeof(ct_idx);
+    for (int k = 0; k < st->maxblk; k++)
+        b += 2 * st->buf[k].cap * sizeof(ct_idx);
     return b;
 }
 
-/* The workspace's state, created on first use and grown to nt threads. */
-static bk_state *bk_get(ct_search *s, int nt)
+/* The workspace's state, created on first use and grown to nb blocks. */
+static bk_state *bk_get(ct_search *s, int nb)
 {
     bk_state *st = s->algo_state;
     if (st && s->algo_free != bk_free) {
@@ -121,17 +161,15 @@ static bk_state *bk_get(ct_search *s, int nt)
         s->algo_free = bk_free;
         s->algo_memory = bk_memory;
     }
-    if (nt > st->maxthr) {
-        /* One 64-byte slot per thread: a thread's buffer header never
-         * shares a cache line with another's. */
-        bk_buf *nb = ct_calloc((size_t)nt * 4, sizeof *nb);
-        if (!nb)
+    if (nb > st->maxblk) {
+        bk_out *nw = ct_calloc((size_t)nb, sizeof *nw);
+        if (!nw)
             return NULL;
-        for (int t = 0; t < st->maxthr; t++)
-            nb[4 * t] = st->buf[4 * t];
+        for (int b = 0; b < st->maxblk; b++)
+            nw[b] = st->buf[b];
         ct_free(st->buf);
-        st->buf = nb;
-        st->maxthr = nt;
+        st->buf = nw;
+        st->maxblk = nb;
     }
     return st;
 }
@@ -142,36 +180,45 @@ static int bk_grow(void *pp, size_t *cap, size_t need, size_t size)
     return cti_grow(p, cap, need, size, 0);
 }
 
-/* Make room for one more pair in buffer b; 0, or -1 when out of memory. */
-static int bk_room(bk_buf *b)
+/* Grow a block's output to hold at least `need` pairs, keeping its content;
+ * 0, or -1 when out of memory or beyond ct_idx. */
+static int bk_out_grow(bk_out *o, size_t need)
 {
-    if (b->n < b->cap)
+    if (need <= o->cap)
         return 0;
-    size_t ncap = b->cap + b->cap / 2 + 1024;
-    ct_idx *p = ct_calloc(ncap, sizeof *p), *q = ct_calloc(ncap, sizeof *q);
-    if (!p || !q) {
-        ct_free(p);
-        ct_free(q);
+    size_t ncap = need + need / 2 + 4096;
+    if (ncap > (size_t)INT32_MAX)
+        ncap = (size_t)INT32_MAX;
+    if (need > ncap)
+        return -1;
+    ct_idx *a = ct_calloc(ncap, sizeof *a), *b = ct_calloc(ncap, sizeof *b);
+    if (!a || !b) {
+        ct_free(a);
+        ct_free(b);
         return -1;
     }
-    if (b->n) {
-        memcpy(p, b->pos, b->n * sizeof *p);
-        memcpy(q, b->seg, b->n * sizeof *q);
+    if (o->n) {
+        memcpy(a, o->node, o->n * sizeof *a);
+        memcpy(b, o->seg, o->n * sizeof *b);
     }
-    ct_free(b->pos);
-    ct_free(b->seg);
-    b->pos = p;
-    b->seg = q;
-    b->cap = ncap;
+    ct_free(o->node);
+    ct_free(o->seg);
+    o->node = a;
+    o->seg = b;
+    o->cap = ncap;
     return 0;
 }
 
-/* The grid: origin, cells per axis, cells per unit length. */
+/* The default cell_factor (ct_search_params.cell_factor == 0). */
+#define BK_CELL_FACTOR 1.0
+
+/* The grid: the region where a node may pair at all, cells per axis and
+ * per unit length. */
 typedef struct bk_grid {
-    ct_real lo[3], hi[3]; /* the region where a node may pair at all */
-    ct_real inv[3];       /* cells per unit length (0 on a flat axis) */
-    ct_idx n[3];          /* cells per axis */
-    ct_real tol;          /* widening of segment ranges, a few ulps */
+    ct_real lo[3], hi[3];
+    ct_real inv[3]; /* 0 on a flat axis */
+    ct_idx n[3];
+    int64_t ncell;
 } bk_grid;
 
 /* Cell of coordinate v along one axis: monotone in v. */
@@ -182,336 +229,498 @@ static inline ct_idx bk_cell1(ct_real v, ct_real o, ct_real inv, ct_idx nmax)
     return t < (ct_real)nmax ? (ct_idx)t : nmax;
 }
 
-/* In search_bucket_grid.c: pass 1 (boxes, checks, segment records) and
- * the grid's sizing. */
-int cti_bucket_boxes(const ct_search_input *in, ct_real *restrict srec, ct_real sb[6],
-                     ct_real mb[6]);
-void cti_bucket_size(const ct_real lo[3], const ct_real hi[3], ct_idx nseg, double factor,
-                     int64_t maxc, ct_idx n[3], ct_real inv[3], ct_real *tol);
-
-/* Sort a node's segment list (short: insertion; long: qsort). */
-static int bk_cmp(const void *a, const void *b)
+/* The cells c0 .. c1 (per axis) that segment j's float box f covers; 0
+ * when it misses the grid. The float box contains the predicate's inflated
+ * box and the cell is monotone: conservative. */
+static inline int bk_range(const float *restrict f, const bk_grid *g, ct_idx c0[3],
+                           ct_idx c1[3])
 {
-    ct_idx x = *(const ct_idx *)a, y = *(const ct_idx *)b;
-    return (x > y) - (x < y);
+    int in = 1;
+    for (int k = 0; k < 3; k++) {
+        ct_real lod = (ct_real)f[k], hid = -(ct_real)f[4 + k];
+        in &= !(hid < g->lo[k]) & !(lod > g->hi[k]);
+        c0[k] = bk_cell1(lod, g->lo[k], g->inv[k], g->n[k] - 1);
+        c1[k] = bk_cell1(hid, g->lo[k], g->inv[k], g->n[k] - 1);
+    }
+    return in;
 }
 
-static void bk_sort(ct_idx *v, ct_idx n)
+/* A segment's cell range packed in 64 bits: first cell (bits 0-31), spans
+ * minus one along x, y, z (10 bits each, from bit 32); BK_SKIP: misses the
+ * grid; BK_WIDE: a span too long to pack (the range is recomputed). */
+#define BK_SKIP (UINT64_C(1) << 63)
+#define BK_WIDE (UINT64_C(1) << 62)
+
+/* Pass 3: count. Returns the number of entries, or -1 when it would exceed
+ * `limit` (the counts are then unusable). */
+static int64_t bk_count(bk_state *st, const ct_search_input *in, const bk_grid *g, int nb,
+                        size_t stride, int64_t limit)
 {
-    if (n > 32) {
-        qsort(v, (size_t)n, sizeof *v, bk_cmp);
-        return;
-    }
-    for (ct_idx i = 1; i < n; i++) {
-        ct_idx x = v[i], j = i;
-        while (j > 0 && v[j - 1] > x) {
-            v[j] = v[j - 1];
-            j--;
+    const ct_idx nseg = in->nseg, nx = g->n[0], ny = g->n[1];
+    const int64_t ncell = g->ncell;
+    const float *restrict fbox = st->fbox;
+    uint64_t *restrict rng = st->rng;
+    ct_idx *restrict cnt = st->cnt;
+    int64_t total = 0;
+    /* Pass 3: count. */
+#pragma omp parallel for schedule(static) reduction(+ : total)
+    for (int b = 0; b < nb; b++) {
+        ct_idx *restrict cb = cnt + (size_t)b * stride;
+        memset(cb, 0, (size_t)ncell * sizeof *cb);
+        ct_idx lo = (ct_idx)((int64_t)nseg * b / nb);
+        ct_idx hi = (ct_idx)((int64_t)nseg * (b + 1) / nb);
+        int64_t mine = 0;
+        for (ct_idx j = lo; j < hi; j++) {
+            ct_idx c0[3], c1[3];
+            if (!bk_range(fbox + (size_t)8 * j, g, c0, c1)) {
+                rng[j] = BK_SKIP;
+                continue;
+            }
+            ct_idx sx = c1[0] - c0[0], sy = c1[1] - c0[1], sz = c1[2] - c0[2];
+            rng[j] = (sx < 1024 && sy < 1024 && sz < 1024)
+                         ? (uint64_t)(((size_t)c0[2] * ny + c0[1]) * nx + c0[0]) |
+                               ((uint64_t)sx << 32) | ((uint64_t)sy << 42) |
+                               ((uint64_t)sz << 52)
+                         : BK_WIDE;
+            mine += (int64_t)(sx + 1) * (sy + 1) * (sz + 1);
+            if (mine > limit) /* counts are then unused */
+                break;
+            for (ct_idx iz = c0[2]; iz <= c1[2]; iz++)
+                for (ct_idx iy = c0[1]; iy <= c1[1]; iy++) {
+                    ct_idx *restrict row = cb + ((size_t)iz * ny + iy) * nx;
+                    for (ct_idx ix = c0[0]; ix <= c1[0]; ix++)
+                        row[ix]++;
+                }
         }
-        v[j] = x;
+        total += mine;
+    }
+    return total > limit ? -1 : total;
+}
+
+/* Passes 4 and 5: offsets and scatter. */
+static void bk_place(bk_state *st, const ct_search_input *in, const bk_grid *g, int nb,
+                     size_t stride)
+{
+    const ct_idx nseg = in->nseg, nx = g->n[0], ny = g->n[1];
+    const float *restrict fbox = st->fbox;
+    const uint64_t *restrict rng = st->rng;
+    ct_idx *restrict cnt = st->cnt;
+    /* Pass 4: offsets. */
+    cti_bucket_offsets(cnt, nb, stride, g->ncell, st->start);
+    /* Pass 5: scatter; block b's segments go, in increasing order, after
+     * those of blocks before it in every cell. */
+    ct_idx *restrict ent = st->ent;
+#pragma omp parallel for schedule(static)
+    for (int b = 0; b < nb; b++) {
+        ct_idx *restrict cb = cnt + (size_t)b * stride;
+        ct_idx lo = (ct_idx)((int64_t)nseg * b / nb);
+        ct_idx hi = (ct_idx)((int64_t)nseg * (b + 1) / nb);
+        for (ct_idx j = lo; j < hi; j++) {
+            uint64_t r = rng[j];
+            if (r & BK_SKIP)
+                continue;
+            if (!(r & BK_WIDE)) {
+                const size_t c = (size_t)(r & 0xffffffffu);
+                const ct_idx sx = (ct_idx)((r >> 32) & 1023), sy = (ct_idx)((r >> 42) & 1023),
+                             sz = (ct_idx)((r >> 52) & 1023);
+                for (ct_idx iz = 0; iz <= sz; iz++)
+                    for (ct_idx iy = 0; iy <= sy; iy++) {
+                        ct_idx *restrict row = cb + c + ((size_t)iz * ny + iy) * nx;
+                        for (ct_idx ix = 0; ix <= sx; ix++)
+                            ent[row[ix]++] = j;
+                    }
+                continue;
+            }
+            ct_idx c0[3], c1[3];
+            bk_range(fbox + (size_t)8 * j, g, c0, c1);
+            for (ct_idx iz = c0[2]; iz <= c1[2]; iz++)
+                for (ct_idx iy = c0[1]; iy <= c1[1]; iy++) {
+                    ct_idx *restrict row = cb + ((size_t)iz * ny + iy) * nx;
+                    for (ct_idx ix = c0[0]; ix <= c1[0]; ix++)
+                        ent[row[ix]++] = j;
+                }
+        }
     }
 }
 
-/* Pass 3: counting sort of the secondaries into the cells, in nb blocks of
- * consecutive positions (a stable sort: a cell's nodes are in secondary
- * order). Returns the number of binned nodes. Afterwards the nodes of cell
- * c are px[cend(c-1) .. cend(c)-1] with cend(c) = hist[c * nb + nb - 1]. */
-static ct_idx bk_bin_nodes(bk_state *st, const ct_search_input *in, const bk_grid *g,
-                           int nb)
+/* Errors found by the query (or-ed). */
+enum { BK_ENOMEM = 1, BK_ERANGE = 2, BK_ENONFINITE = 4 };
+
+/* What the candidate test needs. */
+typedef struct bk_ctx {
+    const ct_real *x, *y, *z;
+    const ct_idx *n1, *n2, *n3, *n4;
+    const ct_real *box, *srec;
+    const float *fbox;
+    const ct_idx *start, *ent;
+    ct_real d, d2lo, d2hi;
+    int self, boxf;
+} bk_ctx;
+
+static void bk_ctx_init(bk_ctx *k, const bk_state *st, const ct_search_input *in)
+{
+    k->x = in->x, k->y = in->y, k->z = in->z;
+    k->n1 = in->n1, k->n2 = in->n2, k->n3 = in->n3, k->n4 = in->n4;
+    k->box = st->box;
+    k->srec = st->srec_on ? st->srec : NULL;
+    k->fbox = st->fbox;
+    k->start = st->start;
+    k->ent = st->ent;
+    const ct_real d = in->gap + in->margin, d2 = d * d;
+    /* The predicate's sum of squares (CT_FILTER_BOX) is ours: the same
+     * expressions on the same minima and maxima, up to the order of a few
+     * roundings (at most about 3 ulps relatively, every term being
+     * nonnegative, plus underflow). Outside [d2lo, d2hi] our answer is
+     * therefore the predicate's; inside, the predicate is asked. */
+    k->d = d;
+    k->d2hi = d2 + d2 * (16 * CTI_EPS) + (ct_real)1e-30;
+    k->d2lo = d2 - d2 * (16 * CTI_EPS) - (ct_real)1e-30;
+    k->self = in->self;
+    k->boxf = in->filter == CT_FILTER_BOX;
+}
+
+/* Node `node` at (X, Y, Z) against the segments of its cell, entries e0 to
+ * e1 - 1: writes the accepted ones, in increasing order, to out and returns
+ * their number. */
+static inline ct_idx bk_cands(const bk_ctx *restrict k, ct_idx node, ct_real X, ct_real Y,
+                              ct_real Z, ct_idx e0, ct_idx e1, ct_idx *restrict out)
+{
+    const ct_idx *restrict ent = k->ent;
+    const float *restrict fbox = k->fbox;
+    const ct_real d = k->d;
+    const float fx = (float)X, fy = (float)Y, fz = (float)Z;
+#if defined(__AVX__)
+    const __m256 pv = _mm256_setr_ps(fx, fy, fz, 0, -fx, -fy, -fz, 0);
+#endif
+    ct_idx n = 0;
+    for (ct_idx e = e0; e < e1; e++) {
+        const ct_idx j = ent[e];
+        /* Float pre-test: rounding is monotone and the float box is rounded
+         * outward, so a node that passes the predicate's first step passes
+         * it. */
+#if defined(__AVX__)
+        /* One compare of the 8 lanes (lo x y z 0, -hi x y z 0). */
+        const __m256 fb = _mm256_loadu_ps(fbox + (size_t)8 * j);
+        if (_mm256_movemask_ps(_mm256_cmp_ps(pv, fb, _CMP_LT_OQ)))
+            continue;
+#else
+        const float *restrict f = fbox + (size_t)8 * j;
+        if (fx < f[0] || fy < f[1] || fz < f[2] || -fx < f[4] || -fy < f[5] || -fz < f[6])
+            continue;
+#endif
+        int ok;
+        if (k->boxf) {
+            const ct_real *restrict r = k->box + (size_t)6 * j;
+            /* The predicate's first step, exactly, then its sum. */
+            if (X < r[0] - d || X > r[3] + d || Y < r[1] - d || Y > r[4] + d ||
+                Z < r[2] - d || Z > r[5] + d)
+                continue;
+            ct_real ex = X < r[0] ? r[0] - X : (X > r[3] ? X - r[3] : 0);
+            ct_real ey = Y < r[1] ? r[1] - Y : (Y > r[4] ? Y - r[4] : 0);
+            ct_real ez = Z < r[2] ? r[2] - Z : (Z > r[5] ? Z - r[5] : 0);
+            ct_real e2 = ex * ex + ey * ey + ez * ez;
+            if (e2 > k->d2hi)
+                continue;
+            if (k->self &&
+                (node == k->n1[j] || node == k->n2[j] || node == k->n3[j] || node == k->n4[j]))
+                continue;
+            const ct_real p[3] = {X, Y, Z};
+            /* The box's minima and maxima are the corners': the predicate
+             * on (lo, hi, lo, hi) is the predicate. */
+            ok = e2 <= k->d2lo || ct_pair_box_near(p, r, r + 3, r, r + 3, d);
+        } else if (k->srec) {
+            /* cti_pair_test_f with the corners from their record. */
+            if (k->self &&
+                (node == k->n1[j] || node == k->n2[j] || node == k->n3[j] || node == k->n4[j]))
+                continue;
+            const ct_real *restrict r = k->srec + (size_t)12 * j;
+            const ct_real p[3] = {X, Y, Z};
+            ok = ct_pair_may_touch(p, r, r + 3, r + 6, r + 9, d);
+        } else {
+            ok = cti_pair_test_f(k->x, k->y, k->z, node, k->n1[j], k->n2[j], k->n3[j],
+                                 k->n4[j], d, k->self, CT_FILTER_HULL);
+        }
+        out[n] = j;
+        n += ok != 0;
+    }
+    return n;
+}
+
+/* Pass 6, secondary order: blocks of consecutive positions; block 0 writes
+ * into o[0] (the output's arrays), block b > 0 into o[b]. Also checks the
+ * secondaries' indices and coordinates. Returns BK_E* bits. */
+static int bk_query_direct(const bk_state *st, const ct_search_input *in, const bk_grid *g,
+                           int nb, bk_out *o)
 {
     const ct_real *restrict x = in->x, *restrict y = in->y, *restrict z = in->z;
     const ct_idx *restrict sec = in->sec;
-    const ct_idx nsec = in->nsec, nx = g->n[0], ny = g->n[1];
-    const int64_t nh = (int64_t)nx * ny * g->n[2] * nb;
-    ct_idx *restrict hist = st->hist, *restrict cell = st->cell;
-#pragma omp parallel for schedule(static)
-    for (int64_t c = 0; c <= nh; c++)
-        hist[c] = 0;
-#pragma omp parallel for schedule(static)
+    const ct_idx *restrict start = st->start;
+    const ct_idx nx = g->n[0], ny = g->n[1], nz = g->n[2];
+    const ct_idx nsec = in->nsec;
+    const uint32_t nnode = (uint32_t)in->nnode;
+    bk_ctx k;
+    bk_ctx_init(&k, st, in);
+    int err = 0;
+#pragma omp parallel for schedule(static) reduction(| : err)
     for (int b = 0; b < nb; b++) {
-        ct_idx lo = (ct_idx)((int64_t)nsec * b / nb), hi = (ct_idx)((int64_t)nsec * (b + 1) / nb);
+        bk_out w = o[b];
+        w.n = 0;
+        ct_idx lo = (ct_idx)((int64_t)nsec * b / nb);
+        ct_idx hi = (ct_idx)((int64_t)nsec * (b + 1) / nb);
         for (ct_idx i = lo; i < hi; i++) {
-            ct_idx k = sec[i];
-            ct_real X = x[k], Y = y[k], Z = z[k];
-            if (X < g->lo[0] || X > g->hi[0] || Y < g->lo[1] || Y > g->hi[1] ||
-                Z < g->lo[2] || Z > g->hi[2]) {
-                cell[i] = -1;
+            const ct_idx node = sec[i];
+            if ((uint32_t)node >= nnode) {
+                err |= BK_ERANGE;
                 continue;
             }
+            const ct_real X = x[node], Y = y[node], Z = z[node];
+            if (!((X - X) + (Y - Y) + (Z - Z) == 0)) {
+                err |= BK_ENONFINITE;
+                continue;
+            }
+            if (X < g->lo[0] || X > g->hi[0] || Y < g->lo[1] || Y > g->hi[1] ||
+                Z < g->lo[2] || Z > g->hi[2])
+                continue;
             ct_idx ix = bk_cell1(X, g->lo[0], g->inv[0], nx - 1);
             ct_idx iy = bk_cell1(Y, g->lo[1], g->inv[1], ny - 1);
-            ct_idx iz = bk_cell1(Z, g->lo[2], g->inv[2], g->n[2] - 1);
-            ct_idx c = (iz * ny + iy) * nx + ix;
-            cell[i] = c;
-            hist[(int64_t)c * nb + b]++;
-        }
-    }
-    ct_idx nbin = cti_prefix_sum_idx(hist, hist, (ct_idx)nh);
-    ct_real *restrict px = st->px, *restrict py = st->py, *restrict pz = st->pz;
-    ct_idx *restrict ppos = st->ppos;
-#pragma omp parallel for schedule(static)
-    for (int b = 0; b < nb; b++) {
-        ct_idx lo = (ct_idx)((int64_t)nsec * b / nb), hi = (ct_idx)((int64_t)nsec * (b + 1) / nb);
-        for (ct_idx i = lo; i < hi; i++) {
-            ct_idx c = cell[i];
-            if (c < 0)
-                continue;
-            ct_idx k = sec[i], o = hist[(int64_t)c * nb + b]++;
-            px[o] = x[k];
-            py[o] = y[k];
-            pz[o] = z[k];
-            ppos[o] = i;
-        }
-    }
-    return nbin;
-}
-
-/* Pass 3b: counting sort of the segments by the cell of their box's centre,
- * so that the scan visits the cells, the binned nodes and the segment
- * records in spatial order whatever the numbering. */
-static void bk_bin_segs(bk_state *st, ct_idx nseg, const bk_grid *g, int nb)
-{
-    const ct_idx nx = g->n[0], ny = g->n[1];
-    const int64_t nh = (int64_t)nx * ny * g->n[2] * nb;
-    const ct_real *restrict srec = st->srec;
-    ct_idx *restrict hist = st->shist, *restrict key = st->skey, *restrict ord = st->sorder;
-#pragma omp parallel for schedule(static)
-    for (int64_t c = 0; c <= nh; c++)
-        hist[c] = 0;
-#pragma omp parallel for schedule(static)
-    for (int b = 0; b < nb; b++) {
-        ct_idx lo = (ct_idx)((int64_t)nseg * b / nb), hi = (ct_idx)((int64_t)nseg * (b + 1) / nb);
-        for (ct_idx j = lo; j < hi; j++) {
-            const ct_real *r = srec + (size_t)12 * j;
-            ct_idx ic[3];
-            for (int k = 0; k < 3; k++) {
-                ct_real l = CTI_MIN(CTI_MIN(r[k], r[3 + k]), CTI_MIN(r[6 + k], r[9 + k]));
-                ct_real h = CTI_MAX(CTI_MAX(r[k], r[3 + k]), CTI_MAX(r[6 + k], r[9 + k]));
-                ic[k] = bk_cell1(l + (h - l) / 2, g->lo[k], g->inv[k], g->n[k] - 1);
+            ct_idx iz = bk_cell1(Z, g->lo[2], g->inv[2], nz - 1);
+            size_t c = ((size_t)iz * ny + iy) * nx + ix;
+            ct_idx e0 = start[c], e1 = start[c + 1];
+            /* Room for every candidate of this cell. */
+            if (w.n + (size_t)(e1 - e0) > w.cap && bk_out_grow(&w, w.n + (size_t)(e1 - e0))) {
+                err |= BK_ENOMEM;
+                break;
             }
-            ct_idx c = (ic[2] * ny + ic[1]) * nx + ic[0];
-            key[j] = c;
-            hist[(int64_t)c * nb + b]++;
+            ct_idx m = bk_cands(&k, node, X, Y, Z, e0, e1, w.seg + w.n);
+            for (ct_idx q = 0; q < m; q++)
+                w.node[w.n + q] = node;
+            w.n += (size_t)m;
         }
+        o[b] = w;
     }
-    cti_prefix_sum_idx(hist, hist, (ct_idx)nh);
-#pragma omp parallel for schedule(static)
-    for (int b = 0; b < nb; b++) {
-        ct_idx lo = (ct_idx)((int64_t)nseg * b / nb), hi = (ct_idx)((int64_t)nseg * (b + 1) / nb);
-        for (ct_idx j = lo; j < hi; j++)
-            ord[hist[(int64_t)key[j] * nb + b]++] = j;
-    }
+    return err;
 }
 
-/* Pass 4: every segment scans the cells its inflated box covers; accepted
- * pairs (secondary position, segment) go to the threads' buffers. */
-static int bk_scan(bk_state *st, const ct_search_input *in, const bk_grid *g, int nb)
+/* Pass 6, cell order: the secondaries binned by cell (ord, ordc), blocks of
+ * consecutive binned nodes; the collector restores the secondary order. */
+static int bk_query_cells(const bk_state *st, const ct_search_input *in, int nb,
+                          ct_idx nbinned, cti_collect *col)
 {
-    const ct_real *restrict srec = st->srec;
-    const ct_idx *restrict sorder = st->sorder;
+    const ct_real *restrict x = in->x, *restrict y = in->y, *restrict z = in->z;
     const ct_idx *restrict sec = in->sec;
+    const ct_idx *restrict start = st->start;
+    const ct_idx *restrict ord = st->ord, *restrict ordc = st->ordc;
+    const ct_idx *restrict ent = st->ent;
+    const float *restrict fbox = st->fbox;
+    const ct_real *restrict box = st->box;
+    const ct_real *restrict srec = st->srec_on ? st->srec : NULL;
     const ct_idx *restrict n1 = in->n1, *restrict n2 = in->n2, *restrict n3 = in->n3,
                  *restrict n4 = in->n4;
-    const ct_real *restrict px = st->px, *restrict py = st->py, *restrict pz = st->pz;
-    const ct_idx *restrict ppos = st->ppos, *restrict hist = st->hist;
-    const ct_real d = in->gap + in->margin, d2 = d * d;
-    /* The predicate rejects when its sum of squares exceeds d2; ours may
-     * differ from it by a few roundings (at most about 3 ulps, relatively,
-     * as every term is nonnegative, plus underflow), so we reject only
-     * above this bound. */
-    const ct_real d2hi = d2 + d2 * (16 * CTI_EPS) + (ct_real)1e-30;
-    const ct_idx nx = g->n[0], ny = g->n[1];
-    const int self = in->self;
-    const int filter = in->filter;
+    const int boxf = in->filter == CT_FILTER_BOX;
+    bk_ctx k;
+    bk_ctx_init(&k, st, in);
     int err = 0;
-    for (int t = 0; t < st->maxthr; t++)
-        st->buf[4 * t].n = 0;
-#pragma omp parallel reduction(| : err)
-    {
-        bk_buf b = st->buf[4 * cti_thread_id()];
-#pragma omp for schedule(dynamic, 256)
-        for (ct_idx q = 0; q < in->nseg; q++) {
-            if (err)
-                continue;
-            const ct_idx j = sorder[q];
-            const ct_real *r = srec + (size_t)12 * j;
+#pragma omp parallel for schedule(static) reduction(| : err)
+    for (int b = 0; b < nb; b++) {
+        const int t = cti_thread_id();
+        ct_idx lo = (ct_idx)((int64_t)nbinned * b / nb);
+        ct_idx hi = (ct_idx)((int64_t)nbinned * (b + 1) / nb);
+        ct_idx pfc = -1;
+        (void)ent, (void)fbox, (void)box, (void)srec, (void)n1, (void)n2, (void)n3, (void)n4;
+        (void)boxf, (void)pfc;
+        for (ct_idx q = lo; q < hi; q++) {
 #if defined(__GNUC__)
-            /* The records are read in cell order, i.e. at random for a
-             * shuffled numbering: fetch a few segments ahead. */
-            if (q + 8 < in->nseg) {
-                const ct_real *rn = srec + (size_t)12 * sorder[q + 8];
-                __builtin_prefetch(rn);
-                __builtin_prefetch(rn + 11);
-            }
-#endif
-            ct_real A[3], B[3], C[3], E[3], lo[3], hi[3], lod[3], hid[3];
-            for (int k = 0; k < 3; k++) {
-                A[k] = r[k];
-                B[k] = r[3 + k];
-                C[k] = r[6 + k];
-                E[k] = r[9 + k];
-            }
-            int out = 0;
-            ct_idx c0[3], c1[3];
-            for (int k = 0; k < 3; k++) {
-                /* Exactly the predicate's bounds: nodes outside them are
-                 * rejected by it. */
-                lo[k] = CTI_MIN(CTI_MIN(A[k], B[k]), CTI_MIN(C[k], E[k]));
-                hi[k] = CTI_MAX(CTI_MAX(A[k], B[k]), CTI_MAX(C[k], E[k]));
-                lod[k] = lo[k] - d;
-                hid[k] = hi[k] + d;
-                out |= hid[k] < g->lo[k] || lod[k] > g->hi[k];
-                c0[k] = bk_cell1(lod[k] - g->tol, g->lo[k], g->inv[k], g->n[k] - 1);
-                c1[k] = bk_cell1(hid[k] + g->tol, g->lo[k], g->inv[k], g->n[k] - 1);
-            }
-            if (out)
-                continue;
-            for (ct_idx iz = c0[2]; iz <= c1[2] && !err; iz++) {
-                for (ct_idx iy = c0[1]; iy <= c1[1]; iy++) {
-                    /* Cells c0[0] .. c1[0] of this row hold consecutive nodes. */
-                    int64_t row = ((int64_t)iz * ny + iy) * nx;
-                    int64_t ca = row + c0[0], cb = row + c1[0];
-                    ct_idx k0 = ca > 0 ? hist[(ca - 1) * nb + nb - 1] : 0;
-                    ct_idx k1 = hist[cb * nb + nb - 1];
-                    for (ct_idx k = k0; k < k1; k++) {
-                        ct_real X = px[k], Y = py[k], Z = pz[k];
-                        if (X < lod[0] || X > hid[0] || Y < lod[1] || Y > hid[1] ||
-                            Z < lod[2] || Z > hid[2])
-                            continue;
-                        ct_real ex = X < lo[0] ? lo[0] - X : (X > hi[0] ? X - hi[0] : 0);
-                        ct_real ey = Y < lo[1] ? lo[1] - Y : (Y > hi[1] ? Y - hi[1] : 0);
-                        ct_real ez = Z < lo[2] ? lo[2] - Z : (Z > hi[2] ? Z - hi[2] : 0);
-                        if (ex * ex + ey * ey + ez * ez > d2hi)
-                            continue;
-                        ct_idx pos = ppos[k];
-                        if (self) {
-                            ct_idx node = sec[pos];
-                            if (node == n1[j] || node == n2[j] || node == n3[j] ||
-                                node == n4[j])
-                                continue;
-                        }
-                        ct_real p[3] = {X, Y, Z};
-                        if (filter == CT_FILTER_BOX ? !ct_pair_box_near(p, A, B, C, E, d)
-                                                    : !ct_pair_may_touch(p, A, B, C, E, d))
-                            continue;
-                        if (b.n == b.cap && bk_room(&b)) {
-                            err = 1;
-                            break;
-                        }
-                        b.pos[b.n] = pos;
-                        b.seg[b.n] = j;
-                        b.n++;
+            /* The segment numbers are random too: fetch the records of the
+             * cell a few nodes ahead, once per cell. */
+            if (q + 8 < hi && ordc[q + 8] != pfc) {
+                pfc = ordc[q + 8];
+                for (ct_idx e = start[pfc]; e < start[pfc + 1]; e++) {
+                    const ct_idx j = ent[e];
+                    __builtin_prefetch(fbox + (size_t)8 * j);
+                    if (boxf) {
+                        __builtin_prefetch(box + (size_t)6 * j);
+                    } else if (srec) {
+                        __builtin_prefetch(srec + (size_t)12 * j);
+                        __builtin_prefetch(srec + (size_t)12 * j + 11);
+                    } else {
+                        __builtin_prefetch(n1 + j);
+                        __builtin_prefetch(n2 + j);
+                        __builtin_prefetch(n3 + j);
+                        __builtin_prefetch(n4 + j);
                     }
-                    if (err)
-                        break;
                 }
             }
+            /* The positions are random: fetch a few nodes ahead. */
+            if (q + 16 < hi) {
+                ct_idx kn = sec[ord[q + 16]];
+                __builtin_prefetch(x + kn);
+                __builtin_prefetch(y + kn);
+                __builtin_prefetch(z + kn);
+            }
+            if (q + 32 < hi)
+                __builtin_prefetch(sec + ord[q + 32]);
+#endif
+            const ct_idx i = ord[q], node = sec[i];
+            const size_t c = (size_t)ordc[q];
+            const ct_idx e0 = start[c], e1 = start[c + 1];
+            const size_t s0 = col->len[t];
+            if (col->cap[t] - s0 < (size_t)(e1 - e0) &&
+                cti_collect_room(col, t, (size_t)(e1 - e0)) != CT_OK) {
+                err |= BK_ENOMEM;
+                break;
+            }
+            ct_idx m = bk_cands(&k, node, x[node], y[node], z[node], e0, e1, col->buf[t] + s0);
+            if (m > 0) { /* a count of 0 is the collector's default */
+                col->len[t] = s0 + (size_t)m;
+                cti_collect_mark(col, t, i, s0);
+            }
         }
-        st->buf[4 * cti_thread_id()] = b;
     }
-    return err ? CT_ERR_NOMEM : CT_OK;
+    return err;
 }
 
-/* Pass 5: the threads' pairs into canonical order (secondary position, then
- * segment), by a counting sort on the position and a sort of each node's
- * few segments. */
-static int bk_output(bk_state *st, const ct_search_input *in, int nt, ct_pairs *out)
-{
-    const ct_idx nsec = in->nsec;
-    const ct_idx *restrict sec = in->sec;
-    size_t total = 0;
-    for (int t = 0; t < nt; t++)
-        total += st->buf[4 * t].n;
-    if (total > (size_t)INT32_MAX)
-        return CT_ERR_TOOBIG;
-    int rc = ct_pairs_reserve(out, (ct_idx)total);
-    if (rc)
-        return rc;
-    ct_idx *restrict ph = st->phist;
-    const int64_t nh = (int64_t)nsec * nt;
-#pragma omp parallel for schedule(static)
-    for (int64_t i = 0; i <= nh; i++)
-        ph[i] = 0;
-#pragma omp parallel for schedule(static)
-    for (int t = 0; t < nt; t++) {
-        const bk_buf *b = &st->buf[4 * t];
-        for (size_t q = 0; q < b->n; q++)
-            ph[(int64_t)b->pos[q] * nt + t]++;
-    }
-    cti_prefix_sum_idx(ph, ph, (ct_idx)nh);
-    ct_idx *restrict on = out->node, *restrict os = out->seg;
-#pragma omp parallel for schedule(static)
-    for (int t = 0; t < nt; t++) {
-        const bk_buf *b = &st->buf[4 * t];
-        for (size_t q = 0; q < b->n; q++) {
-            ct_idx pos = b->pos[q], o = ph[(int64_t)pos * nt + t]++;
-            on[o] = sec[pos];
-            os[o] = b->seg[q];
-        }
-    }
-    /* The segments were visited in cell order: sort each node's few. */
-#pragma omp parallel for schedule(static)
-    for (ct_idx i = 0; i < nsec; i++) {
-        ct_idx a = i > 0 ? ph[(int64_t)i * nt - 1] : 0, e = ph[(int64_t)i * nt + nt - 1];
-        if (e - a > 1)
-            bk_sort(os + a, e - a);
-    }
-    out->n = (ct_idx)total;
-    return CT_OK;
-}
+/* Variant: 1 (default) this file's design, 0 the baseline of
+ * search_bucket_v0.c, chosen by ct_search_params.variant. */
+int cti_search_bucket_v0(ct_search *s, const ct_search_input *in, ct_pairs *out);
+
+/* Query order: 0 chooses per input (cti_bucket_local), 1 secondary order,
+ * 2 cell order. */
+#ifndef BK_ORDER
+#define BK_ORDER 0
+#endif
 
 int cti_search_bucket(ct_search *s, const ct_search_input *in, ct_pairs *out)
 {
-    int nt = cti_num_threads();
-    bk_state *st = bk_get(s, nt);
+    if (s->p.variant == 0)
+        return cti_search_bucket_v0(s, in, out);
+    const int nb = cti_num_threads();
+    bk_state *st = bk_get(s, nb);
     if (!st)
         return CT_ERR_NOMEM;
     out->n = 0;
     int rc = ct_pairs_reserve(out, 0);
     if (rc)
         return rc;
-    if (bk_grow(&st->srec, &st->srec_cap, (size_t)12 * (size_t)in->nseg, sizeof(ct_real)))
+    const int boxf = in->filter == CT_FILTER_BOX;
+    if ((boxf && bk_grow(&st->box, &st->box_cap, (size_t)6 * (size_t)in->nseg,
+                         sizeof(ct_real))) ||
+        bk_grow(&st->fbox, &st->fbox_cap, (size_t)8 * (size_t)in->nseg, sizeof(float)) ||
+        bk_grow(&st->rng, &st->rng_cap, (size_t)in->nseg, sizeof(uint64_t)))
         return CT_ERR_NOMEM;
-    ct_real sb[6], mb[6];
-    rc = cti_bucket_boxes(in, st->srec, sb, mb);
-    if (rc || in->nsec == 0 || in->nseg == 0)
+    /* Scattered numberings, hull filter: corner records, so that a
+     * candidate's corners are two cache lines, not twelve random ones. */
+    st->srec_on = !boxf && cti_bucket_scattered(in);
+    if (st->srec_on &&
+        bk_grow(&st->srec, &st->srec_cap, (size_t)12 * (size_t)in->nseg, sizeof(ct_real)))
+        return CT_ERR_NOMEM;
+    ct_real mb[6];
+    rc = cti_bucket_boxes(in, boxf ? st->box : NULL, st->fbox, st->srec_on ? st->srec : NULL,
+                          mb);
+    if (rc)
         return rc;
+    if (in->nsec == 0 || in->nseg == 0)
+        return cti_bucket_check_sec(in);
     const ct_real d = in->gap + in->margin;
     bk_grid g;
     for (int k = 0; k < 3; k++) {
-        /* Nodes outside the main box inflated by d (with the predicate's
-         * rounding) can pair with no segment. */
-        g.lo[k] = CTI_MAX(sb[k], mb[k] - d);
-        g.hi[k] = CTI_MIN(sb[3 + k], mb[3 + k] + d);
-        if (g.lo[k] > g.hi[k])
-            return CT_OK;
+        /* Nodes outside the main box inflated by d (the predicate's own
+         * fl(lo - d), fl(hi + d)) can pair with no segment. */
+        g.lo[k] = mb[k] - d;
+        g.hi[k] = mb[3 + k] + d;
     }
     int64_t maxc = s->p.max_cells > 0 ? s->p.max_cells
                                        : 2 * ((int64_t)in->nsec + in->nseg) + 1024;
-    /* Offsets per (cell, block) must fit a ct_idx. */
-    maxc = CTI_MIN(maxc, (int64_t)(INT32_MAX / 2) / nt);
-    cti_bucket_size(g.lo, g.hi, in->nseg, s->p.cell_factor > 0 ? s->p.cell_factor : 1.0, maxc,
-                    g.n, g.inv, &g.tol);
-    int64_t ncell = (int64_t)g.n[0] * g.n[1] * g.n[2];
-    if ((int64_t)in->nsec * nt >= INT32_MAX)
+    /* Entries, and counters per (cell, block), must fit a ct_idx; entries
+     * beyond a bound linear in the input coarsen the grid. */
+    maxc = CTI_MIN(maxc, (int64_t)(INT32_MAX / 4) / nb);
+    const int64_t limit =
+        CTI_MIN((int64_t)INT32_MAX - 1, 32 * ((int64_t)in->nsec + in->nseg) + (1 << 20));
+    double factor = s->p.cell_factor > 0 ? s->p.cell_factor : BK_CELL_FACTOR;
+    for (;;) {
+        cti_bucket_size(g.lo, g.hi, in->nseg, factor, maxc, g.n, g.inv);
+        g.ncell = (int64_t)g.n[0] * g.n[1] * g.n[2];
+        size_t stride = ((size_t)g.ncell + 15) & ~(size_t)15;
+        if (bk_grow(&st->cnt, &st->cnt_cap, stride * (size_t)nb, sizeof(ct_idx)) ||
+            bk_grow(&st->start, &st->start_cap, (size_t)g.ncell + 1, sizeof(ct_idx)))
+            return CT_ERR_NOMEM;
+        int64_t nent = bk_count(st, in, &g, nb, stride, limit);
+        if (nent >= 0) {
+            if (bk_grow(&st->ent, &st->ent_cap, (size_t)nent + 1, sizeof(ct_idx)))
+                return CT_ERR_NOMEM;
+            bk_place(st, in, &g, nb, stride);
+            break;
+        }
+        /* Segments far larger than the cells: a coarser grid. */
+        if (g.ncell == 1)
+            return CT_ERR_TOOBIG; /* cannot happen: one cell holds nseg */
+        maxc = CTI_MAX(1, g.ncell / 8);
+    }
+    /* Pass 6. Secondary order when it is spatially local (the output is
+     * then canonical as written); otherwise cell order and the collector. */
+    int order = BK_ORDER;
+    if (order == 0)
+        order = cti_bucket_local(in, g.lo, g.hi, g.inv, g.n) ? 1 : 2;
+    if (order == 2) {
+        size_t ns = (size_t)in->nsec;
+        size_t stride = ((size_t)g.ncell + 15) & ~(size_t)15;
+        if (bk_grow(&st->ncl, &st->ncl_cap, ns, sizeof(ct_idx)) ||
+            bk_grow(&st->ord, &st->ord_cap, ns, sizeof(ct_idx)) ||
+            bk_grow(&st->ordc, &st->ordc_cap, ns, sizeof(ct_idx)))
+            return CT_ERR_NOMEM;
+        ct_idx nbinned = 0;
+        rc = cti_bucket_bin_nodes(in, g.lo, g.hi, g.inv, g.n, nb, st->cnt, stride, st->ncl,
+                                  st->ord, st->ordc, &nbinned);
+        if (rc)
+            return rc;
+        cti_collect *col = &s->col;
+        rc = cti_collect_begin(col, in->nsec);
+        if (rc)
+            return rc;
+        int qerr = bk_query_cells(st, in, nb, nbinned, col);
+        if (qerr)
+            return CT_ERR_NOMEM;
+        rc = cti_collect_finish(col, in->sec, out);
+        return rc;
+    }
+    bk_out *o = st->buf;
+    o[0].node = out->node;
+    o[0].seg = out->seg;
+    o[0].cap = (size_t)out->cap;
+    o[0].n = 0;
+    int qerr = bk_query_direct(st, in, &g, nb, o);
+    out->node = o[0].node;
+    out->seg = o[0].seg;
+    out->cap = (ct_idx)o[0].cap;
+    out->n = (ct_idx)o[0].n;
+    o[0].node = o[0].seg = NULL;
+    o[0].cap = o[0].n = 0;
+    if (qerr) {
+        out->n = 0;
+        return (qerr & BK_ERANGE)       ? CT_ERR_RANGE
+               : (qerr & BK_ENONFINITE) ? CT_ERR_NONFINITE
+                                        : CT_ERR_NOMEM;
+    }
+    /* Concatenate the other blocks after block 0, in parallel. */
+    size_t total = out->n;
+    for (int b = 1; b < nb; b++)
+        total += o[b].n;
+    if (total > (size_t)INT32_MAX)
         return CT_ERR_TOOBIG;
-    size_t ns = (size_t)in->nsec;
-    if (bk_grow(&st->cell, &st->cell_cap, ns, sizeof(ct_idx)) ||
-        bk_grow(&st->ppos, &st->ppos_cap, ns, sizeof(ct_idx)) ||
-        bk_grow(&st->px, &st->px_cap, ns, sizeof(ct_real)) ||
-        bk_grow(&st->py, &st->py_cap, ns, sizeof(ct_real)) ||
-        bk_grow(&st->pz, &st->pz_cap, ns, sizeof(ct_real)) ||
-        bk_grow(&st->hist, &st->hist_cap, (size_t)(ncell * nt + 1), sizeof(ct_idx)) ||
-        bk_grow(&st->phist, &st->phist_cap, ns * (size_t)nt + 1, sizeof(ct_idx)) ||
-        bk_grow(&st->shist, &st->shist_cap, (size_t)(ncell * nt + 1), sizeof(ct_idx)) ||
-        bk_grow(&st->skey, &st->skey_cap, (size_t)in->nseg, sizeof(ct_idx)) ||
-        bk_grow(&st->sorder, &st->sorder_cap, (size_t)in->nseg, sizeof(ct_idx)))
-        return CT_ERR_NOMEM;
-    if (bk_bin_nodes(st, in, &g, nt) == 0)
-        return CT_OK;
-    bk_bin_segs(st, in->nseg, &g, nt);
-    rc = bk_scan(st, in, &g, nt);
+    rc = ct_pairs_reserve(out, (ct_idx)total);
     if (rc)
         return rc;
-    return bk_output(st, in, nt, out);
+    size_t off = out->n;
+    ct_idx *restrict on = out->node, *restrict os = out->seg;
+    for (int b = 1; b < nb; b++) {
+        const ct_idx *restrict bn = o[b].node, *restrict bs = o[b].seg;
+        const int64_t n = (int64_t)o[b].n;
+#pragma omp parallel for schedule(static)
+        for (int64_t k = 0; k < n; k++) {
+            on[off + (size_t)k] = bn[k];
+            os[off + (size_t)k] = bs[k];
+        }
+        off += (size_t)n;
+    }
+    out->n = (ct_idx)total;
+    return CT_OK;
 }

@@ -383,3 +383,277 @@ Test(search_bucket, nan_input)
     ct_pairs_destroy(&out);
     sc_free(&s);
 }
+
+/* Search with explicit parameters on 1 or 2 threads. */
+static int run_params(const ct_search_params *p, const ct_search_input *in, ct_pairs *out,
+                      int threads, size_t *mem)
+{
+    ctt_threads(threads);
+    ct_search *s;
+    cr_assert_eq(ct_search_init(&s, p), CT_OK);
+    int rc = ct_search_run(s, in, out);
+    if (mem)
+        *mem = ct_search_memory(s);
+    ct_search_destroy(s);
+    return rc;
+}
+
+/* Randomly permute the secondary list (Fisher-Yates). */
+static void shuffle_sec(scene *s, uint64_t seed)
+{
+    uint64_t r = seed;
+    for (ct_idx i = s->nsec - 1; i > 0; i--) {
+        ct_idx j = (ct_idx)(rnd(&r) * (i + 1));
+        ct_idx t = s->sec[i];
+        s->sec[i] = s->sec[j];
+        s->sec[j] = t;
+    }
+}
+
+/* A secondary list in random order (at least 4096 nodes, so that the
+ * search visits the nodes in cell order and restores the order through the
+ * collector): still exactly direct's pairs, in secondary-list order. */
+Test(search_bucket, shuffled_secondaries_cell_order, .timeout = 120)
+{
+    const int n = ctt_checking() ? 66 : 80;
+    scene s;
+    two_plates(&s, n, 0.3, 0, 1, 0);
+    shuffle_sec(&s, 4242);
+    ct_search_input in = sc_input(&s, 0.3, 0.2, 0);
+    /* Every node sees 3 quads but the last row's and column's (by hand, as
+     * in plates_several_gaps). */
+    cr_assert_eq(check_same(&in), 3 * n * n - 2 * n);
+    in.filter = CT_FILTER_BOX;
+    cr_assert_geq(check_same(&in), 3 * n * n - 2 * n);
+    sc_free(&s);
+}
+
+/* The box filter (the node's distance to the segment's box) equals direct
+ * on plates, a self-contact fold, offset and scaled plates and soups, and
+ * is a superset of the hull filter's pairs. */
+Test(search_bucket, box_filter_matches_direct)
+{
+    scene s;
+    two_plates(&s, 20, 0.3, 0, 1, 0);
+    const double gaps[] = {0.05, 0.3, 0.5, 1.0, 2.5};
+    for (int g = 0; g < 5; g++) {
+        ct_search_input in = sc_input(&s, gaps[g] * 0.6, gaps[g] * 0.4, 0);
+        ct_idx hull = check_same(&in);
+        in.filter = CT_FILTER_BOX;
+        cr_assert_geq(check_same(&in), hull, "the box filter keeps every hull pair");
+    }
+    sc_free(&s);
+    two_plates(&s, 12, 0.3, 1e6, 1, 1);
+    ct_search_input in = sc_input(&s, 0.3, 0.2, 0);
+    in.filter = CT_FILTER_BOX;
+    cr_assert_gt(check_same(&in), 0);
+    sc_free(&s);
+    two_plates(&s, 12, 0.3, 0, 1e-6, 0);
+    in = sc_input(&s, 0.3e-6, 0.2e-6, 0);
+    in.filter = CT_FILTER_BOX;
+    cr_assert_gt(check_same(&in), 0);
+    sc_free(&s);
+    /* Soups, self or not, the last few on very coarse grids. */
+    uint64_t r = 1357911;
+    for (int seed = 0; seed < 20; seed++) {
+        int nq = 1 + (int)(rnd(&r) * 80), np = (int)(rnd(&r) * 100);
+        double box = 0.5 + rnd(&r) * 6, sz = 0.05 + rnd(&r) * 1.5;
+        scene u;
+        sc_init(&u, 4 * nq + np, nq, 4 * nq + np);
+        for (int q = 0; q < nq; q++) {
+            double cx = rnd(&r) * box, cy = rnd(&r) * box, cz = rnd(&r) * box;
+            ct_idx v[4];
+            for (int k = 0; k < 4; k++)
+                v[k] = sc_node(&u, cx + (rnd(&r) - 0.5) * sz, cy + (rnd(&r) - 0.5) * sz,
+                               cz + (rnd(&r) - 0.5) * sz * 0.3);
+            sc_seg(&u, v[0], v[1], v[2], rnd(&r) < 0.3 ? v[2] : v[3]);
+        }
+        for (int i = 0; i < np; i++)
+            sc_node(&u, rnd(&r) * box, rnd(&r) * box, rnd(&r) * box);
+        for (ct_idx i = 0; i < u.nn; i++)
+            u.sec[u.nsec++] = i;
+        ct_search_input iu = sc_input(&u, rnd(&r) * sz, rnd(&r) * 0.5 * sz, seed % 2);
+        iu.filter = CT_FILTER_BOX;
+        check_same_cells(&iu, seed >= 16 ? 1 + seed % 4 : 0);
+        sc_free(&u);
+    }
+}
+
+/* Huge segments on a grid asked to be very fine: the entries (segments x
+ * covered cells) would pass 10^8; the search coarsens the grid instead,
+ * keeps its memory linear, and still returns direct's pairs. */
+Test(search_bucket, huge_segments_coarsen_the_grid, .timeout = 60)
+{
+    scene s;
+    two_plates(&s, 16, 0.3, 0, 1, 0);
+    scene t;
+    sc_init(&t, s.nn + 200, s.ns + 50, s.nsec);
+    for (ct_idx i = 0; i < s.nn; i++)
+        sc_node(&t, s.x[i], s.y[i], s.z[i]);
+    for (ct_idx j = 0; j < s.ns; j++)
+        sc_seg(&t, s.n1[j], s.n2[j], s.n3[j], s.n4[j]);
+    for (int q = 0; q < 50; q++) {
+        double z0 = 0.05 + 0.005 * q;
+        ct_idx a = sc_node(&t, -5, -5, z0), b = sc_node(&t, 25, -5, z0);
+        ct_idx c = sc_node(&t, 25, 25, z0 + 0.2), d = sc_node(&t, -5, 25, z0 + 0.2);
+        sc_seg(&t, a, b, c, d);
+    }
+    for (ct_idx i = 0; i < s.nsec; i++)
+        t.sec[t.nsec++] = s.sec[i];
+    ct_search_input in = sc_input(&t, 0.2, 0.1, 0);
+    ct_search_params p = ct_search_default_params(CT_SEARCH_BUCKET);
+    p.cell_factor = 500;
+    p.max_cells = 2000000;
+    ct_pairs ref, b1, b2;
+    ct_pairs_init(&ref, 0);
+    ct_pairs_init(&b1, 0);
+    ct_pairs_init(&b2, 0);
+    cr_assert_eq(run(CT_SEARCH_DIRECT, &in, &ref, 2, 0), CT_OK);
+    size_t mem = 0;
+    cr_assert_eq(run_params(&p, &in, &b1, 1, &mem), CT_OK);
+    cr_assert_eq(run_params(&p, &in, &b2, 2, NULL), CT_OK);
+    cr_assert_gt(ref.n, 50 * t.nsec / 2);
+    cr_assert_eq(b1.n, ref.n);
+    cr_assert_eq(b2.n, ref.n);
+    size_t bytes = (size_t)ref.n * sizeof(ct_idx);
+    cr_assert(memcmp(b1.node, ref.node, bytes) == 0 && memcmp(b1.seg, ref.seg, bytes) == 0);
+    cr_assert(memcmp(b2.node, ref.node, bytes) == 0 && memcmp(b2.seg, ref.seg, bytes) == 0);
+    /* 10^8 entries would be 400 MB. */
+    cr_assert_lt(mem, (size_t)64 << 20, "workspace %zu bytes", mem);
+    ct_pairs_destroy(&ref);
+    ct_pairs_destroy(&b1);
+    ct_pairs_destroy(&b2);
+    sc_free(&t);
+    sc_free(&s);
+}
+
+/* Bad indices and coordinates, on small inputs and on a large shuffled one
+ * (the cell-order path). */
+Test(search_bucket, bad_indices_and_coordinates)
+{
+    for (int big = 0; big < 2; big++) {
+        int n = big ? 66 : 5;
+        scene s;
+        two_plates(&s, n, 0.3, 0, 1, 0);
+        if (big)
+            shuffle_sec(&s, 99);
+        ct_pairs out;
+        ct_pairs_init(&out, 0);
+        ct_search_input in = sc_input(&s, 0.3, 0.2, 0);
+        ct_idx keep = s.sec[s.nsec / 2];
+        s.sec[s.nsec / 2] = s.nn; /* one past the last node */
+        cr_assert_eq(run(CT_SEARCH_BUCKET, &in, &out, 2, 0), CT_ERR_RANGE);
+        s.sec[s.nsec / 2] = -1;
+        cr_assert_eq(run(CT_SEARCH_BUCKET, &in, &out, 1, 0), CT_ERR_RANGE);
+        s.sec[s.nsec / 2] = keep;
+        ct_idx k4 = s.n4[s.ns - 1];
+        s.n4[s.ns - 1] = s.nn + 7;
+        cr_assert_eq(run(CT_SEARCH_BUCKET, &in, &out, 2, 0), CT_ERR_RANGE);
+        s.n4[s.ns - 1] = k4;
+        s.z[s.sec[s.nsec - 1]] = (ct_real)NAN;
+        cr_assert_eq(run(CT_SEARCH_BUCKET, &in, &out, 2, 0), CT_ERR_NONFINITE);
+        s.z[s.sec[s.nsec - 1]] = (ct_real)-INFINITY;
+        cr_assert_eq(run(CT_SEARCH_BUCKET, &in, &out, 1, 0), CT_ERR_NONFINITE);
+        s.z[s.sec[s.nsec - 1]] = (ct_real)0.3;
+        /* Repaired: it runs again. */
+        cr_assert_eq(run(CT_SEARCH_BUCKET, &in, &out, 2, 0), CT_OK);
+        cr_assert_eq(out.n, 3 * n * n - 2 * n);
+        ct_pairs_destroy(&out);
+        sc_free(&s);
+    }
+}
+
+/* Nodes, segments and secondaries all randomly renumbered (more than 4096
+ * segments whose nodes lie far apart in memory: the search then keeps the
+ * corners in records and visits the nodes in cell order): still direct's
+ * pairs, byte for byte. */
+Test(search_bucket, scattered_numbering, .timeout = 120)
+{
+    const int n = 100;
+    scene s;
+    two_plates(&s, n, 0.3, 0, 1, 0);
+    uint64_t r = 77;
+    /* A random node permutation perm (old -> new), applied everywhere. */
+    ct_idx *perm = malloc(sizeof(ct_idx) * (size_t)s.nn);
+    ct_real *t = malloc(sizeof(ct_real) * (size_t)s.nn);
+    for (ct_idx i = 0; i < s.nn; i++)
+        perm[i] = i;
+    for (ct_idx i = s.nn - 1; i > 0; i--) {
+        ct_idx j = (ct_idx)(rnd(&r) * (i + 1)), v = perm[i];
+        perm[i] = perm[j];
+        perm[j] = v;
+    }
+    ct_real *c[3] = {s.x, s.y, s.z};
+    for (int k = 0; k < 3; k++) {
+        for (ct_idx i = 0; i < s.nn; i++)
+            t[perm[i]] = c[k][i];
+        memcpy(c[k], t, sizeof(ct_real) * (size_t)s.nn);
+    }
+    for (ct_idx j = 0; j < s.ns; j++) {
+        s.n1[j] = perm[s.n1[j]], s.n2[j] = perm[s.n2[j]];
+        s.n3[j] = perm[s.n3[j]], s.n4[j] = perm[s.n4[j]];
+    }
+    for (ct_idx i = 0; i < s.nsec; i++)
+        s.sec[i] = perm[s.sec[i]];
+    /* Random segment order. */
+    for (ct_idx j = s.ns - 1; j > 0; j--) {
+        ct_idx q = (ct_idx)(rnd(&r) * (j + 1));
+        ct_idx *a[4] = {s.n1, s.n2, s.n3, s.n4};
+        for (int k = 0; k < 4; k++) {
+            ct_idx v = a[k][j];
+            a[k][j] = a[k][q];
+            a[k][q] = v;
+        }
+    }
+    shuffle_sec(&s, 31);
+    ct_search_input in = sc_input(&s, 0.3, 0.2, 0);
+    cr_assert_eq(check_same(&in), 3 * n * n - 2 * n);
+    if (!ctt_checking()) {
+        in.filter = CT_FILTER_BOX;
+        cr_assert_geq(check_same(&in), 3 * n * n - 2 * n);
+    }
+    free(perm);
+    free(t);
+    sc_free(&s);
+}
+
+/* The baseline variant (search_bucket_v0.c), called directly: the same
+ * bytes as direct on plates, a shuffled secondary list and soups. */
+int cti_search_bucket_v0(ct_search *s, const ct_search_input *in, ct_pairs *out);
+
+static void check_v0(const ct_search_input *in)
+{
+    ct_pairs ref, got;
+    ct_pairs_init(&ref, 0);
+    ct_pairs_init(&got, 0);
+    cr_assert_eq(run(CT_SEARCH_DIRECT, in, &ref, 2, 0), CT_OK);
+    for (int th = 1; th <= 2; th++) {
+        ctt_threads(th);
+        ct_search_params p = ct_search_default_params(CT_SEARCH_BUCKET);
+        ct_search *s;
+        cr_assert_eq(ct_search_init(&s, &p), CT_OK);
+        cr_assert_eq(cti_search_bucket_v0(s, in, &got), CT_OK);
+        ct_search_destroy(s);
+        size_t bytes = (size_t)ref.n * sizeof(ct_idx);
+        cr_assert_eq(got.n, ref.n);
+        cr_assert(memcmp(got.node, ref.node, bytes) == 0 && memcmp(got.seg, ref.seg, bytes) == 0);
+    }
+    ct_pairs_destroy(&ref);
+    ct_pairs_destroy(&got);
+}
+
+Test(search_bucket, baseline_variant_matches_direct)
+{
+    scene s;
+    two_plates(&s, 30, 0.3, 0, 1, 0);
+    shuffle_sec(&s, 5);
+    ct_search_input in = sc_input(&s, 0.3, 0.2, 0);
+    check_v0(&in);
+    in.filter = CT_FILTER_BOX;
+    check_v0(&in);
+    sc_free(&s);
+    two_plates(&s, 12, 0.3, 1e6, 1, 1);
+    in = sc_input(&s, 0.3, 0.2, 0);
+    check_v0(&in);
+    sc_free(&s);
+}
