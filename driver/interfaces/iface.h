@@ -1,0 +1,206 @@
+/*
+ * iface.h -- the contact interfaces of the driver (TYPE24, TYPE7, TYPE11),
+ * prefix ctd_iface, each composed from the kernels of contact.h
+ * (DESIGN.md sections 4 to 8, seeds 001 and 002).
+ *
+ * One object serves every type. The solver resolves the scene's selections
+ * into raw arrays (ctd_iface_data: global node indices, per-segment and
+ * per-node stiffness inputs, per-node gaps) and the card into a
+ * ctd_iface_cfg; ctd_iface_init copies what it needs, so the caller's
+ * arrays may be freed afterwards. Every cycle ctd_iface_step reads the
+ * positions, velocities and masses (length nnode), ADDS the contact forces
+ * into fx, fy, fz, and fills a report (energies, time-step limits, counts,
+ * timers).
+ *
+ * What each type does:
+ *  - TYPE24: node-to-surface penalty with a constant stiffness. Passes:
+ *    secondary nodes (plus grnd_IDs) against the main segments; with
+ *    `symmetric` (surface to surface) also the main surface's nodes against
+ *    the secondary segments; a single surface (self) is one pass of its own
+ *    nodes against its own segments. Linear law with stiffness blending
+ *    (ct_penalty_linear), initial penetration by Inacti / Ipen0 / Ipen_max,
+ *    VisS damping, friction Ifric 0..4 with the Ifiltr / Xfreq filter.
+ *  - TYPE7: one surface against itself, both sides, gap from the shell
+ *    thickness (at least cfg.gap), the nonlinear TYPE7 law, damping,
+ *    friction, the kinematic time step.
+ *  - TYPE11: edges against edges (the edges of a surface against
+ *    themselves, or set A against set B), TYPE7 law, forces on the four edge
+ *    nodes (force and moment balanced); no friction.
+ * Every type searches with the algorithm of cfg.algo (TYPE11: direct, or its
+ * own bucket grid over edge boxes for the other three names) and repeats the
+ * search only when the re-sort criterion fires (ct_resort_needed).
+ *
+ * Results are bit-identical for any OMP_NUM_THREADS. Nothing is allocated
+ * per cycle once the pair arrays have grown to size.
+ */
+#ifndef CTD_IFACE_H
+#define CTD_IFACE_H
+
+#include <stdint.h>
+
+#include "contact.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* The parameters, named as in the Radioss cards. */
+typedef struct ctd_iface_cfg {
+    int type;       /* 7, 11 or 24 */
+    int self;       /* 24: single surface (no secondary set); 7 and 11: always
+                       self unless data has a second edge set (11) */
+    int symmetric;  /* 24: surface to surface, both passes */
+    int two_sided;  /* 24: 1 for shell surfaces (gap on both sides), 0 for
+                       oriented solid faces; 7 is always two-sided */
+    ct_search_algo algo;             /* broad phase (bucket by default) */
+    ct_search_filter filter;         /* shared predicate (hull by default) */
+    ct_quad_method quad;             /* node-quad projection (4tri) */
+    ct_assemble_variant asm_variant; /* assembly (colour) */
+    /* Stiffness. TYPE24 Istf: 0 or 2 mean, 3 max, 4 min, 5 series, 1 or
+     * 1000 main only. TYPE7/11: 1 -> K0 = Stfac (the stiffness itself),
+     * otherwise K0 = Stfac * Kseg / 2 (Radioss halves it in this law). The
+     * result is clamped to [Stmin, Stmax] (Stmax 0: no upper bound). */
+    int Istf;
+    ct_real Stfac, Stmin, Stmax;
+    /* Gap: `gap` is the constant gap (24 with Igap0 = 0) or the minimum gap
+     * (24 with Igap0 = 1, 7, 11). Igap0 = 1 (and always for 7 and 11): the
+     * gap of a pair is max(gap, g_s + g_m) with the per-node gaps of the
+     * data capped by Gap_max_s and Gap_max_m (0: no cap). */
+    ct_real gap;
+    int Igap0;
+    ct_real Gap_max_s, Gap_max_m;
+    /* Initial penetration (24, at the first active cycle): Ipen0 = 1 gives
+     * every initial penetration the full force (nothing recorded); with
+     * Ipen0 = 0, Inacti != 0 subtracts it (CT_INACTI_SUBTRACT) and
+     * Ipen_max > 0 deactivates the pairs penetrated deeper than it. */
+    int Ipen0, Inacti;
+    ct_real Ipen_max;
+    ct_real VisS; /* normal damping ratio */
+    /* Friction: Ifric 0 Coulomb (mu = Fric; off when Fric = 0), 1 poly,
+     * 2 Darmstad, 3 Renard, 4 exponential decay (ct_fric_law), C[0..5] =
+     * C1..C6; the filter Ifiltr 0..3 with Xfreq (ct_filter_alpha). The
+     * tangential stiffness is kt_scale times the pair's stiffness (0 ->
+     * 1). */
+    int Ifric;
+    ct_real Fric, C[6];
+    int Ifiltr;
+    ct_real Xfreq, kt_scale;
+    /* Active for Tstart <= time <= Tstop (Tstop 0: never stops). */
+    double Tstart, Tstop;
+    /* Re-sort margin (search distance gap + margin); 0 -> 0.2 times the
+     * mean edge length of the main segments (or edges). */
+    ct_real margin;
+} ctd_iface_cfg;
+
+/* Defaults for a type (24, 7, 11): bucket, hull filter, 4tri, colour,
+ * Stfac 1, VisS 1.0 (24) or 0.05 (7, 11), two-sided for 7, everything else
+ * 0 as in the scene defaults. */
+ctd_iface_cfg ctd_iface_default_cfg(int type);
+
+/*
+ * The resolved data. Node indices are global (0 .. nnode-1); per-node
+ * arrays are indexed by the global node index and have nnode entries.
+ * Only the arrays a type needs are read; NULL means "none".
+ *  - main segments n1..n4 (n4 == n3 for a triangle): the surface of 7, the
+ *    main surface of 24, the surface whose edges 11 uses when it has no
+ *    explicit edges;
+ *  - secondary nodes sec (24 nodes to surface; any order, duplicates
+ *    allowed) and secondary segments s1..s4 (24 surface to surface: their
+ *    nodes are secondary nodes too, and the second pass uses them);
+ *  - grnd (24): extra secondary nodes;
+ *  - edges (11): ea1/ea2 (set A) and eb1/eb2 (set B, nb = 0: A against
+ *    itself); without edges, A is the unique edges of the main segments;
+ *  - stiffness: K > 0 is a given stiffness for every pair (scaled by Stfac,
+ *    clamped); otherwise segment inputs seg_E, seg_t (shells), seg_B, seg_A,
+ *    seg_V (brick faces), see ct_seg_stiffness, for the main segments, and
+ *    ssg_* the same for the secondary segments, and node inputs node_B,
+ *    node_vnode, node_et (ct_node_stiffness) for the nodes;
+ *  - gap_node: per-node gap (half the shell thickness; 0 for solids).
+ */
+typedef struct ctd_iface_data {
+    ct_idx nnode;
+    ct_idx nseg;
+    const ct_idx *n1, *n2, *n3, *n4;
+    ct_idx nsec;
+    const ct_idx *sec;
+    ct_idx nsseg;
+    const ct_idx *s1, *s2, *s3, *s4;
+    ct_idx ngrnd;
+    const ct_idx *grnd;
+    ct_idx nea, neb;
+    const ct_idx *ea1, *ea2, *eb1, *eb2;
+    ct_real K;
+    const ct_real *seg_E, *seg_t, *seg_B, *seg_A, *seg_V;
+    const ct_real *ssg_E, *ssg_t, *ssg_B, *ssg_A, *ssg_V;
+    const ct_real *node_B, *node_vnode, *node_et;
+    const ct_real *gap_node;
+} ctd_iface_data;
+
+/* Timer slots of the report (seconds). */
+enum { CTD_IT_SEARCH = 0, CTD_IT_NARROW, CTD_IT_FORCE, CTD_IT_ASSEMBLE, CTD_IT_N };
+
+/* What one step reports. Energies in double; time steps CT_DT_NONE when the
+ * interface sets no limit. */
+typedef struct ctd_iface_report {
+    int on;                /* 1 when Tstart <= time <= Tstop */
+    double e_contact;      /* elastic energy stored in the contact springs now */
+    double e_damp;         /* normal damping dissipation of this step (>= 0) */
+    double e_fric;         /* friction dissipation of this step (>= 0) */
+    double force[3];       /* total force on the secondary side (sum over
+                              pairs of the force on the secondary node or
+                              edge A); the main side gets the opposite */
+    ct_real kmax;          /* largest pair stiffness (tangent) this step */
+    ct_real dt_nodal;      /* min over pairs of sqrt(2 m / (kelem + k)) at the
+                              secondary node (kelem from ctd_iface_set_kelem) */
+    ct_idx dt_node;        /* the node that sets dt_nodal (-1: none) */
+    ct_real dt_kin;        /* TYPE7/11 kinematic step (g - p) / (2 (-vn)) */
+    ct_real dt_tunnel;     /* 0.9 gap_min / |v_rel,max| over the candidates */
+    ct_real dt;            /* min of the three */
+    ct_idx ncand, nactive; /* candidate and active pairs (all passes) */
+    int resorted;          /* searches run in this step */
+    int64_t resorts;       /* searches over the interface's life */
+    int64_t deactivated;   /* pairs deactivated by Ipen_max so far */
+    double t[CTD_IT_N];    /* seconds in each phase this step */
+} ctd_iface_report;
+
+typedef struct ctd_iface ctd_iface;
+
+/* Create an interface. Returns CT_OK, CT_ERR_ARG (a bad parameter or
+ * missing array; diag says which), CT_ERR_RANGE (a node index outside
+ * [0, nnode)) or CT_ERR_NOMEM. diag may be NULL. */
+int ctd_iface_init(ctd_iface **it, const ctd_iface_cfg *cfg, const ctd_iface_data *data,
+                   ct_diag *diag);
+void ctd_iface_destroy(ctd_iface *it);
+
+/*
+ * One cycle at time `time` with step dt (damping, friction predictor,
+ * blending): x, y, z, vx, vy, vz, m have nnode entries; the contact forces
+ * are ADDED into fx, fy, fz. rep may be NULL. Outside [Tstart, Tstop]
+ * nothing is added and the report is zero (on = 0); the next active cycle
+ * searches anew. A failing kernel's code is returned.
+ */
+int ctd_iface_step(ctd_iface *it, double time, ct_real dt, const ct_real *x, const ct_real *y,
+                   const ct_real *z, const ct_real *vx, const ct_real *vy, const ct_real *vz,
+                   const ct_real *m, ct_real *fx, ct_real *fy, ct_real *fz,
+                   ctd_iface_report *rep);
+
+/* The element stiffness per node (nnode entries, borrowed, may be NULL)
+ * used by the nodal time step of the report. */
+void ctd_iface_set_kelem(ctd_iface *it, const ct_real *kelem);
+
+/* Force a search at the next cycle. */
+void ctd_iface_force_resort(ctd_iface *it);
+
+/* The type (7, 11, 24), and the number of secondary nodes of the first
+ * pass (after merging grnd_IDs) or of edges in set A (11). */
+int ctd_iface_type(const ctd_iface *it);
+ct_idx ctd_iface_nsec(const ctd_iface *it);
+
+/* Bytes held by the interface. */
+size_t ctd_iface_memory(const ctd_iface *it);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* CTD_IFACE_H */

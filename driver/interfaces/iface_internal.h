@@ -1,0 +1,139 @@
+/*
+ * iface_internal.h -- what the interface files share (not for the solver):
+ * the interface object, the node-segment pass engine (iface_pass.c) and the
+ * edge pass of TYPE11 (type11.c). Internal names use the prefix ctdi_.
+ */
+#ifndef CTD_IFACE_INTERNAL_H
+#define CTD_IFACE_INTERNAL_H
+
+#include "iface.h"
+
+#include <stdint.h>
+
+/* Loops of the interface code run in parallel only above this many
+ * entries: below it the fork/join costs more than the loop (and much more
+ * when the cores are shared). Every such loop is element-wise or an exact
+ * min/max reduction, so the results do not depend on it. */
+#define CTDI_PAR_MIN 2048
+
+/* Normal law of a pass. */
+enum { CTDI_LAW_LINEAR = 0, CTDI_LAW_TYPE7 = 1 };
+
+/* Per-pair states carried across re-sorts (double-buffered, remapped). */
+enum { CTDI_ST_FTX = 0, CTDI_ST_FTY, CTDI_ST_FTZ, CTDI_ST_P0, CTDI_ST_PPREV, CTDI_ST_FCAP,
+       CTDI_ST_QJUMP, CTDI_ST_ACT, CTDI_ST_N };
+
+/* Per-pair scratch of one cycle. */
+enum { CTDI_R_VRX = 0, CTDI_R_VRY, CTDI_R_VRZ, CTDI_R_VN, CTDI_R_FEL, CTDI_R_KTAN, CTDI_R_FN,
+       CTDI_R_FX, CTDI_R_FY, CTDI_R_FZ, CTDI_R_MS, CTDI_R_MM, CTDI_R_K, CTDI_R_EN, CTDI_R_DD,
+       CTDI_R_FD, CTDI_R_MU, CTDI_R_PRS, CTDI_R_SPD, CTDI_R_KT, CTDI_R_N };
+
+/* One node-segment pass: secondary nodes against main segments. */
+typedef struct ctdi_pass {
+    /* Geometry (owned copies). */
+    ct_idx nsec, nmain, nseg;
+    ct_idx *sec, *mainn; /* sorted, unique global node indices */
+    ct_idx *n1, *n2, *n3, *n4;
+    ct_real *kseg; /* per-segment stiffness with Stfac (NULL: constant K) */
+    ct_real *gseg; /* per-segment gap (NULL: none) */
+    ct_real sgap;  /* search gap: the largest pair gap */
+    int self, two_sided, law;
+    /* Search and the re-sort criterion. */
+    ct_search *search;
+    ct_pairs pairs[2];
+    int cur, need_sort, first;
+    ct_real *x0, *y0, *z0;
+    /* States, double-buffered. */
+    ct_real *st[2][CTDI_ST_N];
+    size_t capst[2];
+    /* Scratch, single-buffered. */
+    size_t cap;
+    ct_idx *s[4], *o2n;
+    ct_real *g[13];
+    uint8_t *flag;
+    int32_t *iflag;
+    ct_real *r[CTDI_R_N];
+    ct_contact_geo geo;
+    ct_assemble_ws ws;
+    int ws_ok;
+} ctdi_pass;
+
+typedef struct ctdi_epass ctdi_epass; /* TYPE11 (type11.c) */
+
+struct ctd_iface {
+    ctd_iface_cfg cfg;
+    ct_idx nnode;
+    ct_real *knode;  /* per-node stiffness with Stfac (NULL: none) */
+    ct_real *gnode;  /* per-node gap (NULL: none) */
+    ct_real kconst;  /* > 0: the given stiffness (before Stfac) */
+    int stiff_mode;  /* ct_stiff_combine */
+    ct_real margin;
+    int npass;
+    ctdi_pass pass[2];
+    ctdi_epass *ep;
+    const ct_real *kelem;
+    ct_real coef[7];
+    int fric_law, fric_on;
+    int was_on;
+    int64_t resorts, deactivated;
+};
+
+/* Wall clock (omp_get_wtime when OpenMP is on). */
+double ctdi_wtime(void);
+
+/* Sorted unique copy of the concatenation of up to 6 index lists (NULL
+ * lists skipped); *out is ct_calloc'ed (at least one element). Returns the
+ * count, or a negative CT_ERR_*; indices outside [0, nnode) give
+ * CT_ERR_RANGE. */
+int64_t ctdi_unique_nodes(ct_idx nnode, const ct_idx *const lists[6], const ct_idx counts[6],
+                          ct_idx **out);
+
+/* Copy n indices (ct_calloc'ed; NULL on failure). */
+ct_idx *ctdi_copy_idx(ct_idx n, const ct_idx *a);
+
+/* Mean edge length of segments (triangles: 3 edges) or of edges. */
+double ctdi_mean_seg_edge(ct_idx nseg, const ct_idx *n1, const ct_idx *n2, const ct_idx *n3,
+                          const ct_idx *n4, const ct_real *x, const ct_real *y,
+                          const ct_real *z);
+
+/* Node-segment pass (iface_pass.c). ctdi_pass_setup copies the segments
+ * and the secondary list (already unique and sorted) and allocates the
+ * workspaces; ctdi_pass_step runs one cycle and accumulates into rep;
+ * ctdi_pass_free releases everything. */
+int ctdi_pass_setup(ctd_iface *it, ctdi_pass *p, ct_idx nsec, ct_idx *sec_owned, ct_idx nseg,
+                    const ct_idx *n1, const ct_idx *n2, const ct_idx *n3, const ct_idx *n4,
+                    ct_real *kseg_owned, int self, int two_sided, int law);
+int ctdi_pass_step(ctd_iface *it, ctdi_pass *p, ct_real dt, const ct_real *x,
+                   const ct_real *y, const ct_real *z, const ct_real *vx, const ct_real *vy,
+                   const ct_real *vz, const ct_real *m, ct_real *fx, ct_real *fy,
+                   ct_real *fz, ctd_iface_report *rep);
+void ctdi_pass_free(ctdi_pass *p);
+size_t ctdi_pass_memory(const ctdi_pass *p, ct_idx nnode);
+
+/* Per-type setup (type24.c, type7.c, type11.c). */
+int ctdi_type24_setup(ctd_iface *it, const ctd_iface_data *d, ct_diag *diag);
+int ctdi_type7_setup(ctd_iface *it, const ctd_iface_data *d, ct_diag *diag);
+int ctdi_type11_setup(ctd_iface *it, const ctd_iface_data *d, ct_diag *diag);
+int ctdi_type11_step(ctd_iface *it, ct_real dt, const ct_real *x, const ct_real *y,
+                     const ct_real *z, const ct_real *vx, const ct_real *vy,
+                     const ct_real *vz, const ct_real *m, ct_real *fx, ct_real *fy,
+                     ct_real *fz, ctd_iface_report *rep);
+void ctdi_type11_free(ctdi_epass *e);
+size_t ctdi_type11_memory(const ctdi_epass *e);
+void ctdi_type11_force_resort(ctdi_epass *e);
+
+/* Segment stiffness with Stfac from the data's inputs for one surface
+ * (E, t, B, A, V as ct_seg_stiffness); *out NULL when all inputs are NULL. */
+int ctdi_seg_stiffness(ct_real stfac, ct_idx nseg, const ct_real *E, const ct_real *t,
+                       const ct_real *B, const ct_real *A, const ct_real *V, ct_real **out,
+                       ct_diag *diag);
+
+/* Per-segment gap: the largest per-node gap of its nodes (NULL when gnode
+ * is NULL). */
+ct_real *ctdi_seg_gap(const ct_real *gnode, ct_idx nseg, const ct_idx *n1, const ct_idx *n2,
+                      const ct_idx *n3, const ct_idx *n4);
+
+/* Fill diag (may be NULL) and return code. */
+int ctdi_fail(ct_diag *diag, int code, int64_t index, const char *msg);
+
+#endif /* CTD_IFACE_INTERNAL_H */

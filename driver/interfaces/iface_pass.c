@@ -1,0 +1,575 @@
+/*
+ * iface_pass.c -- one node-segment pass of an interface (TYPE24 and TYPE7):
+ * the re-sort criterion and the search, the per-pair states carried across
+ * re-sorts (friction force, initial penetration, blending, Ipen_max
+ * deactivation), the narrow phase, the normal law (linear with blending, or
+ * TYPE7), damping, friction, race-free assembly and the time-step limits.
+ */
+#include "iface_internal.h"
+
+#include "ct_internal.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Fill values of the states for pairs new after a re-sort. */
+static ct_real state_fill(int s)
+{
+    if (s == CTDI_ST_FCAP)
+        return (ct_real)CT_BLEND_NONE;
+    if (s == CTDI_ST_ACT)
+        return 1;
+    return 0;
+}
+
+static void free_scratch(ctdi_pass *p)
+{
+    for (int i = 0; i < 4; i++)
+        ct_free(p->s[i]);
+    ct_free(p->o2n);
+    for (int i = 0; i < 13; i++)
+        ct_free(p->g[i]);
+    ct_free(p->flag);
+    ct_free(p->iflag);
+    for (int i = 0; i < CTDI_R_N; i++)
+        ct_free(p->r[i]);
+    memset(p->s, 0, sizeof p->s);
+    memset(p->g, 0, sizeof p->g);
+    memset(p->r, 0, sizeof p->r);
+    p->o2n = NULL;
+    p->flag = NULL;
+    p->iflag = NULL;
+    p->cap = 0;
+}
+
+/* Scratch for n pairs (contents not kept). */
+static int grow_scratch(ctdi_pass *p, size_t n)
+{
+    if (n <= p->cap && p->flag)
+        return CT_OK;
+    free_scratch(p);
+    size_t c = n + n / 2 + 64;
+    int ok = 1;
+    for (int i = 0; i < 4; i++)
+        ok &= (p->s[i] = ct_calloc(c, sizeof(ct_idx))) != NULL;
+    ok &= (p->o2n = ct_calloc(c, sizeof(ct_idx))) != NULL;
+    for (int i = 0; i < 13; i++)
+        ok &= (p->g[i] = ct_calloc(c, sizeof(ct_real))) != NULL;
+    ok &= (p->flag = ct_calloc(c, 1)) != NULL;
+    ok &= (p->iflag = ct_calloc(c, sizeof(int32_t))) != NULL;
+    for (int i = 0; i < CTDI_R_N; i++)
+        ok &= (p->r[i] = ct_calloc(c, sizeof(ct_real))) != NULL;
+    if (!ok) {
+        free_scratch(p);
+        return CT_ERR_NOMEM;
+    }
+    p->cap = c;
+    ct_contact_geo g = {p->g[0], p->g[1], p->g[2], p->g[3],  p->g[4],  p->g[5],  p->g[6],
+                        p->g[7], p->g[8], p->g[9], p->g[10], p->g[11], p->g[12], p->flag};
+    p->geo = g;
+    return CT_OK;
+}
+
+/* States of side b for n pairs (contents not kept). */
+static int grow_states(ctdi_pass *p, int b, size_t n)
+{
+    if (n <= p->capst[b] && p->st[b][0])
+        return CT_OK;
+    size_t c = n + n / 2 + 64;
+    int ok = 1;
+    for (int i = 0; i < CTDI_ST_N; i++) {
+        ct_free(p->st[b][i]);
+        ok &= (p->st[b][i] = ct_calloc(c, sizeof(ct_real))) != NULL;
+    }
+    p->capst[b] = ok ? c : 0;
+    return ok ? CT_OK : CT_ERR_NOMEM;
+}
+
+void ctdi_pass_free(ctdi_pass *p)
+{
+    if (!p)
+        return;
+    ct_search_destroy(p->search);
+    ct_pairs_destroy(&p->pairs[0]);
+    ct_pairs_destroy(&p->pairs[1]);
+    for (int b = 0; b < 2; b++)
+        for (int i = 0; i < CTDI_ST_N; i++)
+            ct_free(p->st[b][i]);
+    free_scratch(p);
+    if (p->ws_ok)
+        ct_assemble_ws_destroy(&p->ws);
+    ct_free(p->sec);
+    ct_free(p->mainn);
+    ct_free(p->n1);
+    ct_free(p->n2);
+    ct_free(p->n3);
+    ct_free(p->n4);
+    ct_free(p->kseg);
+    ct_free(p->gseg);
+    ct_free(p->x0);
+    ct_free(p->y0);
+    ct_free(p->z0);
+    memset(p, 0, sizeof *p);
+}
+
+size_t ctdi_pass_memory(const ctdi_pass *p, ct_idx nnode)
+{
+    size_t b = p->cap * (5 * sizeof(ct_idx) + (13 + CTDI_R_N) * sizeof(ct_real) + 1 + 4);
+    b += (p->capst[0] + p->capst[1]) * CTDI_ST_N * sizeof(ct_real);
+    b += ((size_t)p->pairs[0].cap + (size_t)p->pairs[1].cap) * 2 * sizeof(ct_idx);
+    b += ((size_t)p->nsec + (size_t)p->nmain + 4 * (size_t)p->nseg) * sizeof(ct_idx);
+    b += 3 * (size_t)nnode * sizeof(ct_real);
+    b += ct_search_memory(p->search) + ct_assemble_ws_memory(&p->ws);
+    return b;
+}
+
+int ctdi_pass_setup(ctd_iface *it, ctdi_pass *p, ct_idx nsec, ct_idx *sec_owned, ct_idx nseg,
+                    const ct_idx *n1, const ct_idx *n2, const ct_idx *n3, const ct_idx *n4,
+                    ct_real *kseg_owned, int self, int two_sided, int law)
+{
+    memset(p, 0, sizeof *p);
+    p->nsec = nsec;
+    p->sec = sec_owned;
+    p->kseg = kseg_owned;
+    p->nseg = nseg;
+    p->self = self;
+    p->two_sided = two_sided;
+    p->law = law;
+    p->need_sort = 1;
+    p->first = 1;
+    if (!sec_owned)
+        return CT_ERR_NOMEM;
+    p->n1 = ctdi_copy_idx(nseg, n1);
+    p->n2 = ctdi_copy_idx(nseg, n2);
+    p->n3 = ctdi_copy_idx(nseg, n3);
+    p->n4 = ctdi_copy_idx(nseg, n4);
+    if (!p->n1 || !p->n2 || !p->n3 || !p->n4)
+        return CT_ERR_NOMEM;
+    const ct_idx *lists[6] = {n1, n2, n3, n4, NULL, NULL};
+    const ct_idx counts[6] = {nseg, nseg, nseg, nseg, 0, 0};
+    int64_t nm = ctdi_unique_nodes(it->nnode, lists, counts, &p->mainn);
+    if (nm < 0)
+        return (int)nm;
+    p->nmain = (ct_idx)nm;
+    /* Gaps: per segment from the node gaps when the type uses them. */
+    int var_gap = it->cfg.type != 24 || it->cfg.Igap0 != 0;
+    ct_real gmax_s = 0, gmax_m = 0;
+    if (var_gap && it->gnode) {
+        p->gseg = ctdi_seg_gap(it->gnode, nseg, n1, n2, n3, n4);
+        if (!p->gseg)
+            return CT_ERR_NOMEM;
+        for (ct_idx i = 0; i < nsec; i++)
+            gmax_s = it->gnode[sec_owned[i]] > gmax_s ? it->gnode[sec_owned[i]] : gmax_s;
+        for (ct_idx j = 0; j < nseg; j++)
+            gmax_m = p->gseg[j] > gmax_m ? p->gseg[j] : gmax_m;
+        if (it->cfg.Gap_max_s > 0 && gmax_s > it->cfg.Gap_max_s)
+            gmax_s = it->cfg.Gap_max_s;
+        if (it->cfg.Gap_max_m > 0 && gmax_m > it->cfg.Gap_max_m)
+            gmax_m = it->cfg.Gap_max_m;
+    }
+    p->sgap = gmax_s + gmax_m > it->cfg.gap ? gmax_s + gmax_m : it->cfg.gap;
+    if (two_sided && !(p->sgap > 0))
+        return CT_ERR_ARG; /* a two-sided surface needs a positive gap */
+    ct_search_params sp = ct_search_default_params(it->cfg.algo);
+    int rc = ct_search_init(&p->search, &sp);
+    if (rc == CT_OK)
+        rc = ct_pairs_init(&p->pairs[0], 0);
+    if (rc == CT_OK)
+        rc = ct_pairs_init(&p->pairs[1], 0);
+    if (rc == CT_OK) {
+        size_t nn = (size_t)(it->nnode > 0 ? it->nnode : 1);
+        p->x0 = ct_calloc(nn, sizeof(ct_real));
+        p->y0 = ct_calloc(nn, sizeof(ct_real));
+        p->z0 = ct_calloc(nn, sizeof(ct_real));
+        if (!p->x0 || !p->y0 || !p->z0)
+            rc = CT_ERR_NOMEM;
+    }
+    if (rc == CT_OK)
+        rc = grow_states(p, 0, 0);
+    if (rc == CT_OK)
+        rc = grow_states(p, 1, 0);
+    if (rc == CT_OK)
+        rc = grow_scratch(p, 0);
+    if (rc == CT_OK) {
+        rc = ct_assemble_ws_init(&p->ws);
+        p->ws_ok = rc == CT_OK;
+    }
+    return rc;
+}
+
+/* The pair stiffness (with Stfac, clamped): the linear law's K or TYPE7's
+ * K0. */
+static void pair_stiffness(const ctd_iface *it, const ctdi_pass *p, ct_idx n,
+                           const ct_idx *restrict node, const ct_idx *restrict seg,
+                           ct_real *restrict K)
+{
+    const ctd_iface_cfg *c = &it->cfg;
+    const ct_real *restrict ks = p->kseg, *restrict kn = it->knode;
+    const int mode = kn ? it->stiff_mode : CT_STIFF_MAIN, t7 = p->law == CTDI_LAW_TYPE7;
+    const ct_real stmin = c->Stmin, stmax = c->Stmax;
+    ct_real kc = c->Stfac * it->kconst;
+    if (t7)
+        kc = c->Istf == 1 ? c->Stfac : kc / 2;
+#pragma omp parallel for schedule(static) if (n > CTDI_PAR_MIN)
+    for (ct_idx k = 0; k < n; k++) {
+        ct_real v;
+        if (t7 && c->Istf == 1)
+            v = kc;
+        else if (!ks)
+            v = kc;
+        else if (t7)
+            v = ks[seg[k]] / 2;
+        else
+            v = ct_stiffness_combine1(mode, ks[seg[k]], kn ? kn[node[k]] : 0, 1, 0, 0);
+        if (v < stmin)
+            v = stmin;
+        if (stmax > 0 && v > stmax)
+            v = stmax;
+        K[k] = v;
+    }
+}
+
+/* The search and everything that depends on the pair list. */
+static int pass_search(ctd_iface *it, ctdi_pass *p, const ct_real *x, const ct_real *y,
+                       const ct_real *z, const ct_real *m, int *did)
+{
+    *did = 0;
+    if (!p->need_sort &&
+        !ct_resort_needed(p->nsec, p->sec, p->nmain, p->mainn, p->x0, p->y0, p->z0, x, y, z,
+                          it->margin, NULL))
+        return CT_OK;
+    int old = p->cur, now = 1 - p->cur;
+    ct_search_input in;
+    memset(&in, 0, sizeof in);
+    in.nnode = it->nnode;
+    in.x = x;
+    in.y = y;
+    in.z = z;
+    in.nsec = p->nsec;
+    in.sec = p->sec;
+    in.nseg = p->nseg;
+    in.n1 = p->n1;
+    in.n2 = p->n2;
+    in.n3 = p->n3;
+    in.n4 = p->n4;
+    in.gap = p->sgap;
+    in.margin = it->margin;
+    in.self = p->self;
+    in.filter = it->cfg.filter;
+    ct_pairs *np = &p->pairs[now];
+    const ct_pairs *op = &p->pairs[old];
+    int rc = ct_search_run(p->search, &in, np);
+    if (rc != CT_OK)
+        return rc;
+    ct_idx n = np->n;
+    if ((rc = grow_scratch(p, (size_t)n)) != CT_OK || (rc = grow_states(p, now, (size_t)n)))
+        return rc;
+    rc = ct_asm_seg_slots(n, np->seg, p->nseg, p->n1, p->n2, p->n3, p->n4, p->s[0], p->s[1],
+                          p->s[2], p->s[3]);
+    if (rc != CT_OK)
+        return rc;
+    ct_asm_map map = ct_asm_map_nodeseg(n, np->node, p->s[0], p->s[1], p->s[2], p->s[3]);
+    rc = ct_assemble_prepare(&p->ws, it->cfg.asm_variant, &map, it->nnode);
+    if (rc != CT_OK)
+        return rc;
+    rc = ct_pair_match(op->n, op->node, op->seg, n, np->node, np->seg, p->o2n, NULL);
+    for (int s = 0; s < CTDI_ST_N && rc == CT_OK; s++)
+        rc = ct_pair_remap(n, p->o2n, p->st[old][s], state_fill(s), p->st[now][s]);
+    if (rc != CT_OK)
+        return rc;
+    pair_stiffness(it, p, n, np->node, np->seg, p->r[CTDI_R_K]);
+    const ct_idx *restrict nd = np->node;
+    ct_real *restrict ms = p->r[CTDI_R_MS];
+#pragma omp parallel for simd schedule(static) if (n > CTDI_PAR_MIN)
+    for (ct_idx k = 0; k < n; k++)
+        ms[k] = m[nd[k]];
+    ct_real *restrict a = p->x0, *restrict b = p->y0, *restrict c = p->z0;
+    const ct_idx nn = it->nnode;
+#pragma omp parallel for simd schedule(static) if (nn > CTDI_PAR_MIN)
+    for (ct_idx i = 0; i < nn; i++) {
+        a[i] = x[i];
+        b[i] = y[i];
+        c[i] = z[i];
+    }
+    p->cur = now;
+    p->need_sort = 0;
+    *did = 1;
+    return CT_OK;
+}
+
+/* Relative velocity at the contact point, its normal part, the main mass
+ * at the contact point (sum h_i m_i) and, for pressure-dependent friction,
+ * the segment area. */
+static void kinematics(ctdi_pass *p, ct_idx n, const ct_idx *restrict node,
+                       const ct_real *restrict x, const ct_real *restrict y,
+                       const ct_real *restrict z, const ct_real *restrict vx,
+                       const ct_real *restrict vy, const ct_real *restrict vz,
+                       const ct_real *restrict m, int want_area)
+{
+    const ct_idx *restrict s1 = p->s[0], *restrict s2 = p->s[1], *restrict s3 = p->s[2],
+                           *restrict s4 = p->s[3];
+    const ct_contact_geo *g = &p->geo;
+    const ct_real *restrict h1 = g->h1, *restrict h2 = g->h2, *restrict h3 = g->h3,
+                            *restrict h4 = g->h4, *restrict nx = g->nx, *restrict ny = g->ny,
+                            *restrict nz = g->nz;
+    ct_real *restrict rx = p->r[CTDI_R_VRX], *restrict ry = p->r[CTDI_R_VRY],
+                      *restrict rz = p->r[CTDI_R_VRZ], *restrict vn = p->r[CTDI_R_VN],
+                      *restrict mm = p->r[CTDI_R_MM], *restrict area = p->r[CTDI_R_PRS];
+#pragma omp parallel for simd schedule(static) if (n > CTDI_PAR_MIN)
+    for (ct_idx k = 0; k < n; k++) {
+        ct_idx a = node[k], i1 = s1[k], i2 = s2[k], i3 = s3[k], i4 = s4[k];
+        ct_real ux = vx[a] - (h1[k] * vx[i1] + h2[k] * vx[i2] + h3[k] * vx[i3] + h4[k] * vx[i4]);
+        ct_real uy = vy[a] - (h1[k] * vy[i1] + h2[k] * vy[i2] + h3[k] * vy[i3] + h4[k] * vy[i4]);
+        ct_real uz = vz[a] - (h1[k] * vz[i1] + h2[k] * vz[i2] + h3[k] * vz[i3] + h4[k] * vz[i4]);
+        rx[k] = ux;
+        ry[k] = uy;
+        rz[k] = uz;
+        vn[k] = ux * nx[k] + uy * ny[k] + uz * nz[k];
+        mm[k] = h1[k] * m[i1] + h2[k] * m[i2] + h3[k] * m[i3] + h4[k] * m[i4];
+    }
+    if (!want_area)
+        return;
+#pragma omp parallel for schedule(static) if (n > CTDI_PAR_MIN)
+    for (ct_idx k = 0; k < n; k++) {
+        ct_idx i1 = s1[k], i2 = s2[k], i3 = s3[k], i4 = s4[k];
+        ct_real ax = x[i3] - x[i1], ay = y[i3] - y[i1], az = z[i3] - z[i1];
+        ct_real bx = x[i4] - x[i2], by = y[i4] - y[i2], bz = z[i4] - z[i2];
+        if (i4 == i3) {
+            bx = x[i3] - x[i2];
+            by = y[i3] - y[i2];
+            bz = z[i3] - z[i2];
+            ax = x[i2] - x[i1];
+            ay = y[i2] - y[i1];
+            az = z[i2] - z[i1];
+        }
+        ct_real cx = ay * bz - az * by, cy = az * bx - ax * bz, cz = ax * by - ay * bx;
+        area[k] = (ct_real)0.5 * CTI_SQRT(cx * cx + cy * cy + cz * cz);
+    }
+}
+
+/* Friction: mu per pair when the law needs it, the step, the total force. */
+static int friction(ctd_iface *it, ctdi_pass *p, ct_idx n, ct_real dt)
+{
+    ct_real **r = p->r;
+    ct_real **ft = p->st[p->cur];
+    const ct_contact_geo *g = &p->geo;
+    const ct_real *mu = NULL;
+    int law = it->fric_law;
+    if (law != CT_FRIC_COULOMB) {
+        ct_real *restrict spd = r[CTDI_R_SPD], *restrict prs = r[CTDI_R_PRS];
+        const ct_real *restrict rx = r[CTDI_R_VRX], *restrict ry = r[CTDI_R_VRY],
+                                *restrict rz = r[CTDI_R_VRZ], *restrict vn = r[CTDI_R_VN],
+                                *restrict nx = g->nx, *restrict ny = g->ny,
+                                *restrict nz = g->nz, *restrict fn = r[CTDI_R_FN];
+        const int usep = law == CT_FRIC_POLY || law == CT_FRIC_DARMSTAD;
+#pragma omp parallel for simd schedule(static) if (n > CTDI_PAR_MIN)
+        for (ct_idx k = 0; k < n; k++) {
+            ct_real tx = rx[k] - vn[k] * nx[k], ty = ry[k] - vn[k] * ny[k],
+                    tz = rz[k] - vn[k] * nz[k];
+            spd[k] = CTI_SQRT(tx * tx + ty * ty + tz * tz);
+            prs[k] = usep && prs[k] > 0 ? fn[k] / prs[k] : 0;
+        }
+        int rc = ct_friction_mu(n, law, it->coef, prs, spd, r[CTDI_R_MU]);
+        if (rc != CT_OK)
+            return rc;
+        mu = r[CTDI_R_MU];
+    }
+    {
+        ct_real *restrict kt = r[CTDI_R_KT];
+        const ct_real *restrict K = r[CTDI_R_K];
+        const ct_real s = it->cfg.kt_scale;
+#pragma omp parallel for simd schedule(static) if (n > CTDI_PAR_MIN)
+        for (ct_idx k = 0; k < n; k++)
+            kt[k] = s * K[k];
+    }
+    ct_real alpha = ct_filter_alpha(it->cfg.Ifiltr, it->cfg.Xfreq, dt);
+    int rc = ct_friction_step(n, g->nx, g->ny, g->nz, r[CTDI_R_VRX], r[CTDI_R_VRY],
+                              r[CTDI_R_VRZ], r[CTDI_R_FN], mu, it->coef[0], r[CTDI_R_KT], 0,
+                              dt, alpha, ft[CTDI_ST_FTX], ft[CTDI_ST_FTY], ft[CTDI_ST_FTZ],
+                              r[CTDI_R_FD]);
+    if (rc != CT_OK)
+        return rc;
+    ct_real *restrict fx = r[CTDI_R_FX], *restrict fy = r[CTDI_R_FY], *restrict fz = r[CTDI_R_FZ];
+    const ct_real *restrict tx = ft[CTDI_ST_FTX], *restrict ty = ft[CTDI_ST_FTY],
+                            *restrict tz = ft[CTDI_ST_FTZ];
+#pragma omp parallel for simd schedule(static) if (n > CTDI_PAR_MIN)
+    for (ct_idx k = 0; k < n; k++) {
+        fx[k] += tx[k];
+        fy[k] += ty[k];
+        fz[k] += tz[k];
+    }
+    return CT_OK;
+}
+
+/* Initial penetration at the first active cycle (TYPE24). */
+static void initial_state(ctd_iface *it, ctdi_pass *p, ct_idx n)
+{
+    ct_real **st = p->st[p->cur];
+    const ct_real *restrict pen = p->geo.pen;
+    ct_real *restrict pp = st[CTDI_ST_PPREV];
+    /* Start without blending: the initial state is Inacti's business. */
+    for (ct_idx k = 0; k < n; k++)
+        pp[k] = pen[k] > 0 ? pen[k] : 0;
+    if (it->cfg.Ipen0 != 0)
+        return;
+    int mode = it->cfg.Inacti != 0 ? CT_INACTI_SUBTRACT : CT_INACTI_IGNORE;
+    int nd = ct_initial_penetration(n, mode, pen, it->cfg.Ipen_max, st[CTDI_ST_P0], p->iflag);
+    if (nd > 0)
+        it->deactivated += nd;
+    ct_real *restrict act = st[CTDI_ST_ACT];
+    for (ct_idx k = 0; k < n; k++) {
+        act[k] = (ct_real)p->iflag[k];
+        if (mode == CT_INACTI_SUBTRACT && pp[k] > 0)
+            pp[k] = 0; /* q = p - p0 = 0 at the start */
+    }
+}
+
+static int normal_force(ctd_iface *it, ctdi_pass *p, ct_idx n, ct_real dt)
+{
+    ct_real **r = p->r, **st = p->st[p->cur];
+    const ct_contact_geo *g = &p->geo;
+    int rc;
+    if (p->law == CTDI_LAW_TYPE7) {
+        rc = ct_penalty_type7(n, g->pen, g->gap, r[CTDI_R_K], r[CTDI_R_FEL], r[CTDI_R_KTAN],
+                              r[CTDI_R_EN], p->iflag);
+    } else {
+        ct_real *p0 = it->cfg.Inacti != 0 && it->cfg.Ipen0 == 0 ? st[CTDI_ST_P0] : NULL;
+        rc = ct_penalty_linear(n, g->pen, r[CTDI_R_VN], r[CTDI_R_K], dt, p0, st[CTDI_ST_PPREV],
+                               st[CTDI_ST_FCAP], st[CTDI_ST_QJUMP], r[CTDI_R_FEL],
+                               r[CTDI_R_EN]);
+        const ct_real *restrict pen = g->pen, *restrict K = r[CTDI_R_K];
+        ct_real *restrict kt = r[CTDI_R_KTAN];
+#pragma omp parallel for simd schedule(static) if (n > CTDI_PAR_MIN)
+        for (ct_idx k = 0; k < n; k++)
+            kt[k] = pen[k] > 0 ? K[k] : 0;
+    }
+    if (rc != CT_OK)
+        return rc;
+    return ct_normal_finish(n, g->pen, r[CTDI_R_FEL], r[CTDI_R_KTAN], r[CTDI_R_VN], r[CTDI_R_MS],
+                            r[CTDI_R_MM], it->cfg.VisS, dt, g->nx, g->ny, g->nz, r[CTDI_R_FN],
+                            r[CTDI_R_FX], r[CTDI_R_FY], r[CTDI_R_FZ], r[CTDI_R_DD]);
+}
+
+/* Time-step limits over the pairs. */
+static int timestep(ctd_iface *it, ctdi_pass *p, ct_idx n, const ct_real *m,
+                    ctd_iface_report *rep)
+{
+    ct_real dmin;
+    ct_idx imin;
+    int rc = ct_dt_nodal(n, p->pairs[p->cur].node, m, it->kelem, p->r[CTDI_R_KTAN], NULL,
+                         &dmin, &imin);
+    if (rc != CT_OK)
+        return rc;
+    if (dmin < rep->dt_nodal) {
+        rep->dt_nodal = dmin;
+        rep->dt_node = imin >= 0 ? p->pairs[p->cur].node[imin] : -1;
+    }
+    if (p->law == CTDI_LAW_TYPE7) {
+        rc = ct_dt_type7_kinematic(n, p->geo.pen, p->geo.gap, p->r[CTDI_R_VN], NULL, &dmin,
+                                   &imin);
+        if (rc != CT_OK)
+            return rc;
+        if (dmin < rep->dt_kin)
+            rep->dt_kin = dmin;
+    }
+    const ct_real *restrict gap = p->geo.gap, *restrict rx = p->r[CTDI_R_VRX],
+                            *restrict ry = p->r[CTDI_R_VRY], *restrict rz = p->r[CTDI_R_VRZ],
+                            *restrict kt = p->r[CTDI_R_KTAN];
+    ct_real gmin = CT_DT_NONE, v2max = 0, kmax = 0;
+#pragma omp parallel for schedule(static) reduction(min : gmin) reduction(max : v2max, kmax) if (n > CTDI_PAR_MIN)
+    for (ct_idx k = 0; k < n; k++) {
+        if (gap[k] > 0 && gap[k] < gmin)
+            gmin = gap[k];
+        ct_real v2 = rx[k] * rx[k] + ry[k] * ry[k] + rz[k] * rz[k];
+        if (v2 > v2max)
+            v2max = v2;
+        if (kt[k] > kmax)
+            kmax = kt[k];
+    }
+    if (kmax > rep->kmax)
+        rep->kmax = kmax;
+    if (gmin < CT_DT_NONE) {
+        ct_real d = ct_dt_tunnel(gmin, CTI_SQRT(v2max));
+        if (d < rep->dt_tunnel)
+            rep->dt_tunnel = d;
+    }
+    return CT_OK;
+}
+
+int ctdi_pass_step(ctd_iface *it, ctdi_pass *p, ct_real dt, const ct_real *x,
+                   const ct_real *y, const ct_real *z, const ct_real *vx, const ct_real *vy,
+                   const ct_real *vz, const ct_real *m, ct_real *fx, ct_real *fy,
+                   ct_real *fz, ctd_iface_report *rep)
+{
+    if (p->nsec == 0 || p->nseg == 0)
+        return CT_OK;
+    if (!(it->margin > 0)) {
+        double h = ctdi_mean_seg_edge(p->nseg, p->n1, p->n2, p->n3, p->n4, x, y, z);
+        it->margin = (ct_real)(h > 0 ? 0.2 * h : (p->sgap > 0 ? p->sgap : 1e-3));
+    }
+    double t0 = ctdi_wtime();
+    int did;
+    int rc = pass_search(it, p, x, y, z, m, &did);
+    if (rc != CT_OK) {
+        p->need_sort = 1;
+        return rc;
+    }
+    if (did) {
+        it->resorts++;
+        rep->resorted++;
+    }
+    double t1 = ctdi_wtime();
+    const ct_pairs *pp = &p->pairs[p->cur];
+    ct_idx n = pp->n;
+    ct_narrow_stats ns;
+    int var_gap = it->cfg.type != 24 || it->cfg.Igap0 != 0;
+    const ct_real *gn = var_gap ? it->gnode : NULL, *gs = var_gap ? p->gseg : NULL;
+    rc = ct_narrow_node_segment(n, pp->node, pp->seg, p->n1, p->n2, p->n3, p->n4, x, y, z, gn,
+                                gs, it->cfg.gap, it->cfg.Gap_max_s, it->cfg.Gap_max_m,
+                                it->cfg.quad, p->two_sided, &p->geo, &ns);
+    if (rc != CT_OK)
+        return rc;
+    if (p->first && p->law == CTDI_LAW_LINEAR)
+        initial_state(it, p, n);
+    p->first = 0;
+    if (it->deactivated > 0) {
+        ct_real *restrict pen = p->geo.pen;
+        const ct_real *restrict act = p->st[p->cur][CTDI_ST_ACT];
+        for (ct_idx k = 0; k < n; k++)
+            if (act[k] == 0)
+                pen[k] = 0;
+    }
+    double t2 = ctdi_wtime();
+    int wa = it->fric_on && (it->fric_law == CT_FRIC_POLY || it->fric_law == CT_FRIC_DARMSTAD);
+    kinematics(p, n, pp->node, x, y, z, vx, vy, vz, m, wa);
+    rc = normal_force(it, p, n, dt);
+    ct_real *fd = p->r[CTDI_R_FD];
+    if (rc == CT_OK && it->fric_on)
+        rc = friction(it, p, n, dt);
+    if (rc != CT_OK)
+        return rc;
+    rep->e_contact += ct_sum_ordered(n, p->r[CTDI_R_EN]);
+    rep->e_damp += ct_sum_ordered(n, p->r[CTDI_R_DD]);
+    if (it->fric_on)
+        rep->e_fric += ct_sum_ordered(n, fd);
+    rep->force[0] += ct_sum_ordered(n, p->r[CTDI_R_FX]);
+    rep->force[1] += ct_sum_ordered(n, p->r[CTDI_R_FY]);
+    rep->force[2] += ct_sum_ordered(n, p->r[CTDI_R_FZ]);
+    double t3 = ctdi_wtime();
+    ct_asm_map map = ct_asm_map_nodeseg(n, pp->node, p->s[0], p->s[1], p->s[2], p->s[3]);
+    const ct_real *const w[5] = {NULL, p->geo.h1, p->geo.h2, p->geo.h3, p->geo.h4};
+    rc = ct_assemble(&p->ws, it->cfg.asm_variant, &map, w, p->r[CTDI_R_FX], p->r[CTDI_R_FY],
+                     p->r[CTDI_R_FZ], it->nnode, fx, fy, fz);
+    double t4 = ctdi_wtime();
+    if (rc == CT_OK)
+        rc = timestep(it, p, n, m, rep);
+    double t5 = ctdi_wtime();
+    rep->t[CTD_IT_SEARCH] += t1 - t0;
+    rep->t[CTD_IT_NARROW] += t2 - t1;
+    rep->t[CTD_IT_FORCE] += (t3 - t2) + (t5 - t4);
+    rep->t[CTD_IT_ASSEMBLE] += t4 - t3;
+    rep->ncand += n;
+    rep->nactive += (ct_idx)ns.active;
+    return rc;
+}

@@ -1,0 +1,685 @@
+/*
+ * type11.c -- TYPE11 edge-to-edge contact (seed 002, Figure 9): the edges
+ * of set A against themselves (self) or against set B; a search over edge
+ * boxes (direct, or a bucket grid), the re-sort criterion, the edge-edge
+ * narrow phase, the TYPE7 law with damping, and the forces on the four edge
+ * nodes with the weights of the contact points (force and moment balanced),
+ * assembled race-free (ct_asm_map_edge, colouring by default).
+ *
+ * Search: each edge's box is inflated by half the search distance
+ * d = (largest pair gap) + margin, so two boxes overlap when the edges may
+ * be within d. The bucket grid sorts set B's boxes into cells (counting
+ * sort in edge order); each A edge visits the cells its box covers and
+ * keeps a B edge only in the first cell of the two boxes' intersection (no
+ * duplicates, no marks), then sorts its list: pairs come out ordered by
+ * (a, b), the same for any thread count and equal to the direct search's.
+ * The names "topological" and "bsp" select the bucket grid here.
+ */
+#include "iface_internal.h"
+
+#include "ct_internal.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Per-pair reals. */
+enum { E_DIST = 0, E_PEN, E_NX, E_NY, E_NZ, E_SA, E_SB, E_PAX, E_PAY, E_PAZ, E_PBX, E_PBY,
+       E_PBZ, E_GAP, E_K0, E_FEL, E_KTAN, E_EN, E_VN, E_MS, E_MM, E_FN, E_FX, E_FY, E_FZ, E_DD,
+       E_W1, E_W2, E_W3, E_W4, E_VR2, E_N };
+
+struct ctdi_epass {
+    ct_idx na, nb, ne;     /* edges of A, of B (0: self), total */
+    ct_idx *e1, *e2;       /* ne edges */
+    ct_real *gedge;        /* per-edge gap */
+    ct_real sgap;          /* largest pair gap */
+    ct_idx nan, nbn;
+    ct_idx *an, *bn;       /* unique nodes of A and of B */
+    int self, bucket, need_sort;
+    ct_real k0;
+    ct_real *x0, *y0, *z0;
+    /* Pairs and per-pair arrays. */
+    ct_idx n;
+    size_t cap;
+    ct_idx *pa, *pb, *sl[4];
+    ct_real *r[E_N];
+    uint8_t *flag;
+    int32_t *iflag;
+    ct_edge_geo geo;
+    /* Search scratch. */
+    ct_real *box;          /* 6 per edge: lo xyz, hi xyz */
+    ct_idx *cnt;           /* per A edge: pair counts, then offsets (na + 1) */
+    ct_idx *cell_off, *cell_edge;
+    size_t cap_cell, cap_ce;
+    ct_idx *tmp_a, *tmp_b;
+    size_t cap_tmp;
+    ct_assemble_ws ws;
+    int ws_ok;
+};
+
+static void free_pairs(ctdi_epass *e)
+{
+    ct_free(e->pa);
+    ct_free(e->pb);
+    for (int i = 0; i < 4; i++)
+        ct_free(e->sl[i]);
+    for (int i = 0; i < E_N; i++)
+        ct_free(e->r[i]);
+    ct_free(e->flag);
+    ct_free(e->iflag);
+    e->pa = e->pb = NULL;
+    memset(e->sl, 0, sizeof e->sl);
+    memset(e->r, 0, sizeof e->r);
+    e->flag = NULL;
+    e->iflag = NULL;
+    e->cap = 0;
+}
+
+static int grow_pairs(ctdi_epass *e, size_t n)
+{
+    if (n <= e->cap && e->flag)
+        return CT_OK;
+    free_pairs(e);
+    size_t c = n + n / 2 + 64;
+    int ok = (e->pa = ct_calloc(c, sizeof(ct_idx))) != NULL;
+    ok &= (e->pb = ct_calloc(c, sizeof(ct_idx))) != NULL;
+    for (int i = 0; i < 4; i++)
+        ok &= (e->sl[i] = ct_calloc(c, sizeof(ct_idx))) != NULL;
+    for (int i = 0; i < E_N; i++)
+        ok &= (e->r[i] = ct_calloc(c, sizeof(ct_real))) != NULL;
+    ok &= (e->flag = ct_calloc(c, 1)) != NULL;
+    ok &= (e->iflag = ct_calloc(c, sizeof(int32_t))) != NULL;
+    if (!ok) {
+        free_pairs(e);
+        return CT_ERR_NOMEM;
+    }
+    e->cap = c;
+    ct_real **r = e->r;
+    ct_edge_geo g = {r[E_DIST], r[E_PEN], r[E_NX],  r[E_NY],  r[E_NZ],  r[E_SA],  r[E_SB],
+                     r[E_PAX],  r[E_PAY], r[E_PAZ], r[E_PBX], r[E_PBY], r[E_PBZ], r[E_GAP],
+                     e->flag};
+    e->geo = g;
+    return CT_OK;
+}
+
+void ctdi_type11_free(ctdi_epass *e)
+{
+    if (!e)
+        return;
+    free_pairs(e);
+    ct_free(e->e1);
+    ct_free(e->e2);
+    ct_free(e->gedge);
+    ct_free(e->an);
+    ct_free(e->bn);
+    ct_free(e->x0);
+    ct_free(e->y0);
+    ct_free(e->z0);
+    ct_free(e->box);
+    ct_free(e->cnt);
+    ct_free(e->cell_off);
+    ct_free(e->cell_edge);
+    ct_free(e->tmp_a);
+    ct_free(e->tmp_b);
+    if (e->ws_ok)
+        ct_assemble_ws_destroy(&e->ws);
+    free(e);
+}
+
+size_t ctdi_type11_memory(const ctdi_epass *e)
+{
+    size_t b = sizeof *e + e->cap * (6 * sizeof(ct_idx) + E_N * sizeof(ct_real) + 5);
+    b += (size_t)e->ne * (2 * sizeof(ct_idx) + 7 * sizeof(ct_real));
+    b += (e->cap_cell + e->cap_ce + 2 * e->cap_tmp) * sizeof(ct_idx);
+    return b + ct_assemble_ws_memory(&e->ws);
+}
+
+void ctdi_type11_force_resort(ctdi_epass *e) { e->need_sort = 1; }
+
+ct_idx ctd_iface_nsec(const ctd_iface *it)
+{
+    if (it->ep)
+        return it->ep->na;
+    return it->npass > 0 ? it->pass[0].nsec : 0;
+}
+
+static int cmp_edge(const void *a, const void *b)
+{
+    const ct_idx *u = a, *v = b;
+    if (u[0] != v[0])
+        return (u[0] > v[0]) - (u[0] < v[0]);
+    return (u[1] > v[1]) - (u[1] < v[1]);
+}
+
+/* The unique edges (lower node first, sorted) of segments. */
+static int seg_edges(const ctd_iface_data *d, ct_idx **e1, ct_idx **e2, ct_idx *ne)
+{
+    size_t cap = 4 * (size_t)d->nseg + 1;
+    ct_idx *t = malloc(2 * cap * sizeof(ct_idx));
+    if (!t)
+        return CT_ERR_NOMEM;
+    size_t k = 0;
+    for (ct_idx j = 0; j < d->nseg; j++) {
+        ct_idx v[4] = {d->n1[j], d->n2[j], d->n3[j], d->n4[j]};
+        int nv = v[3] == v[2] ? 3 : 4;
+        for (int a = 0; a < nv; a++) {
+            ct_idx p = v[a], q = v[(a + 1) % nv];
+            t[2 * k] = p < q ? p : q;
+            t[2 * k + 1] = p < q ? q : p;
+            k++;
+        }
+    }
+    qsort(t, k, 2 * sizeof(ct_idx), cmp_edge);
+    size_t u = 0;
+    for (size_t i = 0; i < k; i++)
+        if (u == 0 || t[2 * u - 2] != t[2 * i] || t[2 * u - 1] != t[2 * i + 1]) {
+            t[2 * u] = t[2 * i];
+            t[2 * u + 1] = t[2 * i + 1];
+            u++;
+        }
+    *e1 = ct_calloc(u + 1, sizeof(ct_idx));
+    *e2 = ct_calloc(u + 1, sizeof(ct_idx));
+    if (!*e1 || !*e2) {
+        free(t);
+        return CT_ERR_NOMEM;
+    }
+    for (size_t i = 0; i < u; i++) {
+        (*e1)[i] = t[2 * i];
+        (*e2)[i] = t[2 * i + 1];
+    }
+    *ne = (ct_idx)u;
+    free(t);
+    return CT_OK;
+}
+
+int ctdi_type11_setup(ctd_iface *it, const ctd_iface_data *d, ct_diag *diag)
+{
+    const ctd_iface_cfg *c = &it->cfg;
+    if (!(c->Istf == 1 || it->kconst > 0))
+        return ctdi_fail(diag, CT_ERR_ARG, -1, "TYPE11 needs Istf = 1 or a stiffness K.");
+    ctdi_epass *e = calloc(1, sizeof *e);
+    if (!e)
+        return CT_ERR_NOMEM;
+    it->ep = e;
+    e->need_sort = 1;
+    e->bucket = c->algo != CT_SEARCH_DIRECT;
+    ct_real k0 = c->Istf == 1 ? c->Stfac : c->Stfac * it->kconst / 2;
+    if (k0 < c->Stmin)
+        k0 = c->Stmin;
+    if (c->Stmax > 0 && k0 > c->Stmax)
+        k0 = c->Stmax;
+    e->k0 = k0;
+    int rc = CT_OK;
+    if (d->nea > 0) {
+        if (!d->ea1 || !d->ea2 || (d->neb > 0 && (!d->eb1 || !d->eb2)))
+            return ctdi_fail(diag, CT_ERR_ARG, -1, "TYPE11 edge arrays missing.");
+        e->na = d->nea;
+        e->nb = d->neb > 0 ? d->neb : 0;
+        e->ne = e->na + e->nb;
+        e->e1 = ct_calloc((size_t)e->ne + 1, sizeof(ct_idx));
+        e->e2 = ct_calloc((size_t)e->ne + 1, sizeof(ct_idx));
+        if (!e->e1 || !e->e2)
+            return CT_ERR_NOMEM;
+        for (ct_idx i = 0; i < e->na; i++) {
+            e->e1[i] = d->ea1[i];
+            e->e2[i] = d->ea2[i];
+        }
+        for (ct_idx i = 0; i < e->nb; i++) {
+            e->e1[e->na + i] = d->eb1[i];
+            e->e2[e->na + i] = d->eb2[i];
+        }
+    } else {
+        if (d->nseg <= 0 || !d->n1 || !d->n2 || !d->n3 || !d->n4)
+            return ctdi_fail(diag, CT_ERR_ARG, -1, "TYPE11 needs edges or a surface.");
+        for (ct_idx j = 0; j < d->nseg; j++)
+            if (d->n1[j] < 0 || d->n1[j] >= it->nnode || d->n2[j] < 0 ||
+                d->n2[j] >= it->nnode || d->n3[j] < 0 || d->n3[j] >= it->nnode ||
+                d->n4[j] < 0 || d->n4[j] >= it->nnode)
+                return ctdi_fail(diag, CT_ERR_RANGE, j, "A TYPE11 segment node is out of range.");
+        rc = seg_edges(d, &e->e1, &e->e2, &e->na);
+        if (rc != CT_OK)
+            return rc;
+        e->nb = 0;
+        e->ne = e->na;
+    }
+    e->self = e->nb == 0;
+    for (ct_idx i = 0; i < e->ne; i++)
+        if (e->e1[i] < 0 || e->e1[i] >= it->nnode || e->e2[i] < 0 || e->e2[i] >= it->nnode ||
+            e->e1[i] == e->e2[i])
+            return ctdi_fail(diag, CT_ERR_RANGE, i, "A TYPE11 edge node is out of range or "
+                                                    "repeated.");
+    /* Edge gaps: the larger node gap of the edge, at least gap / 2. */
+    e->gedge = ct_calloc((size_t)e->ne + 1, sizeof(ct_real));
+    if (!e->gedge)
+        return CT_ERR_NOMEM;
+    ct_real gmax = 0;
+    for (ct_idx i = 0; i < e->ne; i++) {
+        ct_real g = c->gap / 2;
+        if (it->gnode) {
+            ct_real a = it->gnode[e->e1[i]], b = it->gnode[e->e2[i]];
+            g = a > g ? a : g;
+            g = b > g ? b : g;
+        }
+        e->gedge[i] = g;
+        ct_real gc = c->Gap_max_s > 0 && g > c->Gap_max_s ? c->Gap_max_s : g;
+        gmax = gc > gmax ? gc : gmax;
+    }
+    e->sgap = 2 * gmax;
+    if (!(e->sgap > 0))
+        return ctdi_fail(diag, CT_ERR_ARG, -1, "TYPE11 needs a positive gap.");
+    const ct_idx *la[6] = {e->e1, e->e2, NULL, NULL, NULL, NULL};
+    const ct_idx ka[6] = {e->na, e->na, 0, 0, 0, 0};
+    int64_t n = ctdi_unique_nodes(it->nnode, la, ka, &e->an);
+    if (n < 0)
+        return (int)n;
+    e->nan = (ct_idx)n;
+    if (e->self) {
+        e->bn = ctdi_copy_idx(e->nan, e->an);
+        e->nbn = e->nan;
+        if (!e->bn)
+            return CT_ERR_NOMEM;
+    } else {
+        const ct_idx *lb[6] = {e->e1 + e->na, e->e2 + e->na, NULL, NULL, NULL, NULL};
+        const ct_idx kb[6] = {e->nb, e->nb, 0, 0, 0, 0};
+        n = ctdi_unique_nodes(it->nnode, lb, kb, &e->bn);
+        if (n < 0)
+            return (int)n;
+        e->nbn = (ct_idx)n;
+    }
+    size_t nn = (size_t)it->nnode + 1;
+    e->x0 = ct_calloc(nn, sizeof(ct_real));
+    e->y0 = ct_calloc(nn, sizeof(ct_real));
+    e->z0 = ct_calloc(nn, sizeof(ct_real));
+    e->box = ct_calloc(6 * (size_t)e->ne + 6, sizeof(ct_real));
+    e->cnt = ct_calloc((size_t)e->na + 2, sizeof(ct_idx));
+    if (!e->x0 || !e->y0 || !e->z0 || !e->box || !e->cnt)
+        return CT_ERR_NOMEM;
+    if ((rc = grow_pairs(e, 0)) != CT_OK)
+        return rc;
+    rc = ct_assemble_ws_init(&e->ws);
+    e->ws_ok = rc == CT_OK;
+    return rc;
+}
+
+/* ---- Search ------------------------------------------------------------------ */
+
+static inline int boxes_overlap(const ct_real *a, const ct_real *b)
+{
+    return a[0] <= b[3] && b[0] <= a[3] && a[1] <= b[4] && b[1] <= a[4] && a[2] <= b[5] &&
+           b[2] <= a[5];
+}
+
+/* 1 when edges a and b may pair (self: b > a and no shared node). */
+static inline int admissible(const ctdi_epass *e, ct_idx a, ct_idx b)
+{
+    if (!e->self)
+        return 1;
+    if (b <= a)
+        return 0;
+    return e->e1[a] != e->e1[b] && e->e1[a] != e->e2[b] && e->e2[a] != e->e1[b] &&
+           e->e2[a] != e->e2[b];
+}
+
+/* The grid: origin, cell size, dimensions. */
+typedef struct grid {
+    double o[3], h;
+    int64_t n[3];
+} grid;
+
+static inline int64_t cell_of(const grid *g, int ax, double v)
+{
+    int64_t c = (int64_t)floor((v - g->o[ax]) / g->h);
+    return c < 0 ? 0 : (c >= g->n[ax] ? g->n[ax] - 1 : c);
+}
+
+static void insertion_sort(ct_idx *a, ct_idx n)
+{
+    for (ct_idx i = 1; i < n; i++) {
+        ct_idx v = a[i], j = i - 1;
+        while (j >= 0 && a[j] > v) {
+            a[j + 1] = a[j];
+            j--;
+        }
+        a[j + 1] = v;
+    }
+}
+
+/* Candidates of A edge a (count only when out is NULL). */
+static ct_idx query(const ctdi_epass *e, const grid *g, ct_idx a, ct_idx b0, ct_idx *out)
+{
+    const ct_real *ba = e->box + 6 * (size_t)a;
+    ct_idx k = 0;
+    if (!e->bucket) {
+        ct_idx bend = e->self ? e->na : e->ne;
+        for (ct_idx b = b0; b < bend; b++)
+            if (admissible(e, a, b) && boxes_overlap(ba, e->box + 6 * (size_t)b)) {
+                if (out)
+                    out[k] = b;
+                k++;
+            }
+        return k;
+    }
+    int64_t lo[3], hi[3];
+    for (int ax = 0; ax < 3; ax++) {
+        lo[ax] = cell_of(g, ax, (double)ba[ax]);
+        hi[ax] = cell_of(g, ax, (double)ba[3 + ax]);
+    }
+    for (int64_t cz = lo[2]; cz <= hi[2]; cz++)
+        for (int64_t cy = lo[1]; cy <= hi[1]; cy++)
+            for (int64_t cx = lo[0]; cx <= hi[0]; cx++) {
+                int64_t cell = (cz * g->n[1] + cy) * g->n[0] + cx;
+                for (ct_idx s = e->cell_off[cell]; s < e->cell_off[cell + 1]; s++) {
+                    ct_idx b = e->cell_edge[s];
+                    const ct_real *bb = e->box + 6 * (size_t)b;
+                    if (!admissible(e, a, b) || !boxes_overlap(ba, bb))
+                        continue;
+                    /* Count b only in the first cell of the intersection. */
+                    double mx = ba[0] > bb[0] ? ba[0] : bb[0], my = ba[1] > bb[1] ? ba[1] : bb[1],
+                           mz = ba[2] > bb[2] ? ba[2] : bb[2];
+                    if (cell_of(g, 0, mx) != cx || cell_of(g, 1, my) != cy ||
+                        cell_of(g, 2, mz) != cz)
+                        continue;
+                    if (out)
+                        out[k] = b;
+                    k++;
+                }
+            }
+    if (out)
+        insertion_sort(out, k);
+    return k;
+}
+
+static int grow_idx(ct_idx **p, size_t *cap, size_t n)
+{
+    if (n <= *cap && *p)
+        return CT_OK;
+    ct_free(*p);
+    size_t c = n + n / 2 + 64;
+    *p = ct_calloc(c, sizeof(ct_idx));
+    *cap = *p ? c : 0;
+    return *p ? CT_OK : CT_ERR_NOMEM;
+}
+
+static int edge_search(ctd_iface *it, ctdi_epass *e, const ct_real *x, const ct_real *y,
+                       const ct_real *z)
+{
+    const ct_real half = (e->sgap + it->margin) / 2;
+    const ct_idx ne = e->ne, na = e->na;
+    ct_real *restrict box = e->box;
+#pragma omp parallel for schedule(static) if (ne > CTDI_PAR_MIN)
+    for (ct_idx i = 0; i < ne; i++) {
+        ct_idx p = e->e1[i], q = e->e2[i];
+        box[6 * i + 0] = (x[p] < x[q] ? x[p] : x[q]) - half;
+        box[6 * i + 1] = (y[p] < y[q] ? y[p] : y[q]) - half;
+        box[6 * i + 2] = (z[p] < z[q] ? z[p] : z[q]) - half;
+        box[6 * i + 3] = (x[p] > x[q] ? x[p] : x[q]) + half;
+        box[6 * i + 4] = (y[p] > y[q] ? y[p] : y[q]) + half;
+        box[6 * i + 5] = (z[p] > z[q] ? z[p] : z[q]) + half;
+    }
+    const ct_idx b0 = e->self ? 0 : na, b1 = e->self ? na : ne;
+    grid g;
+    memset(&g, 0, sizeof g);
+    int rc;
+    if (e->bucket) {
+        double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300}, ext = 0;
+        for (ct_idx b = b0; b < b1; b++)
+            for (int ax = 0; ax < 3; ax++) {
+                lo[ax] = fmin(lo[ax], (double)box[6 * b + ax]);
+                hi[ax] = fmax(hi[ax], (double)box[6 * b + 3 + ax]);
+                ext += (double)box[6 * b + 3 + ax] - (double)box[6 * b + ax];
+            }
+        int64_t nbox = b1 - b0;
+        g.h = nbox > 0 ? ext / (3.0 * (double)nbox) : 1.0;
+        if (!(g.h > 0))
+            g.h = 1.0;
+        int64_t maxc = 2 * (int64_t)ne + 1024;
+        for (;;) {
+            int64_t tot = 1;
+            for (int ax = 0; ax < 3; ax++) {
+                g.o[ax] = lo[ax];
+                g.n[ax] = nbox > 0 ? (int64_t)((hi[ax] - lo[ax]) / g.h) + 1 : 1;
+                tot *= g.n[ax];
+            }
+            if (tot <= maxc)
+                break;
+            g.h *= 1.5;
+        }
+        int64_t ncell = g.n[0] * g.n[1] * g.n[2];
+        if ((rc = grow_idx(&e->cell_off, &e->cap_cell, (size_t)ncell + 1)) != CT_OK)
+            return rc;
+        memset(e->cell_off, 0, ((size_t)ncell + 1) * sizeof(ct_idx));
+        int64_t total = 0;
+        for (ct_idx b = b0; b < b1; b++) {
+            int64_t l[3], h[3];
+            for (int ax = 0; ax < 3; ax++) {
+                l[ax] = cell_of(&g, ax, (double)box[6 * b + ax]);
+                h[ax] = cell_of(&g, ax, (double)box[6 * b + 3 + ax]);
+            }
+            for (int64_t cz = l[2]; cz <= h[2]; cz++)
+                for (int64_t cy = l[1]; cy <= h[1]; cy++)
+                    for (int64_t cx = l[0]; cx <= h[0]; cx++) {
+                        e->cell_off[(cz * g.n[1] + cy) * g.n[0] + cx + 1]++;
+                        total++;
+                    }
+        }
+        if (total > INT32_MAX)
+            return CT_ERR_TOOBIG;
+        for (int64_t c = 0; c < ncell; c++)
+            e->cell_off[c + 1] += e->cell_off[c];
+        if ((rc = grow_idx(&e->cell_edge, &e->cap_ce, (size_t)total + 1)) != CT_OK ||
+            (rc = grow_idx(&e->tmp_a, &e->cap_tmp, (size_t)ncell + 1)) != CT_OK)
+            return rc;
+        ct_idx *cur = e->tmp_a;
+        memcpy(cur, e->cell_off, (size_t)ncell * sizeof(ct_idx));
+        for (ct_idx b = b0; b < b1; b++) {
+            int64_t l[3], h[3];
+            for (int ax = 0; ax < 3; ax++) {
+                l[ax] = cell_of(&g, ax, (double)box[6 * b + ax]);
+                h[ax] = cell_of(&g, ax, (double)box[6 * b + 3 + ax]);
+            }
+            for (int64_t cz = l[2]; cz <= h[2]; cz++)
+                for (int64_t cy = l[1]; cy <= h[1]; cy++)
+                    for (int64_t cx = l[0]; cx <= h[0]; cx++)
+                        e->cell_edge[cur[(cz * g.n[1] + cy) * g.n[0] + cx]++] = b;
+        }
+    }
+    /* Count, prefix, fill: canonical order (a, then b). */
+    ct_idx *cnt = e->cnt;
+    const int64_t bstart = e->self ? 0 : na;
+#pragma omp parallel for schedule(dynamic, 64) if (na > CTDI_PAR_MIN)
+    for (ct_idx a = 0; a < na; a++)
+        cnt[a + 1] = query(e, &g, a, (ct_idx)bstart, NULL);
+    cnt[0] = 0;
+    int64_t tot = 0;
+    for (ct_idx a = 0; a < na; a++) {
+        tot += cnt[a + 1];
+        if (tot > INT32_MAX)
+            return CT_ERR_TOOBIG;
+        cnt[a + 1] = (ct_idx)tot;
+    }
+    if ((rc = grow_pairs(e, (size_t)tot)) != CT_OK)
+        return rc;
+    ct_idx *pa = e->pa, *pb = e->pb;
+#pragma omp parallel for schedule(dynamic, 64) if (na > CTDI_PAR_MIN)
+    for (ct_idx a = 0; a < na; a++) {
+        ct_idx k0 = cnt[a];
+        query(e, &g, a, (ct_idx)bstart, pb + k0);
+        for (ct_idx k = k0; k < cnt[a + 1]; k++)
+            pa[k] = a;
+    }
+    e->n = (ct_idx)tot;
+    return CT_OK;
+}
+
+/* Search if needed, then slots, assembly preparation and per-pair
+ * constants. */
+static int maybe_search(ctd_iface *it, ctdi_epass *e, const ct_real *x, const ct_real *y,
+                        const ct_real *z, const ct_real *m, int *did)
+{
+    *did = 0;
+    if (!e->need_sort &&
+        !ct_resort_needed(e->nan, e->an, e->nbn, e->bn, e->x0, e->y0, e->z0, x, y, z,
+                          it->margin, NULL))
+        return CT_OK;
+    int rc = edge_search(it, e, x, y, z);
+    if (rc != CT_OK)
+        return rc;
+    const ct_idx n = e->n;
+    const ct_idx *restrict pa = e->pa, *restrict pb = e->pb, *restrict e1 = e->e1,
+                           *restrict e2 = e->e2;
+    ct_idx *restrict a1 = e->sl[0], *restrict a2 = e->sl[1], *restrict b1 = e->sl[2],
+                     *restrict b2 = e->sl[3];
+    ct_real *restrict k0 = e->r[E_K0];
+    const ct_real K0 = e->k0;
+#pragma omp parallel for schedule(static) if (n > CTDI_PAR_MIN)
+    for (ct_idx k = 0; k < n; k++) {
+        a1[k] = e1[pa[k]];
+        a2[k] = e2[pa[k]];
+        b1[k] = e1[pb[k]];
+        b2[k] = e2[pb[k]];
+        k0[k] = K0;
+    }
+    (void)m;
+    ct_asm_map map = ct_asm_map_edge(n, a1, a2, b1, b2);
+    rc = ct_assemble_prepare(&e->ws, it->cfg.asm_variant, &map, it->nnode);
+    if (rc != CT_OK)
+        return rc;
+    const ct_idx nn = it->nnode;
+    ct_real *restrict X = e->x0, *restrict Y = e->y0, *restrict Z = e->z0;
+#pragma omp parallel for simd schedule(static) if (nn > CTDI_PAR_MIN)
+    for (ct_idx i = 0; i < nn; i++) {
+        X[i] = x[i];
+        Y[i] = y[i];
+        Z[i] = z[i];
+    }
+    e->need_sort = 0;
+    *did = 1;
+    return CT_OK;
+}
+
+int ctdi_type11_step(ctd_iface *it, ct_real dt, const ct_real *x, const ct_real *y,
+                     const ct_real *z, const ct_real *vx, const ct_real *vy,
+                     const ct_real *vz, const ct_real *m, ct_real *fx, ct_real *fy,
+                     ct_real *fz, ctd_iface_report *rep)
+{
+    ctdi_epass *e = it->ep;
+    if (e->na == 0)
+        return CT_OK;
+    if (!(it->margin > 0)) {
+        double s = 0;
+        for (ct_idx i = 0; i < e->ne; i++) {
+            ct_idx p = e->e1[i], q = e->e2[i];
+            double dx = (double)x[p] - (double)x[q], dy = (double)y[p] - (double)y[q],
+                   dz = (double)z[p] - (double)z[q];
+            s += sqrt(dx * dx + dy * dy + dz * dz);
+        }
+        double h = e->ne > 0 ? s / (double)e->ne : 0;
+        it->margin = (ct_real)(h > 0 ? 0.2 * h : e->sgap);
+    }
+    double t0 = ctdi_wtime();
+    int did;
+    int rc = maybe_search(it, e, x, y, z, m, &did);
+    if (rc != CT_OK) {
+        e->need_sort = 1;
+        return rc;
+    }
+    if (did) {
+        it->resorts++;
+        rep->resorted++;
+    }
+    double t1 = ctdi_wtime();
+    const ct_idx n = e->n;
+    ct_narrow_stats ns;
+    rc = ct_narrow_edge_edge(n, e->pa, e->pb, e->e1, e->e2, x, y, z, e->gedge, 0,
+                             it->cfg.Gap_max_s, &e->geo, &ns);
+    if (rc != CT_OK)
+        return rc;
+    double t2 = ctdi_wtime();
+    ct_real **r = e->r;
+    {
+        const ct_idx *restrict a1 = e->sl[0], *restrict a2 = e->sl[1], *restrict b1 = e->sl[2],
+                               *restrict b2 = e->sl[3];
+        const ct_real *restrict sa = r[E_SA], *restrict sb = r[E_SB], *restrict nx = r[E_NX],
+                                *restrict ny = r[E_NY], *restrict nz = r[E_NZ];
+        ct_real *restrict vn = r[E_VN], *restrict ms = r[E_MS], *restrict mm = r[E_MM],
+                          *restrict w1 = r[E_W1], *restrict w2 = r[E_W2],
+                          *restrict w3 = r[E_W3], *restrict w4 = r[E_W4],
+                          *restrict vr2 = r[E_VR2];
+#pragma omp parallel for simd schedule(static) if (n > CTDI_PAR_MIN)
+        for (ct_idx k = 0; k < n; k++) {
+            ct_real ua = 1 - sa[k], ub = 1 - sb[k];
+            ct_real ux = ua * vx[a1[k]] + sa[k] * vx[a2[k]] - ub * vx[b1[k]] - sb[k] * vx[b2[k]];
+            ct_real uy = ua * vy[a1[k]] + sa[k] * vy[a2[k]] - ub * vy[b1[k]] - sb[k] * vy[b2[k]];
+            ct_real uz = ua * vz[a1[k]] + sa[k] * vz[a2[k]] - ub * vz[b1[k]] - sb[k] * vz[b2[k]];
+            vn[k] = ux * nx[k] + uy * ny[k] + uz * nz[k];
+            vr2[k] = ux * ux + uy * uy + uz * uz;
+            ms[k] = ua * m[a1[k]] + sa[k] * m[a2[k]];
+            mm[k] = ub * m[b1[k]] + sb[k] * m[b2[k]];
+            w1[k] = ua;
+            w2[k] = sa[k];
+            w3[k] = ub;
+            w4[k] = sb[k];
+        }
+    }
+    rc = ct_penalty_type7(n, r[E_PEN], r[E_GAP], r[E_K0], r[E_FEL], r[E_KTAN], r[E_EN],
+                          e->iflag);
+    if (rc == CT_OK)
+        rc = ct_normal_finish(n, r[E_PEN], r[E_FEL], r[E_KTAN], r[E_VN], r[E_MS], r[E_MM],
+                              it->cfg.VisS, dt, r[E_NX], r[E_NY], r[E_NZ], r[E_FN], r[E_FX],
+                              r[E_FY], r[E_FZ], r[E_DD]);
+    if (rc != CT_OK)
+        return rc;
+    rep->e_contact += ct_sum_ordered(n, r[E_EN]);
+    rep->e_damp += ct_sum_ordered(n, r[E_DD]);
+    rep->force[0] += ct_sum_ordered(n, r[E_FX]);
+    rep->force[1] += ct_sum_ordered(n, r[E_FY]);
+    rep->force[2] += ct_sum_ordered(n, r[E_FZ]);
+    double t3 = ctdi_wtime();
+    ct_asm_map map = ct_asm_map_edge(n, e->sl[0], e->sl[1], e->sl[2], e->sl[3]);
+    const ct_real *const w[4] = {r[E_W1], r[E_W2], r[E_W3], r[E_W4]};
+    rc = ct_assemble(&e->ws, it->cfg.asm_variant, &map, w, r[E_FX], r[E_FY], r[E_FZ],
+                     it->nnode, fx, fy, fz);
+    double t4 = ctdi_wtime();
+    if (rc != CT_OK)
+        return rc;
+    /* Time steps: nodal at A's first node, kinematic, tunnelling. */
+    ct_real dmin;
+    ct_idx imin;
+    rc = ct_dt_nodal(n, e->sl[0], m, it->kelem, r[E_KTAN], NULL, &dmin, &imin);
+    if (rc == CT_OK && dmin < rep->dt_nodal) {
+        rep->dt_nodal = dmin;
+        rep->dt_node = imin >= 0 ? e->sl[0][imin] : -1;
+    }
+    if (rc == CT_OK)
+        rc = ct_dt_type7_kinematic(n, r[E_PEN], r[E_GAP], r[E_VN], NULL, &dmin, &imin);
+    if (rc != CT_OK)
+        return rc;
+    if (dmin < rep->dt_kin)
+        rep->dt_kin = dmin;
+    const ct_real *restrict gap = r[E_GAP], *restrict vr2 = r[E_VR2], *restrict kt = r[E_KTAN];
+    ct_real gmin = CT_DT_NONE, v2max = 0, kmax = 0;
+#pragma omp parallel for schedule(static) reduction(min : gmin) reduction(max : v2max, kmax) if (n > CTDI_PAR_MIN)
+    for (ct_idx k = 0; k < n; k++) {
+        if (gap[k] > 0 && gap[k] < gmin)
+            gmin = gap[k];
+        if (vr2[k] > v2max)
+            v2max = vr2[k];
+        if (kt[k] > kmax)
+            kmax = kt[k];
+    }
+    if (kmax > rep->kmax)
+        rep->kmax = kmax;
+    if (gmin < CT_DT_NONE) {
+        ct_real d = ct_dt_tunnel(gmin, CTI_SQRT(v2max));
+        if (d < rep->dt_tunnel)
+            rep->dt_tunnel = d;
+    }
+    double t5 = ctdi_wtime();
+    rep->t[CTD_IT_SEARCH] += t1 - t0;
+    rep->t[CTD_IT_NARROW] += t2 - t1;
+    rep->t[CTD_IT_FORCE] += (t3 - t2) + (t5 - t4);
+    rep->t[CTD_IT_ASSEMBLE] += t4 - t3;
+    rep->ncand += n;
+    rep->nactive += (ct_idx)ns.active;
+    return CT_OK;
+}
