@@ -6,10 +6,11 @@
  *                                check each against the direct search, time them
  *   contact demo                 what `make run` shows: the search comparison on
  *                                a self-contact sheet and on two plates
+ *   contact run SCENE [options]  run a scene (explicit dynamics)
  *   contact check SCENE          validate a scene file without running it
  *
  * Exit codes: 0 success, 1 bad usage, 2 bad input (scene), 3 a verification
- * failed.
+ * failed, 4 the run went unstable, 5 output failure.
  */
 #include <errno.h>
 #include <stdio.h>
@@ -20,6 +21,7 @@
 #include "contact.h"
 #include "meshgen.h"
 #include "provenance.h"
+#include "run.h"
 #include "scene.h"
 
 #ifdef _OPENMP
@@ -323,6 +325,7 @@ static void usage(FILE *f)
                "  info      build provenance and machine topology\n"
                "  search    run and verify the contact searches on a synthetic case\n"
                "  demo      the search comparison shown by `make run`\n"
+               "  run       run a scene: contact run SCENE [--out DIR] [--threads N] ...\n"
                "  check     validate a scene file (YAML) without running it\n"
                "Run `contact <command> --help` for a command's options.\n");
 }
@@ -348,6 +351,8 @@ int main(int argc, char **argv)
     }
     if (!strcmp(cmd, "search"))
         return cmd_search(argc - 2, argv + 2);
+    if (!strcmp(cmd, "run"))
+        return ctd_run_main(argc - 2, argv + 2);
     if (!strcmp(cmd, "check")) {
         if (argc != 3 || !strcmp(argv[2], "--help")) {
             printf("usage: contact check SCENE\nValidates a scene file: every error names the "

@@ -1,0 +1,39 @@
+/*
+ * model_internal.h -- helpers shared by model.c, model_gen.c and
+ * model_select.c (prefix cti_). Not part of the driver's API.
+ */
+#ifndef CTD_MODEL_INTERNAL_H
+#define CTD_MODEL_INTERNAL_H
+
+#include <stddef.h>
+
+#include "contact.h"
+#include "scene.h"
+
+/* A growable array of fixed-size items. */
+typedef struct cti_vec {
+    void *data;
+    size_t n, cap;
+} cti_vec;
+
+int cti_vec_push(cti_vec *v, const void *item, size_t size);
+void cti_vec_free(cti_vec *v);
+
+/* Write a message into err (if not NULL) and return code. */
+int cti_model_err(char *err, size_t len, int code, const char *fmt, ...)
+    __attribute__((format(printf, 4, 5)));
+
+/* One generated mesh entry: nodes (mesh.nodes) and either surface segments
+ * (mesh.n1..n4), bricks (hex8, 8 per element, ctd_block's order) or lines
+ * (l1, l2), numbered as scene.h defines. */
+typedef struct cti_gen {
+    ct_mesh mesh;
+    ct_idx *hex8;       /* ct_calloc'd, or NULL */
+    ct_idx nline;
+    ct_idx *l1, *l2;    /* malloc'd, or NULL */
+} cti_gen;
+
+int cti_generate(cti_gen *g, const ctd_scene_generate *sg);
+void cti_gen_destroy(cti_gen *g);
+
+#endif

@@ -1,0 +1,169 @@
+/*
+ * run.c -- `contact run` (run.h): options, scene, model, interfaces,
+ * solver.
+ */
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "model.h"
+#include "run.h"
+#include "scene.h"
+#include "solver.h"
+
+static void usage(FILE *f)
+{
+    fprintf(f,
+            "usage: contact run SCENE [--out DIR] [--threads N] [--search ALGO] [--end T]\n"
+            "                         [--dt-scale S] [--quiet]\n"
+            "Runs a scene (YAML, see `contact check`) with the explicit solver and writes\n"
+            "a VTU/PVD series, history.csv, summary.json and energies.png.\n"
+            "  --out DIR       output directory (default: the scene's output.dir)\n"
+            "  --threads N     OpenMP threads (default: solver.threads or OpenMP's default)\n"
+            "  --search ALGO   direct | topological | bucket | bsp: every interface's search\n"
+            "  --end T         end time in seconds (default: the scene's end_time)\n"
+            "  --dt-scale S    safety factor on the stable time step (default: the scene's;\n"
+            "                  values above 1 are allowed here, for experiments)\n"
+            "  --quiet         no progress line and no report\n"
+            "Exit codes: 0 success, 1 bad usage, 2 bad input, 4 the run went unstable,\n"
+            "5 an output file could not be written.\n");
+}
+
+static int parse_pos(const char *s, double *v)
+{
+    char *e;
+    errno = 0;
+    double x = strtod(s, &e);
+    if (errno || e == s || *e || !(x > 0) || x > 1e300)
+        return -1;
+    *v = x;
+    return 0;
+}
+
+int ctd_run_main(int argc, char **argv)
+{
+    const char *scene = NULL, *out = NULL, *search = NULL;
+    double end = 0, dts = 0;
+    int threads = 0, quiet = 0;
+    for (int i = 0; i < argc; i++) {
+        const char *a = argv[i];
+        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+            usage(stdout);
+            return 0;
+        }
+        if (!strcmp(a, "--quiet")) {
+            quiet = 1;
+            continue;
+        }
+        if (a[0] != '-' || !a[1]) {
+            if (scene) {
+                fprintf(stderr, "contact run: one scene expected, got '%s' and '%s'\n", scene, a);
+                return CTD_EXIT_USAGE;
+            }
+            scene = a;
+            continue;
+        }
+        const char *v = i + 1 < argc ? argv[i + 1] : NULL;
+        if (!v) {
+            fprintf(stderr, "contact run: option %s needs a value (try --help)\n", a);
+            return CTD_EXIT_USAGE;
+        }
+        i++;
+        double x;
+        if (!strcmp(a, "--out")) {
+            out = v;
+        } else if (!strcmp(a, "--search")) {
+            if (ct_search_algo_from_name(v) < 0) {
+                fprintf(stderr, "contact run: --search expects direct, topological, bucket or "
+                                "bsp, got '%s'\n", v);
+                return CTD_EXIT_USAGE;
+            }
+            search = v;
+        } else if (!strcmp(a, "--end")) {
+            if (parse_pos(v, &end)) {
+                fprintf(stderr, "contact run: --end expects a time > 0, got '%s'\n", v);
+                return CTD_EXIT_USAGE;
+            }
+        } else if (!strcmp(a, "--dt-scale")) {
+            if (parse_pos(v, &dts)) {
+                fprintf(stderr, "contact run: --dt-scale expects a number > 0, got '%s'\n", v);
+                return CTD_EXIT_USAGE;
+            }
+        } else if (!strcmp(a, "--threads")) {
+            if (parse_pos(v, &x) || x != (int)x || x > 4096) {
+                fprintf(stderr, "contact run: --threads expects an integer in 1..4096, got "
+                                "'%s'\n", v);
+                return CTD_EXIT_USAGE;
+            }
+            threads = (int)x;
+        } else {
+            fprintf(stderr, "contact run: unknown option '%s' (try --help)\n", a);
+            return CTD_EXIT_USAGE;
+        }
+    }
+    if (!scene) {
+        usage(stderr);
+        return CTD_EXIT_USAGE;
+    }
+    ctd_scene *sc = NULL;
+    ctd_scene_err *se = calloc(1, sizeof *se);
+    if (!se)
+        return CTD_EXIT_OUTPUT;
+    if (ctd_scene_load(scene, &sc, se) != CT_OK) {
+        for (int k = 0; k < se->count && k < CTD_SCENE_MAXERR; k++)
+            fprintf(stderr, "%s\n", se->msg[k].text); /* "FILE:LINE: FIELD: what" */
+        if (se->count > CTD_SCENE_MAXERR)
+            fprintf(stderr, "%s: %d more errors\n", scene, se->count - CTD_SCENE_MAXERR);
+        free(se);
+        return CTD_EXIT_BADINPUT;
+    }
+    free(se);
+    if (search) {
+        int algo = ct_search_algo_from_name(search);
+        for (unsigned i = 0; i < sc->interfaces_count; i++)
+            sc->interfaces[i].search = algo;
+    }
+    char err[1024] = "";
+    ctd_model model;
+    int code = CTD_EXIT_OK;
+    if (ctd_model_build(&model, sc, err, sizeof err) != CT_OK) {
+        fprintf(stderr, "contact run: %s\n", err);
+        ctd_scene_free(sc);
+        return CTD_EXIT_BADINPUT;
+    }
+    ctd_contact_hook *hooks = NULL;
+    int nhook = 0;
+    if (sc->interfaces_count) {
+        if (!ctd_interfaces_build) {
+            fprintf(stderr, "contact run: %s: the scene has interfaces, and this build has no "
+                            "interface module\n", scene);
+            code = CTD_EXIT_BADINPUT;
+        } else if (ctd_interfaces_build(&model, sc, &hooks, &nhook, err, sizeof err) != CT_OK) {
+            fprintf(stderr, "contact run: %s\n", err);
+            code = CTD_EXIT_BADINPUT;
+        }
+    }
+    if (code == CTD_EXIT_OK) {
+        ctd_solver_opts o = ctd_solver_default_opts();
+        o.end_time = end;
+        o.dt_scale = dts;
+        o.threads = threads;
+        o.out_dir = out;
+        o.quiet = quiet;
+        ctd_solver s;
+        int rc = ctd_solver_init(&s, &model, &o, hooks, nhook, err, sizeof err);
+        if (rc) {
+            fprintf(stderr, "contact run: %s\n", err);
+            code = CTD_EXIT_OUTPUT;
+        } else {
+            code = ctd_solver_run(&s);
+            if (code != CTD_EXIT_OK)
+                fprintf(stderr, "contact run: %s: %s\n", s.status, s.message);
+        }
+        ctd_solver_destroy(&s);
+    }
+    ctd_model_destroy(&model);
+    ctd_scene_free(sc);
+    return code;
+}

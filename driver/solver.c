@@ -1,0 +1,642 @@
+/*
+ * solver.c -- the central-difference time loop (solver.h): forces,
+ * time step, kick with boundary conditions, rigid bodies, drift, and the
+ * checks that stop an unstable run. Energies, output and the report are in
+ * solver_report.c.
+ */
+#include <math.h>
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "solver.h"
+#include "solver_internal.h"
+
+#ifdef _OPENMP
+#include <omp.h>
+static double now_s(void) { return omp_get_wtime(); }
+#else
+#include <time.h>
+static double now_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+#endif
+
+ctd_solver_opts ctd_solver_default_opts(void)
+{
+    ctd_solver_opts o;
+    memset(&o, 0, sizeof o);
+    o.progress = -1;
+    return o;
+}
+
+static int err_out(char *err, size_t len, int code, const char *fmt, ...)
+    __attribute__((format(printf, 4, 5)));
+static int err_out(char *err, size_t len, int code, const char *fmt, ...)
+{
+    if (err && len) {
+        va_list ap;
+        va_start(ap, fmt);
+        vsnprintf(err, len, fmt, ap);
+        va_end(ap);
+    }
+    return code;
+}
+
+void ctd_solver_destroy(ctd_solver *s)
+{
+    if (!s)
+        return;
+    for (int i = 0; i < s->nhook; i++)
+        if (s->hooks[i].destroy)
+            s->hooks[i].destroy(s->hooks[i].ctx);
+    free(s->hooks);
+    free(s->rep);
+    free(s->if_force_max);
+    free(s->if_active_max);
+    ct_real **arr[] = {&s->x, &s->y, &s->z, &s->vx, &s->vy, &s->vz};
+    for (size_t k = 0; k < sizeof arr / sizeof arr[0]; k++)
+        ct_free(*arr[k]);
+    cti_solver_work *w = s->w;
+    if (w) {
+        ct_real **wa[] = {&w->vox, &w->voy, &w->voz, &w->fx, &w->fy, &w->fz, &w->fcx, &w->fcy,
+                          &w->fcz, &w->pen, &w->vmx, &w->vmy, &w->vmz, &w->gx, &w->gy,
+                          &w->gz, &w->gvx, &w->gvy, &w->gvz};
+        for (size_t k = 0; k < sizeof wa / sizeof wa[0]; k++)
+            ct_free(*wa[k]);
+        ct_free(w->nact);
+        free(w->free_node);
+        free(w->bc_node);
+        free(w->part_sum);
+        free(w->vc_old);
+        free(w->if_force);
+        free(w->if_active);
+        free(w->if_resorts);
+        free(w->if_names);
+        ctd_output_close(w->out);
+        free(w);
+    }
+    memset(s, 0, sizeof *s);
+}
+
+int ctd_solver_init(ctd_solver *s, ctd_model *m, const ctd_solver_opts *opts,
+                    ctd_contact_hook *hooks, int nhook, char *err, size_t errlen)
+{
+    if (!s)
+        return CT_ERR_ARG;
+    memset(s, 0, sizeof *s);
+    s->hooks = hooks;
+    s->nhook = hooks ? nhook : 0;
+    if (!m || !m->scene || nhook < 0)
+        return err_out(err, errlen, CT_ERR_ARG, "no model to run");
+    const ctd_scene *sc = m->scene;
+    s->model = m;
+    s->opts = opts ? *opts : ctd_solver_default_opts();
+    s->end_time = s->opts.end_time > 0 ? s->opts.end_time : sc->end_time;
+    s->dt_scale = s->opts.dt_scale > 0 ? s->opts.dt_scale : sc->solver->dt_scale;
+    s->every = s->opts.every > 0 ? s->opts.every
+               : sc->output->every > 0 ? sc->output->every
+                                      : s->end_time / 100;
+    s->threads = s->opts.threads > 0 ? s->opts.threads : (int)sc->solver->threads;
+#ifdef _OPENMP
+    if (s->threads > 0)
+        omp_set_num_threads(s->threads);
+    s->threads = omp_get_max_threads();
+#else
+    s->threads = 1;
+#endif
+    s->status = "ok";
+    ct_idx nn = m->mesh.nodes.n;
+    s->nnode = nn;
+    size_t n1 = (size_t)nn + 1;
+    cti_solver_work *w = s->w = calloc(1, sizeof *w);
+    if (!w)
+        return err_out(err, errlen, CT_ERR_NOMEM, "out of memory");
+    ct_real **arr[] = {&s->x, &s->y, &s->z, &s->vx, &s->vy, &s->vz, &w->vox, &w->voy,
+                       &w->voz, &w->fx, &w->fy, &w->fz, &w->fcx, &w->fcy, &w->fcz, &w->pen,
+                       &w->vmx, &w->vmy, &w->vmz, &w->gx, &w->gy, &w->gz, &w->gvx, &w->gvy,
+                       &w->gvz};
+    for (size_t k = 0; k < sizeof arr / sizeof arr[0]; k++)
+        if (!(*arr[k] = ct_calloc(n1, sizeof(ct_real))))
+            return err_out(err, errlen, CT_ERR_NOMEM, "out of memory");
+    w->nact = ct_calloc(n1, sizeof(int32_t));
+    w->free_node = calloc(n1, 1);
+    w->bc_node = malloc(sizeof(ct_idx) * n1);
+    w->nchunk = (int)((nn + CTI_CHUNK - 1) / CTI_CHUNK);
+    w->part_sum = calloc((size_t)w->nchunk + 1, sizeof(double));
+    w->vc_old = calloc((size_t)m->nbody + 1, sizeof *w->vc_old);
+    int nh = s->nhook;
+    s->rep = calloc((size_t)nh + 1, sizeof *s->rep);
+    s->if_force_max = calloc((size_t)nh + 1, sizeof(double));
+    s->if_active_max = calloc((size_t)nh + 1, sizeof(int64_t));
+    w->if_force = calloc((size_t)nh + 1, sizeof(double));
+    w->if_active = calloc((size_t)nh + 1, sizeof(int64_t));
+    w->if_resorts = calloc((size_t)nh + 1, sizeof(int64_t));
+    w->if_names = calloc((size_t)nh + 1, sizeof(char *));
+    if (!w->nact || !w->free_node || !w->bc_node || !w->part_sum || !w->vc_old || !s->rep ||
+        !s->if_force_max || !s->if_active_max || !w->if_force || !w->if_active ||
+        !w->if_resorts || !w->if_names)
+        return err_out(err, errlen, CT_ERR_NOMEM, "out of memory");
+    for (int i = 0; i < nh; i++) {
+        if (!s->hooks[i].contact_step)
+            return err_out(err, errlen, CT_ERR_ARG, "interface %d has no contact_step", i);
+        w->if_names[i] = s->hooks[i].name ? s->hooks[i].name : "interface";
+    }
+    const ct_nodes *nd = &m->mesh.nodes;
+    memcpy(s->x, nd->x, sizeof(ct_real) * (size_t)nn);
+    memcpy(s->y, nd->y, sizeof(ct_real) * (size_t)nn);
+    memcpy(s->z, nd->z, sizeof(ct_real) * (size_t)nn);
+    memcpy(s->vx, nd->vx, sizeof(ct_real) * (size_t)nn);
+    memcpy(s->vy, nd->vy, sizeof(ct_real) * (size_t)nn);
+    memcpy(s->vz, nd->vz, sizeof(ct_real) * (size_t)nn);
+    for (ct_idx i = 0; i < nn; i++) {
+        w->free_node[i] = m->node_body[i] < 0 && nd->m[i] > 0;
+        if (m->node_body[i] < 0 && m->bc_mask[i])
+            w->bc_node[w->nbc++] = i;
+    }
+    /* Driven bodies start with their imposed velocity and no spin. */
+    for (int b = 0; b < m->nbody; b++) {
+        ctd_model_body *bd = &m->body[b];
+        if (!bd->driven)
+            continue;
+        double v[3], zero[3] = {0, 0, 0};
+        for (int d = 0; d < 3; d++)
+            v[d] = bd->dof[d] ? bd->v[d] : bd->rigid.vc[d];
+        ctd_rigid_set_velocity(&bd->rigid, v, zero);
+    }
+    /* Output directory: checked now, so a bad one fails before the run. */
+    if (!s->opts.no_output) {
+        const char *dir = s->opts.out_dir ? s->opts.out_dir : sc->out_dir;
+        ctd_output_opts oo = {dir, "state", sc->output->vtu, sc->output->csv};
+        char msg[512];
+        int rc = ctd_output_open(&w->out, &oo, msg, sizeof msg);
+        if (rc)
+            return err_out(err, errlen, rc, "%s", msg);
+        snprintf(s->out_dir, sizeof s->out_dir, "%s", ctd_output_dir(w->out));
+        if (sc->output->csv && (rc = ctd_output_csv_begin(w->out, nh, w->if_names)))
+            return err_out(err, errlen, rc, "%s", ctd_output_error(w->out));
+    }
+    return CT_OK;
+}
+
+void ctd_solver_momentum(const ctd_solver *s, double p[3])
+{
+    const ctd_model *m = s->model;
+    const ct_real *mass = m->mesh.nodes.m;
+    p[0] = p[1] = p[2] = 0;
+    for (ct_idx i = 0; i < s->nnode; i++)
+        if (m->node_body[i] < 0) {
+            p[0] += mass[i] * s->vx[i];
+            p[1] += mass[i] * s->vy[i];
+            p[2] += mass[i] * s->vz[i];
+        }
+    for (int b = 0; b < m->nbody; b++)
+        for (int d = 0; d < 3; d++)
+            p[d] += m->body[b].rigid.mass * m->body[b].rigid.vc[d];
+}
+
+/* ---- One cycle's pieces ------------------------------------------------------ */
+
+static void fail(ctd_solver *s, const char *status, int code, const char *fmt, ...)
+    __attribute__((format(printf, 4, 5)));
+static void fail(ctd_solver *s, const char *status, int code, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(s->message, sizeof s->message, fmt, ap);
+    va_end(ap);
+    s->status = status;
+    s->exit_code = code;
+}
+
+/* Element forces into w->fx.. and the internal energy; 0 or -1 (failed). */
+static int element_forces(ctd_solver *s)
+{
+    ctd_model *m = s->model;
+    cti_solver_work *w = s->w;
+    double u = 0;
+    for (int k = 0; k < m->nset; k++) {
+        ctd_model_set *st = &m->set[k];
+        ct_diag d = {0, -1, ""};
+        int rc;
+        double e = 0;
+        if (st->element == CTD_ELEM_BRICK) {
+            rc = ctd_brick_forces(&st->brick, s->x, s->y, s->z, w->fx, w->fy, w->fz, &d);
+            e = rc ? 0 : ctd_brick_energy(&st->brick);
+        } else if (st->element == CTD_ELEM_SHELL) {
+            rc = ctd_shell_forces(&st->shell, s->x, s->y, s->z, w->fx, w->fy, w->fz, &e);
+        } else {
+            rc = ctd_truss_forces(&st->truss, s->x, s->y, s->z, w->fx, w->fy, w->fz, &d);
+            e = rc ? 0 : ctd_truss_energy(&st->truss);
+        }
+        if (rc) {
+            char where[96] = "an element";
+            if (d.index >= 0)
+                snprintf(where, sizeof where, "element %lld", (long long)d.index);
+            fail(s, "unstable", CTD_EXIT_UNSTABLE,
+                 "cycle %lld (t = %.6g): %s of part %lld (%s) failed: %s%s%s",
+                 (long long)s->cycle, s->time, where, (long long)st->part,
+                 ctd_element_name(st->element), ct_strerror(rc), d.msg[0] ? ": " : "", d.msg);
+            return -1;
+        }
+        u += e;
+    }
+    w->internal = u;
+    return 0;
+}
+
+/* The interfaces: contact forces into w->fc.., added to w->f... */
+static int contact_forces(ctd_solver *s, int want_fields)
+{
+    cti_solver_work *w = s->w;
+    ct_idx nn = s->nnode;
+    if (!s->nhook)
+        return 0;
+#pragma omp parallel for if (nn > CTD_PAR_MIN) schedule(static)
+    for (ct_idx i = 0; i < nn; i++) {
+        w->fcx[i] = 0;
+        w->fcy[i] = 0;
+        w->fcz[i] = 0;
+        if (want_fields) {
+            w->pen[i] = 0;
+            w->nact[i] = 0;
+        }
+    }
+    ctd_state st = {s->time, w->dt_prev, s->cycle, nn, s->x, s->y, s->z, s->vx, s->vy, s->vz,
+                    s->model->mesh.nodes.m, s->model->node_part};
+    double ec = 0;
+    for (int i = 0; i < s->nhook; i++) {
+        ctd_contact_report *r = &s->rep[i];
+        memset(r, 0, sizeof *r);
+        r->want_fields = want_fields;
+        r->pen = w->pen;
+        r->node_active = w->nact;
+        r->bad_node = -1;
+        int rc = s->hooks[i].contact_step(s->hooks[i].ctx, &st, w->fcx, w->fcy, w->fcz, r);
+        if (rc) {
+            int unstable = rc == CT_ERR_NONFINITE || rc == CT_ERR_DEGENERATE || rc == CT_ERR_NOCONV;
+            char node[64] = "";
+            if (r->bad_node >= 0 && r->bad_node < nn)
+                snprintf(node, sizeof node, " at node %lld",
+                         (long long)s->model->node_id[r->bad_node]);
+            fail(s, unstable ? "unstable" : "error", unstable ? CTD_EXIT_UNSTABLE : CTD_EXIT_OUTPUT,
+                 "cycle %lld (t = %.6g): interface %s (type %d) failed%s: %s%s%s",
+                 (long long)s->cycle, s->time, w->if_names[i], s->hooks[i].type, node,
+                 ct_strerror(rc), r->msg[0] ? ": " : "", r->msg);
+            return -1;
+        }
+        ec += r->energy;
+        w->damping += r->damping;
+        w->friction += r->friction;
+        s->timers.search += r->t_search;
+        s->timers.narrow += r->t_narrow;
+        s->timers.force += r->t_force;
+        s->timers.assembly += r->t_assembly;
+        w->if_force[i] = r->force;
+        w->if_active[i] = r->active;
+        w->if_resorts[i] = r->resorts;
+        if (r->force > s->if_force_max[i])
+            s->if_force_max[i] = r->force;
+        if (r->active > s->if_active_max[i])
+            s->if_active_max[i] = r->active;
+    }
+    w->contact = ec;
+#pragma omp parallel for if (nn > CTD_PAR_MIN) schedule(static)
+    for (ct_idx i = 0; i < nn; i++) {
+        w->fx[i] += w->fcx[i];
+        w->fy[i] += w->fcy[i];
+        w->fz[i] += w->fcz[i];
+    }
+    return 0;
+}
+
+/* The first node (in index order) with a non-finite value in a, b or c, or -1. */
+static ct_idx first_nonfinite(ct_idx n, const ct_real *a, const ct_real *b, const ct_real *c)
+{
+    int bad = 0;
+#pragma omp parallel for if (n > CTD_PAR_MIN) schedule(static) reduction(| : bad)
+    for (ct_idx i = 0; i < n; i++)
+        bad |= !isfinite(a[i]) || !isfinite(b[i]) || !isfinite(c[i]);
+    if (!bad)
+        return -1;
+    for (ct_idx i = 0; i < n; i++)
+        if (!isfinite(a[i]) || !isfinite(b[i]) || !isfinite(c[i]))
+            return i;
+    return -1;
+}
+
+static void fail_node(ctd_solver *s, ct_idx i, const char *what)
+{
+    fail(s, "unstable", CTD_EXIT_UNSTABLE,
+         "cycle %lld (t = %.6g): node %lld (part %d) has a non-finite %s; the time step "
+         "(dt = %.3g) is likely above the stable limit", (long long)s->cycle, s->time,
+         (long long)s->model->node_id[i], s->model->node_part[i], what, s->dt);
+}
+
+/* The stable step at x(n), before the safety factor. */
+static double stable_dt(ctd_solver *s)
+{
+    ctd_model *m = s->model;
+    double dt = CTD_DT_NONE;
+    for (int k = 0; k < m->nset; k++) {
+        ctd_model_set *st = &m->set[k];
+        double d;
+        if (st->element == CTD_ELEM_BRICK)
+            d = ctd_brick_dt(&st->brick, s->x, s->y, s->z, NULL);
+        else if (st->element == CTD_ELEM_SHELL)
+            d = ctd_shell_dt(&st->shell);
+        else
+            d = ctd_truss_dt(&st->truss, s->x, s->y, s->z, m->mesh.nodes.m, NULL);
+        if (d < dt)
+            dt = d;
+    }
+    for (int i = 0; i < s->nhook; i++)
+        if (s->rep[i].dt_limit > 0 && s->rep[i].dt_limit < dt)
+            dt = s->rep[i].dt_limit;
+    for (int b = 0; b < m->nbody; b++) {
+        const double *om = m->body[b].rigid.omega;
+        double wn = sqrt(om[0] * om[0] + om[1] * om[1] + om[2] * om[2]);
+        /* The angular velocity at the start comes from L (omega is set by a step). */
+        if (s->cycle == 0) {
+            const ctd_rigid *r = &m->body[b].rigid;
+            double R[9], pi[3], wb[3];
+            ctd_rigid_rotation(r, R);
+            for (int a = 0; a < 3; a++) {
+                pi[a] = R[a] * r->L[0] + R[3 + a] * r->L[1] + R[6 + a] * r->L[2];
+                wb[a] = r->Iinv[a] * pi[a];
+            }
+            wn = sqrt(wb[0] * wb[0] + wb[1] * wb[1] + wb[2] * wb[2]);
+        }
+        if (wn > 0 && 0.25 / wn < dt)
+            dt = 0.25 / wn;
+    }
+    return dt;
+}
+
+/* Kick of the free nodes, then the imposed components with their reaction
+ * work (backward and forward halves, solver.h). keep_old: save v- first. */
+static void kick(ctd_solver *s, double dtk, double dt_new, int keep_old)
+{
+    ctd_model *m = s->model;
+    cti_solver_work *w = s->w;
+    const ct_real *mass = m->mesh.nodes.m;
+    ct_idx nn = s->nnode;
+    const ct_real dk = (ct_real)dtk;
+#pragma omp parallel for if (nn > CTD_PAR_MIN) schedule(static)
+    for (ct_idx i = 0; i < nn; i++) {
+        if (keep_old) {
+            w->vox[i] = s->vx[i];
+            w->voy[i] = s->vy[i];
+            w->voz[i] = s->vz[i];
+        }
+        if (w->free_node[i]) {
+            ct_real im = dk / mass[i];
+            s->vx[i] += im * w->fx[i];
+            s->vy[i] += im * w->fy[i];
+            s->vz[i] += im * w->fz[i];
+        }
+    }
+    double wb = 0, wf = 0;
+    ct_real *v[3] = {s->vx, s->vy, s->vz};
+    for (ct_idx k = 0; k < w->nbc; k++) {
+        ct_idx i = w->bc_node[k];
+        for (int d = 0; d < 3; d++) {
+            if (!(m->bc_mask[i] >> d & 1))
+                continue;
+            double vimp = m->bc_v[d][i];
+            double vk = v[d][i];
+            double R = mass[i] * (vimp - vk) / dtk;
+            /* v- = v_kicked - dtk f / m for a node with mass. */
+            double vold = mass[i] > 0 ? vk - dtk * (d == 0 ? w->fx[i] : d == 1 ? w->fy[i] : w->fz[i]) / mass[i]
+                                      : vimp;
+            wb += 0.5 * R * w->dt_prev * vold;
+            wf += 0.5 * R * dt_new * vimp;
+            v[d][i] = (ct_real)vimp;
+        }
+    }
+    w->w_bc_back = wb;
+    w->w_bc_fwd = wf;
+}
+
+/* Rigid bodies: force and moment of their nodes' forces, kick (imposed
+ * components of driven bodies, with their reaction work). */
+static void rigid_kick(ctd_solver *s, double dtk, double dt_new)
+{
+    ctd_model *m = s->model;
+    cti_solver_work *w = s->w;
+    for (int b = 0; b < m->nbody; b++) {
+        ctd_model_body *bd = &m->body[b];
+        ctd_rigid *r = &bd->rigid;
+        ctd_rigid_clear(r);
+        ctd_rigid_accumulate(r, s->x, s->y, s->z, w->fx, w->fy, w->fz);
+        for (int d = 0; d < 3; d++) {
+            w->vc_old[b][d] = r->vc[d];
+            r->vc[d] += dtk * r->F[d] / r->mass;
+            r->L[d] += dtk * r->tau[d];
+        }
+        if (bd->driven) {
+            for (int d = 0; d < 3; d++) {
+                r->L[d] = 0;
+                if (!bd->dof[d])
+                    continue;
+                double R = r->mass * (bd->v[d] - r->vc[d]) / dtk;
+                w->w_bc_back += 0.5 * R * w->dt_prev * w->vc_old[b][d];
+                w->w_bc_fwd += 0.5 * R * dt_new * bd->v[d];
+                r->vc[d] = bd->v[d];
+            }
+        }
+        ctd_rigid_clear(r);
+    }
+}
+
+/* Drift: free nodes, then rigid bodies (advance and place their nodes). */
+static int drift(ctd_solver *s, double dt)
+{
+    ctd_model *m = s->model;
+    ct_idx nn = s->nnode;
+    const ct_real d = (ct_real)dt;
+#pragma omp parallel for if (nn > CTD_PAR_MIN) schedule(static)
+    for (ct_idx i = 0; i < nn; i++)
+        if (m->node_body[i] < 0) {
+            s->x[i] += d * s->vx[i];
+            s->y[i] += d * s->vy[i];
+            s->z[i] += d * s->vz[i];
+        }
+    for (int b = 0; b < m->nbody; b++) {
+        ctd_rigid *r = &m->body[b].rigid;
+        int rc = ctd_rigid_advance(r, dt);
+        if (rc) {
+            fail(s, "unstable", CTD_EXIT_UNSTABLE,
+                 "cycle %lld (t = %.6g): rigid body %lld (part %lld) failed to advance: %s",
+                 (long long)s->cycle, s->time, (long long)m->body[b].id,
+                 (long long)m->body[b].part, ct_strerror(rc));
+            return -1;
+        }
+        ctd_rigid_set_nodes(r, s->x, s->y, s->z, s->vx, s->vy, s->vz);
+    }
+    return 0;
+}
+
+static void keep_good(ctd_solver *s)
+{
+    cti_solver_work *w = s->w;
+    size_t b = sizeof(ct_real) * (size_t)s->nnode;
+    memcpy(w->gx, s->x, b);
+    memcpy(w->gy, s->y, b);
+    memcpy(w->gz, s->z, b);
+    memcpy(w->gvx, s->vx, b);
+    memcpy(w->gvy, s->vy, b);
+    memcpy(w->gvz, s->vz, b);
+    w->good_time = s->time;
+    w->good_cycle = s->cycle;
+    w->have_good = 1;
+}
+
+/* The node with the largest speed (for a runaway message). */
+static ct_idx fastest_node(const ctd_solver *s)
+{
+    ct_idx best = -1;
+    double vmax = -1;
+    for (ct_idx i = 0; i < s->nnode; i++) {
+        double v2 = (double)s->vx[i] * s->vx[i] + (double)s->vy[i] * s->vy[i] +
+                    (double)s->vz[i] * s->vz[i];
+        if (v2 > vmax) {
+            vmax = v2;
+            best = i;
+        }
+    }
+    return best;
+}
+
+/* ---- The loop -------------------------------------------------------------------- */
+
+int ctd_solver_run(ctd_solver *s)
+{
+    ctd_model *m = s->model;
+    cti_solver_work *w = s->w;
+    ct_idx nn = s->nnode;
+    const ct_real *mass = m->mesh.nodes.m;
+    const double end = s->end_time, tol = 1e-12 * end;
+    double next_out = 0;
+    w->t_start = now_s();
+    w->last_progress = w->t_start;
+    s->exit_code = CTD_EXIT_OK;
+    for (;;) {
+        double t0 = now_s();
+        int final = s->time >= end - tol ||
+                     (s->opts.max_cycles > 0 && s->cycle >= s->opts.max_cycles);
+        int out_step = s->time >= next_out - tol || final;
+        int check = out_step || s->cycle % 100 == 0;
+        /* Forces at x(n). */
+#pragma omp parallel for if (nn > CTD_PAR_MIN) schedule(static)
+        for (ct_idx i = 0; i < nn; i++) {
+            w->fx[i] = 0;
+            w->fy[i] = 0;
+            w->fz[i] = 0;
+        }
+        if (element_forces(s))
+            break;
+        double t1 = now_s();
+        s->timers.elements += t1 - t0;
+        if (contact_forces(s, out_step))
+            break;
+        if (m->has_gravity) {
+            const ct_real gx = (ct_real)m->gravity[0], gy = (ct_real)m->gravity[1],
+                          gz = (ct_real)m->gravity[2];
+#pragma omp parallel for if (nn > CTD_PAR_MIN) schedule(static)
+            for (ct_idx i = 0; i < nn; i++) {
+                w->fx[i] += mass[i] * gx;
+                w->fy[i] += mass[i] * gy;
+                w->fz[i] += mass[i] * gz;
+            }
+        }
+        ct_idx bad = first_nonfinite(nn, w->fx, w->fy, w->fz);
+        if (bad >= 0) {
+            fail_node(s, bad, "force");
+            break;
+        }
+        /* Step, kick, energies. */
+        double dt_new = s->dt_scale * stable_dt(s);
+        if (dt_new > s->every)
+            dt_new = s->every;
+        if (final && s->cycle > 0) {
+            /* No step follows: v+ only serves the energies; the same step as
+             * before keeps them free of a step-size jump. */
+            dt_new = w->dt_prev;
+        } else if (!final && dt_new > 0 && isfinite(dt_new)) {
+            /* Land on end_time in equal steps: a constant stable step stays
+             * constant to the end (no short last step). */
+            double nrem = ceil((end - s->time) / dt_new * (1 - 1e-12));
+            dt_new = (end - s->time) / (nrem > 1 ? nrem : 1);
+        }
+        if (!(dt_new > 0) || !isfinite(dt_new)) {
+            fail(s, "unstable", CTD_EXIT_UNSTABLE, "cycle %lld (t = %.6g): the stable time step "
+                 "is %g", (long long)s->cycle, s->time, dt_new);
+            break;
+        }
+        double dtk = s->cycle == 0 ? 0.5 * dt_new : 0.5 * (w->dt_prev + dt_new);
+        kick(s, dtk, dt_new, check);
+        rigid_kick(s, dtk, dt_new);
+        if (check) {
+            cti_solver_energies(s);
+            double ref = fmax(s->e0.total, fabs(s->e.external));
+            double live = s->e.kinetic + s->e.internal + s->e.contact;
+            if (s->cycle > 0 && live > 100 * ref + 1e-30) {
+                ct_idx f = fastest_node(s);
+                fail(s, "unstable", CTD_EXIT_UNSTABLE,
+                     "cycle %lld (t = %.6g): runaway energy: kinetic + internal + contact = %.4g "
+                     "exceeds 100 x max(E0, |W_ext|) = %.4g; fastest node %lld (part %d); the "
+                     "time step (dt = %.3g) is likely above the stable limit",
+                     (long long)s->cycle, s->time, live, 100 * ref,
+                     f >= 0 ? (long long)m->node_id[f] : -1LL, f >= 0 ? m->node_part[f] : 0,
+                     w->dt_prev);
+                break;
+            }
+        }
+        if (out_step) {
+            int rc = cti_solver_output(s);
+            if (rc) {
+                fail(s, "error", CTD_EXIT_OUTPUT, "cycle %lld (t = %.6g): %s", (long long)s->cycle,
+                     s->time, ctd_output_error(w->out));
+                break;
+            }
+            while (next_out <= s->time + tol)
+                next_out += s->every;
+        }
+        w->w_bc += w->w_bc_back + w->w_bc_fwd;
+        if (final) {
+            s->timers.total += now_s() - t0;
+            break;
+        }
+        if (check)
+            keep_good(s);
+        /* Drift to x(n+1). */
+        if (drift(s, dt_new))
+            break;
+        bad = first_nonfinite(nn, s->x, s->y, s->z);
+        if (bad >= 0) {
+            s->cycle++;
+            s->time += dt_new;
+            fail_node(s, bad, "position");
+            break;
+        }
+        s->dt = dt_new;
+        w->dt_prev = dt_new;
+        s->time = s->time + dt_new >= end - tol ? end : s->time + dt_new;
+        s->cycle++;
+        s->timers.total += now_s() - t0;
+        cti_solver_progress(s, 0);
+    }
+    cti_solver_progress(s, 1);
+    if (s->exit_code == CTD_EXIT_UNSTABLE)
+        cti_solver_last_good(s);
+    s->wall = now_s() - w->t_start;
+    int rc = cti_solver_finish(s);
+    if (rc && s->exit_code == CTD_EXIT_OK)
+        s->exit_code = CTD_EXIT_OUTPUT;
+    return s->exit_code;
+}

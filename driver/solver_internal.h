@@ -1,0 +1,61 @@
+/*
+ * solver_internal.h -- the solver's work arrays, shared by solver.c (time
+ * loop) and solver_report.c (energies, output, report). Not an API.
+ */
+#ifndef CTD_SOLVER_INTERNAL_H
+#define CTD_SOLVER_INTERNAL_H
+
+#include "solver.h"
+
+/* Energy sums go through fixed chunks of nodes (bit-identical for any
+ * thread count). */
+#define CTI_CHUNK 4096
+
+typedef struct cti_solver_work {
+    ct_real *vox, *voy, *voz;     /* v(n-1/2), kept at energy cycles */
+    ct_real *fx, *fy, *fz;        /* total nodal force */
+    ct_real *fcx, *fcy, *fcz;     /* contact force */
+    ct_real *pen;                 /* per node, from the interfaces */
+    int32_t *nact;
+    ct_real *vmx, *vmy, *vmz;     /* output velocity (v- + v+) / 2 */
+    ct_real *gx, *gy, *gz, *gvx, *gvy, *gvz; /* last good state */
+    double good_time;
+    int64_t good_cycle;
+    int have_good;
+    uint8_t *free_node;           /* 1: integrated by the kick (not rigid, m > 0) */
+    ct_idx nbc;
+    ct_idx *bc_node;              /* constrained nodes not in rigid bodies */
+    double *part_sum;             /* chunk partial sums */
+    int nchunk;
+    double (*vc_old)[3];          /* rigid bodies' centre velocity before the kick */
+    /* Energy accumulators. */
+    double w_bc;                  /* imposed-velocity work up to the last step (both halves) */
+    double w_bc_back;             /* this step's backward half */
+    double w_bc_fwd;              /* this step's forward half */
+    double damping, friction;     /* dissipation so far */
+    double internal;              /* elements' energy at x(n) */
+    double contact;               /* interfaces' stored energy at x(n) */
+    double dt_prev;
+    ctd_output *out;
+    double *if_force;             /* per-interface values for the CSV row */
+    int64_t *if_active, *if_resorts;
+    const char **if_names;
+    double t_start, last_progress;
+    int progress_shown;
+} cti_solver_work;
+
+/* solver_report.c */
+double cti_solver_kinetic(ctd_solver *s);
+double cti_solver_gravity_work(ctd_solver *s);
+/* Energies at the current cycle into s->e (x(n), v- in vo, v+ in v). */
+void cti_solver_energies(ctd_solver *s);
+/* Write one output step (CSV row and VTU). CT_OK or an output error. */
+int cti_solver_output(ctd_solver *s);
+/* Write the last good state as OUT/last_good.vtu (when there is an output
+ * directory); appends where it went to s->message. */
+void cti_solver_last_good(ctd_solver *s);
+void cti_solver_progress(ctd_solver *s, int final);
+/* Summary, plot and the printed report at the end of a run. */
+int cti_solver_finish(ctd_solver *s);
+
+#endif

@@ -1,0 +1,312 @@
+/*
+ * solver_report.c -- what the solver computes and writes besides the time
+ * integration: the energy balance (solver.h), the output steps (CSV row,
+ * VTU), the last good state of an unstable run, the progress line, and at
+ * the end the summary, the energy plot and the printed report.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "solver.h"
+#include "solver_internal.h"
+
+#ifdef _OPENMP
+#include <omp.h>
+static double now_s(void) { return omp_get_wtime(); }
+#else
+#include <time.h>
+static double now_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+#endif
+
+/* Sum m v- . v+ / 2 over the free nodes (at cycle 0, v- is the virtual
+ * 2 v(0) - v(1/2)), in fixed chunks. */
+double cti_solver_kinetic(ctd_solver *s)
+{
+    cti_solver_work *w = s->w;
+    const ct_real *mass = s->model->mesh.nodes.m;
+    const ct_idx nn = s->nnode;
+    const int first = s->cycle == 0;
+#pragma omp parallel for if (w->nchunk > 1) schedule(static)
+    for (int c = 0; c < w->nchunk; c++) {
+        ct_idx lo = (ct_idx)c * CTI_CHUNK, hi = lo + CTI_CHUNK < nn ? lo + CTI_CHUNK : nn;
+        double sum = 0;
+        for (ct_idx i = lo; i < hi; i++) {
+            if (!w->free_node[i])
+                continue;
+            double ax = w->vox[i], ay = w->voy[i], az = w->voz[i];
+            if (first) {
+                ax = 2 * ax - s->vx[i];
+                ay = 2 * ay - s->vy[i];
+                az = 2 * az - s->vz[i];
+            }
+            sum += 0.5 * mass[i] * (ax * s->vx[i] + ay * s->vy[i] + az * s->vz[i]);
+        }
+        w->part_sum[c] = sum;
+    }
+    double k = 0;
+    for (int c = 0; c < w->nchunk; c++)
+        k += w->part_sum[c];
+    const ctd_model *m = s->model;
+    for (int b = 0; b < m->nbody; b++) {
+        const ctd_rigid *r = &m->body[b].rigid;
+        double vo[3], v2 = 0, dot = 0;
+        for (int d = 0; d < 3; d++) {
+            vo[d] = first ? 2 * w->vc_old[b][d] - r->vc[d] : w->vc_old[b][d];
+            v2 += r->vc[d] * r->vc[d];
+            dot += vo[d] * r->vc[d];
+        }
+        k += 0.5 * r->mass * dot + (ctd_rigid_kinetic(r) - 0.5 * r->mass * v2);
+    }
+    return k;
+}
+
+/* Work of gravity: sum m g . (x - x0), in fixed chunks. */
+double cti_solver_gravity_work(ctd_solver *s)
+{
+    const ctd_model *m = s->model;
+    if (!m->has_gravity)
+        return 0;
+    cti_solver_work *w = s->w;
+    const ct_nodes *nd = &m->mesh.nodes;
+    const ct_idx nn = s->nnode;
+    const double g0 = m->gravity[0], g1 = m->gravity[1], g2 = m->gravity[2];
+#pragma omp parallel for if (w->nchunk > 1) schedule(static)
+    for (int c = 0; c < w->nchunk; c++) {
+        ct_idx lo = (ct_idx)c * CTI_CHUNK, hi = lo + CTI_CHUNK < nn ? lo + CTI_CHUNK : nn;
+        double sum = 0;
+        for (ct_idx i = lo; i < hi; i++)
+            sum += nd->m[i] * (g0 * ((double)s->x[i] - nd->x[i]) +
+                               g1 * ((double)s->y[i] - nd->y[i]) +
+                               g2 * ((double)s->z[i] - nd->z[i]));
+        w->part_sum[c] = sum;
+    }
+    double sum = 0;
+    for (int c = 0; c < w->nchunk; c++)
+        sum += w->part_sum[c];
+    return sum;
+}
+
+void cti_solver_energies(ctd_solver *s)
+{
+    cti_solver_work *w = s->w;
+    ctd_energies *e = &s->e;
+    e->kinetic = cti_solver_kinetic(s);
+    e->internal = w->internal;
+    e->contact = w->contact;
+    e->damping = w->damping;
+    e->friction = w->friction;
+    e->external = cti_solver_gravity_work(s) + w->w_bc + w->w_bc_back;
+    e->total = e->kinetic + e->internal + e->contact + e->damping + e->friction;
+    if (s->cycle == 0) {
+        s->e0 = *e;
+        s->e_max = 0;
+    }
+    double mx = fmax(fabs(e->total), fmax(fabs(e->external), fabs(s->e0.total)));
+    if (mx > s->e_max)
+        s->e_max = mx;
+    e->error = s->e_max > 0 ? (e->total - s->e0.total - e->external) / s->e_max : 0;
+    if (fabs(e->error) > s->error_max)
+        s->error_max = fabs(e->error);
+}
+
+static void out_mesh(const ctd_solver *s, ctd_out_mesh *om, const ct_real *x, const ct_real *y,
+                     const ct_real *z, const ct_real *vx, const ct_real *vy, const ct_real *vz)
+{
+    const ctd_model *m = s->model;
+    const cti_solver_work *w = s->w;
+    memset(om, 0, sizeof *om);
+    om->nnode = s->nnode;
+    om->x = x;
+    om->y = y;
+    om->z = z;
+    om->x0 = m->mesh.nodes.x;
+    om->y0 = m->mesh.nodes.y;
+    om->z0 = m->mesh.nodes.z;
+    om->vx = vx;
+    om->vy = vy;
+    om->vz = vz;
+    if (s->nhook) {
+        om->fcx = w->fcx;
+        om->fcy = w->fcy;
+        om->fcz = w->fcz;
+        om->pen = w->pen;
+        om->node_active = w->nact;
+    }
+    om->node_part = m->node_part;
+    om->ncell = m->ncell;
+    om->cell_type = m->cell_type;
+    om->cell_off = m->cell_off;
+    om->cell_node = m->cell_node;
+    om->cell_part = m->cell_part;
+}
+
+int cti_solver_output(ctd_solver *s)
+{
+    cti_solver_work *w = s->w;
+    s->output_steps++;
+    if (!w->out)
+        return CT_OK;
+    const ctd_scene *sc = s->model->scene;
+    int rc = CT_OK;
+    if (sc->output->csv) {
+        ctd_history_row r = {s->cycle, s->time, w->dt_prev, s->e.kinetic, s->e.internal,
+                             s->e.contact, s->e.damping, s->e.friction, s->e.external,
+                             s->e.error, w->if_force, w->if_active, w->if_resorts};
+        rc = ctd_output_csv_row(w->out, &r);
+    }
+    if (!rc && sc->output->vtu) {
+        const ct_idx nn = s->nnode;
+        const int first = s->cycle == 0;
+#pragma omp parallel for if (nn > CTD_PAR_MIN) schedule(static)
+        for (ct_idx i = 0; i < nn; i++) {
+            if (w->free_node[i]) {
+                /* v(n) = (v- + v+) / 2; at cycle 0 this is v(0), kept in vo. */
+                w->vmx[i] = first ? w->vox[i] : (ct_real)0.5 * (w->vox[i] + s->vx[i]);
+                w->vmy[i] = first ? w->voy[i] : (ct_real)0.5 * (w->voy[i] + s->vy[i]);
+                w->vmz[i] = first ? w->voz[i] : (ct_real)0.5 * (w->voz[i] + s->vz[i]);
+            } else {
+                w->vmx[i] = s->vx[i];
+                w->vmy[i] = s->vy[i];
+                w->vmz[i] = s->vz[i];
+            }
+        }
+        ctd_out_mesh om;
+        out_mesh(s, &om, s->x, s->y, s->z, w->vmx, w->vmy, w->vmz);
+        rc = ctd_output_vtu(w->out, s->time, &om);
+    }
+    return rc;
+}
+
+void cti_solver_last_good(ctd_solver *s)
+{
+    cti_solver_work *w = s->w;
+    size_t len = strlen(s->message);
+    if (!w->have_good) {
+        snprintf(s->message + len, sizeof s->message - len, "; no state passed the checks");
+        return;
+    }
+    if (!s->out_dir[0])
+        return;
+    char path[1200], err[512];
+    snprintf(path, sizeof path, "%s/last_good.vtu", s->out_dir);
+    ctd_out_mesh om;
+    out_mesh(s, &om, w->gx, w->gy, w->gz, w->gvx, w->gvy, w->gvz);
+    om.fcx = om.fcy = om.fcz = om.pen = NULL;
+    om.node_active = NULL;
+    int rc = ctd_vtu_write(path, &om, err, sizeof err);
+    if (rc)
+        snprintf(s->message + len, sizeof s->message - len,
+                 "; the last good state could not be written: %s", err);
+    else
+        snprintf(s->message + len, sizeof s->message - len,
+                 "; last good state (cycle %lld, t = %.6g) written to %s",
+                 (long long)w->good_cycle, w->good_time, path);
+}
+
+void cti_solver_progress(ctd_solver *s, int final)
+{
+    cti_solver_work *w = s->w;
+    int on = s->opts.progress > 0 || (s->opts.progress < 0 && !s->opts.quiet && isatty(2));
+    if (!on)
+        return;
+    if (final) {
+        if (w->progress_shown)
+            fprintf(stderr, "\n");
+        return;
+    }
+    double t = now_s();
+    if (t - w->t_start < 1.0 || t - w->last_progress < 0.25)
+        return;
+    w->last_progress = t;
+    w->progress_shown = 1;
+    fprintf(stderr, "\r  cycle %lld  t = %.4g / %.4g (%3.0f%%)  dt = %.3g  energy error %+.2e   ",
+            (long long)s->cycle, s->time, s->end_time, 100 * s->time / s->end_time, s->dt,
+            s->e.error);
+    fflush(stderr);
+}
+
+static void print_report(ctd_solver *s, FILE *f)
+{
+    const ctd_model *m = s->model;
+    const ctd_scene *sc = m->scene;
+    const ctd_energies *e = &s->e;
+    fprintf(f, "%s: %s after %lld cycles, t = %.6g of %.6g s (%.2f s wall, %d thread%s)\n",
+            sc->path, s->status, (long long)s->cycle, s->time, s->end_time, s->wall, s->threads,
+            s->threads == 1 ? "" : "s");
+    if (s->message[0])
+        fprintf(f, "  %s\n", s->message);
+    fprintf(f, "  model: %d nodes, %lld elements, %d segments, %d rigid bod%s, %d interface%s\n",
+            s->nnode, (long long)m->nelem, m->mesh.nseg, m->nbody, m->nbody == 1 ? "y" : "ies",
+            s->nhook, s->nhook == 1 ? "" : "s");
+    fprintf(f, "  energy: kinetic %.6g, internal %.6g, contact %.6g, damping %.6g, "
+               "friction %.6g, external work %.6g, initial %.6g\n",
+            e->kinetic, e->internal, e->contact, e->damping, e->friction, e->external,
+            s->e0.total);
+    fprintf(f, "  energy error (E - E0 - W_ext) / max(E): final %+.3e, largest %.3e\n", e->error,
+            s->error_max);
+    for (int i = 0; i < s->nhook; i++)
+        fprintf(f, "  interface %s (type %d, %s search): max force %.4g, max active pairs %lld, "
+                   "re-sorts %lld\n", s->w->if_names[i], s->hooks[i].type,
+                s->hooks[i].search ? s->hooks[i].search : "?", s->if_force_max[i],
+                (long long)s->if_active_max[i], (long long)s->w->if_resorts[i]);
+    const ctd_timers *t = &s->timers;
+    double tot = t->total > 0 ? t->total : 1;
+    fprintf(f, "  time split: search %.1f%%, narrow %.1f%%, force %.1f%%, assembly %.1f%%, "
+               "elements %.1f%%, other %.1f%% of %.3f s\n", 100 * t->search / tot,
+            100 * t->narrow / tot, 100 * t->force / tot, 100 * t->assembly / tot,
+            100 * t->elements / tot, 100 * t->other / tot, t->total);
+    if (s->out_dir[0])
+        fprintf(f, "  files: %s/ (state.pvd + state_*.vtu for ParaView, history.csv, "
+                   "summary.json, energies.png)\n", s->out_dir);
+}
+
+int cti_solver_finish(ctd_solver *s)
+{
+    cti_solver_work *w = s->w;
+    ctd_timers *t = &s->timers;
+    t->other = t->total - t->elements - t->search - t->narrow - t->force - t->assembly;
+    if (t->other < 0)
+        t->other = 0;
+    int rc = CT_OK;
+    if (w->out) {
+        const ctd_model *m = s->model;
+        ctd_if_summary *ifs = calloc((size_t)s->nhook + 1, sizeof *ifs);
+        if (!ifs)
+            return CT_ERR_NOMEM;
+        for (int i = 0; i < s->nhook; i++) {
+            ifs[i].name = w->if_names[i];
+            ifs[i].type = s->hooks[i].type;
+            ifs[i].search = s->hooks[i].search ? s->hooks[i].search : "";
+            ifs[i].max_active = s->if_active_max[i];
+            ifs[i].resorts = w->if_resorts[i];
+            ifs[i].max_force = s->if_force_max[i];
+        }
+        ctd_run_summary sum = {m->scene->path, m->scene->title ? m->scene->title : "",
+                               s->status, s->exit_code, s->message[0] ? s->message : NULL,
+                               s->threads, s->cycle, s->nnode, m->nelem, m->mesh.nseg,
+                               s->output_steps, s->end_time, s->time, s->wall, s->e.error,
+                               s->error_max, t->search, t->narrow, t->force, t->assembly,
+                               t->elements, t->other, s->nhook, ifs};
+        rc = ctd_output_summary(w->out, &sum);
+        free(ifs);
+        if (!rc && m->scene->output->csv) {
+            char msg[512];
+            int prc = ctd_output_plot_energies(s->out_dir, msg, sizeof msg);
+            if (prc < 0 && !s->opts.quiet)
+                fprintf(stderr, "contact: energy plot: %s\n", msg);
+        }
+        if (rc && !s->opts.quiet)
+            fprintf(stderr, "contact: %s\n", ctd_output_error(w->out));
+    }
+    if (!s->opts.quiet)
+        print_report(s, s->opts.report ? s->opts.report : stdout);
+    return rc;
+}
