@@ -41,6 +41,12 @@ GIT_COMMIT := $(shell git rev-parse --short=12 HEAD 2>/dev/null || echo none)$(s
 PROV = -DCT_BUILD_CFLAGS='"$(strip $(CFLAGS_ALL))"' -DCT_BUILD_COMMIT='"$(GIT_COMMIT)"'
 INC = -Ikernels -Idriver -Ibench
 
+# Provenance is compiled into kernels/common.o: rebuild it whenever the commit
+# or the flags change (a stamp file that is rewritten only when they differ).
+PROV_STAMP := $(BUILD)/provenance.stamp
+PROV_LINE := $(GIT_COMMIT) $(strip $(CFLAGS_ALL))
+$(shell mkdir -p $(BUILD) && (test -f $(PROV_STAMP) && [ "$$(cat $(PROV_STAMP))" = '$(PROV_LINE)' ] || echo '$(PROV_LINE)' > $(PROV_STAMP)))
+
 PKGS_CFLAGS = $(shell pkg-config --cflags hwloc libcyaml criterion 2>/dev/null)
 LIBS_HWLOC = $(shell pkg-config --libs hwloc 2>/dev/null || echo -lhwloc)
 LIBS_CYAML = $(shell pkg-config --libs libcyaml 2>/dev/null || echo -lcyaml)
@@ -110,6 +116,8 @@ $(BUILD)/%.o: %.c
 $(BUILD)/%.o: %.cc
 	@mkdir -p $(dir $@)
 	$(CXX) -std=c++17 $(OPT) $(ARCH) -fopenmp -Wall -Wextra -Werror $(PREC_FLAGS) $(SAN_FLAGS) $(PROV) $(INC) $(PKGS_CFLAGS) $(PEER_CXXFLAGS) -MMD -MP -c $< -o $@
+
+$(BUILD)/kernels/common.o: $(PROV_STAMP)
 
 $(LIBCONTACT): $(KERNEL_OBJ)
 	@rm -f $@

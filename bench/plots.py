@@ -339,7 +339,7 @@ def plot_cost(f, out, folder, suffix):
     lines = log_axes("secondary nodes N", "time per search (s)",
                      "Contact search on plates, natural numbering: cost against size "
                      "(%s precision)%s" % (f["precision"], note))
-    lines += ["set xrange [%.6g:%.6g]" % (xmin, xmax), "set key outside right top font ',10'",
+    lines += ["set xrange [%.6g:%.6g]" % (xmin, xmax), "set key outside below maxrows 7 font ',9'",
               "plot " + ", \\\n     ".join(plots)]
     png = os.path.join(out, "search_cost%s.png" % suffix)
     return png if run_gnuplot(folder, "search_cost" + suffix, lines, png) else False
