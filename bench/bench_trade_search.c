@@ -1,0 +1,265 @@
+/*
+ * bench_trade_search.c -- the search-side knobs of the speed/accuracy trade
+ * (see bench_trade.c for what each measures): the search algorithm, the
+ * search filter and the re-sort margin, all on the moving scenes.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "bench_trade_internal.h"
+
+/* ---- Knob: search algorithm --------------------------------------------- */
+
+void ctbt_bm_search(gb_state *st, const tdesc *d)
+{
+    movecase *m = ctbt_mv_get(d->variant);
+    if (m->state < 0) {
+        gb_skip_with_error(st, m->err);
+        return;
+    }
+    ctb_bind_threads(ctbt_cfg.bind, ctbt_cfg.max_threads, NULL, 0);
+    ct_search_algo algo = (ct_search_algo)d->sub;
+    char name[64];
+    snprintf(name, sizeof name, "%s@%s", ct_search_algo_name(algo), ctbt_mv_name[d->variant]);
+    ct_search_params p = ct_search_default_params(algo);
+    ct_search *s = NULL;
+    ct_pairs out;
+    memset(&out, 0, sizeof out);
+    int rc = ct_search_init(&s, &p);
+    if (rc == CT_OK)
+        rc = ct_pairs_init(&out, 0);
+    int64_t miss = 0, extra = 0, found = 0;
+    ct_search_input in;
+    /* Accuracy: the 30 steps forward from a fresh workspace (direct is the
+     * reference itself: 0 misses by construction, not run again). */
+    if (algo == CT_SEARCH_DIRECT)
+        found = (int64_t)ctbt_mv_ref_pairs(m);
+    for (int k = 0; k < MV_STEPS && rc == CT_OK && algo != CT_SEARCH_DIRECT; k++) {
+        ctbt_mv_input(m, k, &in);
+        rc = ct_search_run(s, &in, &out);
+        int64_t e = 0;
+        if (rc == CT_OK)
+            miss += ctbt_count_missing(m->pos, m->ref[k].n, m->ref[k].node, m->ref[k].seg, &out,
+                                       &e);
+        extra += e;
+        found += out.n;
+    }
+    int64_t it = 0;
+    double t0 = ctbt_now_s();
+    while (rc == CT_OK && gb_keep_running(st)) {
+        ctbt_mv_input(m, ctbt_pingpong(it++), &in);
+        rc = ct_search_run(s, &in, &out);
+    }
+    double dt = ctbt_now_s() - t0;
+    ct_search_destroy(s);
+    ct_pairs_destroy(&out);
+    if (rc != CT_OK) {
+        ctbt_set_skip(st, name, rc);
+        return;
+    }
+    double nsec = m->c.sec.n;
+    gb_set_counter(st, "cost", it ? dt * 1e9 / ((double)it * nsec) : 0, GB_PLAIN);
+    gb_set_counter(st, "accuracy", (double)miss, GB_PLAIN);
+    gb_set_counter(st, "x_extra", (double)extra, GB_PLAIN);
+    gb_set_counter(st, "x_ref_pairs_per_node", ctbt_mv_ref_pairs(m) / (MV_STEPS * nsec), GB_PLAIN);
+    gb_set_counter(st, "x_pairs_per_node", (double)found / (MV_STEPS * nsec), GB_PLAIN);
+    gb_set_counter(st, "x_ref_pairs", ctbt_mv_ref_pairs(m), GB_PLAIN);
+    char note[300];
+    snprintf(note, sizeof note,
+             "%s, %ld secondary nodes, %d steps (max node step %.2f h), a search every step, "
+             "gap 0.3 h + margin 0.2 h, %d threads",
+             d->variant == MV_SHEET ? "moving crumpled sheet (self contact)"
+                                    : "plates sliding (secondary plate moved rigidly)",
+             (long)m->c.sec.n, MV_STEPS, m->maxstep, ctbt_cfg.max_threads);
+    ctbt_label(st, "search", name, "ns/node per search",
+               "pairs missed vs direct, summed over the steps", note);
+}
+
+/* ---- Knob: search filter ------------------------------------------------- */
+
+void ctbt_bm_filter(gb_state *st, const tdesc *d)
+{
+    movecase *m = ctbt_mv_get(MV_SHEET);
+    if (m->state < 0) {
+        gb_skip_with_error(st, m->err);
+        return;
+    }
+    ctb_bind_threads(ctbt_cfg.bind, ctbt_cfg.max_threads, NULL, 0);
+    ct_search_params p = ct_search_default_params(CT_SEARCH_BUCKET);
+    ct_search *s = NULL;
+    ct_pairs out;
+    memset(&out, 0, sizeof out);
+    geobuf gb;
+    memset(&gb, 0, sizeof gb);
+    int rc = ct_search_init(&s, &p);
+    if (rc == CT_OK)
+        rc = ct_pairs_init(&out, 0);
+    ct_real gap = (ct_real)(TR_GAP * m->h);
+    double pairs = 0, active = 0;
+    ct_search_input in;
+    for (int k = 0; k < MV_STEPS && rc == CT_OK; k++) {
+        ctbt_mv_input(m, k, &in);
+        in.filter = (ct_search_filter)d->sub;
+        ct_narrow_stats ns;
+        rc = ct_search_run(s, &in, &out);
+        if (rc == CT_OK)
+            rc = ctbt_narrow(&in, &out, CT_QUAD_4TRI, gap, &gb, &ns);
+        pairs += out.n;
+        active += (double)ns.active;
+    }
+    int64_t it = 0;
+    double tsearch = 0, t0 = ctbt_now_s();
+    while (rc == CT_OK && gb_keep_running(st)) {
+        ctbt_mv_input(m, ctbt_pingpong(it++), &in);
+        in.filter = (ct_search_filter)d->sub;
+        double ta = ctbt_now_s();
+        rc = ct_search_run(s, &in, &out);
+        tsearch += ctbt_now_s() - ta;
+        if (rc == CT_OK)
+            rc = ctbt_narrow(&in, &out, CT_QUAD_4TRI, gap, &gb, NULL);
+    }
+    double dt = ctbt_now_s() - t0;
+    ct_search_destroy(s);
+    ct_pairs_destroy(&out);
+    ctbt_geo_free(&gb);
+    const char *name = d->sub == CT_FILTER_BOX ? "box" : "hull";
+    if (rc != CT_OK) {
+        ctbt_set_skip(st, name, rc);
+        return;
+    }
+    double nsec = m->c.sec.n, div = (double)(it ? it : 1) * nsec;
+    gb_set_counter(st, "cost", dt * 1e9 / div, GB_PLAIN);
+    gb_set_counter(st, "accuracy", pairs / (MV_STEPS * nsec), GB_PLAIN);
+    gb_set_counter(st, "x_search_ns_per_node", tsearch * 1e9 / div, GB_PLAIN);
+    gb_set_counter(st, "x_active_per_node", active / (MV_STEPS * nsec), GB_PLAIN);
+    char note[300];
+    snprintf(note, sizeof note,
+             "bucket search + 4-triangle narrow phase every step, moving crumpled sheet, %ld "
+             "nodes, gap 0.3 h + margin 0.2 h, %d threads",
+             (long)m->c.sec.n, ctbt_cfg.max_threads);
+    ctbt_label(st, "filter", name, "ns/node per step (search + narrow phase)",
+               "candidate pairs per node", note);
+}
+
+/* ---- Knob: re-sort margin ------------------------------------------------ */
+
+/* One step of the re-sort scheme at step k: re-sort when needed (x0 keeps
+ * the positions of the last sort), then the narrow phase over the stored
+ * candidates. *sorted = 1 when it searched. */
+static int margin_step(const movecase *m, int k, ct_real margin, ct_search *s,
+                       ct_pairs *cand, ct_real *x0, ct_real *y0, ct_real *z0, int force,
+                       geobuf *gb, int *sorted)
+{
+    ct_search_input in;
+    ctbt_mv_input(m, k, &in);
+    in.margin = margin;
+    *sorted = force || ct_resort_needed(in.nsec, in.sec, in.nsec, in.sec, x0, y0, z0, in.x,
+                                        in.y, in.z, margin, NULL);
+    int rc = CT_OK;
+    if (*sorted) {
+        rc = ct_search_run(s, &in, cand);
+        size_t bytes = (size_t)m->nnode * sizeof(ct_real);
+        memcpy(x0, in.x, bytes);
+        memcpy(y0, in.y, bytes);
+        memcpy(z0, in.z, bytes);
+    }
+    if (rc == CT_OK)
+        rc = ctbt_narrow(&in, cand, CT_QUAD_4TRI, in.gap, gb, NULL);
+    return rc;
+}
+
+void ctbt_bm_margin(gb_state *st, const tdesc *d)
+{
+    movecase *m = ctbt_mv_get(MV_SHEET);
+    if (m->state < 0) {
+        gb_skip_with_error(st, m->err);
+        return;
+    }
+    ctb_bind_threads(ctbt_cfg.bind, ctbt_cfg.max_threads, NULL, 0);
+    ct_real margin = (ct_real)(ctbt_margins[d->sub] * m->h), gap = (ct_real)(TR_GAP * m->h);
+    ct_search_params p = ct_search_default_params(CT_SEARCH_BUCKET);
+    ct_search *s = NULL;
+    ct_pairs cand, within;
+    memset(&cand, 0, sizeof cand);
+    memset(&within, 0, sizeof within);
+    geobuf gb;
+    memset(&gb, 0, sizeof gb);
+    size_t n = (size_t)m->nnode;
+    ct_real *x0 = ct_calloc(n, sizeof(ct_real)), *y0 = ct_calloc(n, sizeof(ct_real));
+    ct_real *z0 = ct_calloc(n, sizeof(ct_real));
+    int rc = x0 && y0 && z0 ? ct_search_init(&s, &p) : CT_ERR_NOMEM;
+    if (rc == CT_OK)
+        rc = ct_pairs_init(&cand, 0);
+    if (rc == CT_OK)
+        rc = ct_pairs_init(&within, 0);
+    int64_t miss = 0, resorts = 0;
+    double pairs = 0;
+    for (int k = 0; k < MV_STEPS && rc == CT_OK; k++) {
+        int sorted = 0;
+        rc = margin_step(m, k, margin, s, &cand, x0, y0, z0, k == 0, &gb, &sorted);
+        resorts += k > 0 && sorted;
+        pairs += cand.n;
+        if (rc != CT_OK)
+            break;
+        /* The pairs within the gap now: the direct reference (gap + 0.2 h)
+         * filtered by the shared predicate at distance gap. */
+        ct_search_input in;
+        ctbt_mv_input(m, k, &in);
+        rc = ct_pairs_reserve(&within, m->ref[k].n);
+        within.n = 0;
+        for (ct_idx q = 0; q < m->ref[k].n && rc == CT_OK; q++) {
+            ct_idx nd = m->ref[k].node[q], sg = m->ref[k].seg[q];
+            ct_real pp[3] = {in.x[nd], in.y[nd], in.z[nd]}, c[4][3];
+            const ct_idx cn[4] = {in.n1[sg], in.n2[sg], in.n3[sg], in.n4[sg]};
+            for (int j = 0; j < 4; j++) {
+                c[j][0] = in.x[cn[j]];
+                c[j][1] = in.y[cn[j]];
+                c[j][2] = in.z[cn[j]];
+            }
+            if (ct_pair_may_touch(pp, c[0], c[1], c[2], c[3], gap)) {
+                within.node[within.n] = nd;
+                within.seg[within.n] = sg;
+                within.n++;
+            }
+        }
+        if (rc == CT_OK)
+            miss += ctbt_count_missing(m->pos, within.n, within.node, within.seg, &cand, NULL);
+    }
+    int64_t it = 0;
+    double t0 = ctbt_now_s();
+    while (rc == CT_OK && gb_keep_running(st)) {
+        int sorted = 0;
+        rc = margin_step(m, ctbt_pingpong(it++), margin, s, &cand, x0, y0, z0, 0, &gb, &sorted);
+    }
+    double dt = ctbt_now_s() - t0;
+    ct_search_destroy(s);
+    ct_pairs_destroy(&cand);
+    ct_pairs_destroy(&within);
+    ctbt_geo_free(&gb);
+    ct_free(x0);
+    ct_free(y0);
+    ct_free(z0);
+    char name[32];
+    snprintf(name, sizeof name, "%gh", ctbt_margins[d->sub]);
+    if (rc != CT_OK) {
+        ctbt_set_skip(st, name, rc);
+        return;
+    }
+    double nsec = m->c.sec.n;
+    gb_set_counter(st, "cost", it ? dt * 1e9 / ((double)it * nsec) : 0, GB_PLAIN);
+    gb_set_counter(st, "accuracy", (double)miss, GB_PLAIN);
+    gb_set_counter(st, "x_pairs_per_node", pairs / (MV_STEPS * nsec), GB_PLAIN);
+    gb_set_counter(st, "x_resorts_per_100", 100.0 * (double)resorts / (MV_STEPS - 1),
+                   GB_PLAIN);
+    char note[300];
+    snprintf(note, sizeof note,
+             "each step: ct_resort_needed, bucket search (gap + margin) when needed, "
+             "4-triangle narrow phase over the stored candidates; moving crumpled sheet, %ld "
+             "nodes, max step %.2f h, gap 0.3 h, %d threads",
+             (long)m->c.sec.n, m->maxstep, ctbt_cfg.max_threads);
+    ctbt_label(st, "margin", name, "amortised ns/node per step",
+               "pairs within the gap missing from the candidates (summed over the steps)", note);
+}

@@ -1,0 +1,95 @@
+/*
+ * search_bucket_internal.h -- private declarations of the bucket search,
+ * shared by search_bucket.c (passes 1 to 5 and the driver of the search),
+ * search_bucket_query.c (pass 6, the query) and defined partly in
+ * search_bucket_grid.c. Not part of any API.
+ */
+#ifndef CT_SEARCH_BUCKET_INTERNAL_H
+#define CT_SEARCH_BUCKET_INTERNAL_H
+
+#include "ct_internal.h"
+
+int cti_bucket_boxes(const ct_search_input *in, ct_real *restrict box, float *restrict fbox,
+                     ct_real *restrict srec, ct_real mb[6]);
+int cti_bucket_scattered(const ct_search_input *in);
+int cti_bucket_check_sec(const ct_search_input *in);
+int64_t cti_bucket_offsets(ct_idx *cnt, int nb, size_t stride, int64_t ncell, ct_idx *start);
+int cti_bucket_bin_nodes(const ct_search_input *in, const ct_real lo[3], const ct_real hi[3],
+                         const ct_real inv[3], const ct_idx n[3], int nb, ct_idx *cnt,
+                         size_t stride, ct_idx *ncl, ct_idx *ord, ct_idx *ordc,
+                         ct_idx *nbinned);
+int cti_bucket_local(const ct_search_input *in, const ct_real lo[3], const ct_real hi[3],
+                     const ct_real inv[3], const ct_idx n[3]);
+void cti_bucket_size(const ct_real lo[3], const ct_real hi[3], ct_idx nseg, double factor,
+                     int64_t maxc, ct_idx n[3], ct_real inv[3]);
+
+/* One block's pair output (block 0's is the output's own arrays). Padded to
+ * a cache line so that blocks never share one. */
+typedef struct bk_out {
+    ct_idx *node, *seg;
+    size_t n, cap;
+    char pad[64 - 2 * sizeof(ct_idx *) - 2 * sizeof(size_t)];
+} bk_out;
+
+typedef struct bk_state {
+    int maxblk;
+    ct_real *box; /* per segment: lo x y z, hi x y z */
+    size_t box_cap;
+    float *fbox; /* per segment: fl(lo - d) rounded down (x y z 0), then
+                    -fl(hi + d) rounded up (x y z 0): a float pre-test */
+    size_t fbox_cap;
+    uint64_t *rng; /* per segment: its cell range, packed (BK_SKIP, BK_WIDE) */
+    size_t rng_cap;
+    ct_real *srec; /* per segment: its 4 corners (hull filter, scattered
+                      numberings only) */
+    size_t srec_cap;
+    ct_idx *cnt; /* per block: counters per cell, then offsets (stride cstride) */
+    size_t cnt_cap;
+    ct_idx *start; /* per cell: first entry; start[ncell] = entries */
+    size_t start_cap;
+    ct_idx *ent; /* segment numbers, cell by cell */
+    size_t ent_cap;
+    ct_idx *ncl, *ord, *ordc; /* cell order: node cells, positions, cells */
+    size_t ncl_cap, ord_cap, ordc_cap;
+    bk_out *buf; /* per block; buf[0] is unused (block 0 writes the output) */
+    int srec_on;  /* srec holds this call's corners */
+} bk_state;
+
+/* The default cell_factor (ct_search_params.cell_factor == 0). */
+#define BK_CELL_FACTOR 1.0
+
+/* The grid: the region where a node may pair at all, cells per axis and
+ * per unit length. */
+typedef struct bk_grid {
+    ct_real lo[3], hi[3];
+    ct_real inv[3]; /* 0 on a flat axis */
+    ct_idx n[3];
+    int64_t ncell;
+} bk_grid;
+
+/* Cell of coordinate v along one axis: monotone in v. */
+static inline ct_idx bk_cell1(ct_real v, ct_real o, ct_real inv, ct_idx nmax)
+{
+    ct_real t = (v - o) * inv;
+    t = t > 0 ? t : 0;
+    return t < (ct_real)nmax ? (ct_idx)t : nmax;
+}
+
+/* Errors found by the query (or-ed). */
+enum { BK_ENOMEM = 1, BK_ERANGE = 2, BK_ENONFINITE = 4 };
+
+/* Grow a block's output to hold at least `need` pairs (search_bucket.c). */
+int cti_bucket_out_grow(bk_out *o, size_t need);
+
+/* Pass 6, secondary order (search_bucket_query.c): blocks of consecutive
+ * positions, block 0 writing into o[0] (the output's arrays), block b > 0
+ * into o[b]. Returns BK_E* bits. */
+int cti_bucket_query_direct(const bk_state *st, const ct_search_input *in, const bk_grid *g,
+                            int nb, bk_out *o);
+
+/* Pass 6, cell order (search_bucket_query.c): the collector restores the
+ * secondary order. Returns BK_E* bits. */
+int cti_bucket_query_cells(const bk_state *st, const ct_search_input *in, int nb,
+                           ct_idx nbinned, cti_collect *col);
+
+#endif

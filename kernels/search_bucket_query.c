@@ -1,0 +1,248 @@
+/*
+ * search_bucket_query.c -- pass 6 of the bucket search (search_bucket.c):
+ * the query of the secondary nodes against the segments of their cells, in
+ * secondary order (cti_bucket_query_direct) or in cell order
+ * (cti_bucket_query_cells), with the candidate test they share.
+ */
+#include <stdlib.h>
+
+#include "ct_internal.h"
+#include "search_bucket_internal.h"
+
+#if defined(__AVX__)
+#include <immintrin.h>
+#endif
+
+/* What the candidate test needs. */
+typedef struct bk_ctx {
+    const ct_real *x, *y, *z;
+    const ct_idx *n1, *n2, *n3, *n4;
+    const ct_real *box, *srec;
+    const float *fbox;
+    const ct_idx *start, *ent;
+    ct_real d, d2lo, d2hi;
+    int self, boxf;
+} bk_ctx;
+
+static void bk_ctx_init(bk_ctx *k, const bk_state *st, const ct_search_input *in)
+{
+    k->x = in->x, k->y = in->y, k->z = in->z;
+    k->n1 = in->n1, k->n2 = in->n2, k->n3 = in->n3, k->n4 = in->n4;
+    k->box = st->box;
+    k->srec = st->srec_on ? st->srec : NULL;
+    k->fbox = st->fbox;
+    k->start = st->start;
+    k->ent = st->ent;
+    const ct_real d = in->gap + in->margin, d2 = d * d;
+    /* The predicate's sum of squares (CT_FILTER_BOX) is ours: the same
+     * expressions on the same minima and maxima, up to the order of a few
+     * roundings (at most about 3 ulps relatively, every term being
+     * nonnegative, plus underflow). Outside [d2lo, d2hi] our answer is
+     * therefore the predicate's; inside, the predicate is asked. */
+    k->d = d;
+    k->d2hi = d2 + d2 * (16 * CTI_EPS) + (ct_real)1e-30;
+    k->d2lo = d2 - d2 * (16 * CTI_EPS) - (ct_real)1e-30;
+    k->self = in->self;
+    k->boxf = in->filter == CT_FILTER_BOX;
+}
+
+/* Node `node` at (X, Y, Z) against the segments of its cell, entries e0 to
+ * e1 - 1: writes the accepted ones, in increasing order, to out and returns
+ * their number. */
+static inline ct_idx bk_cands(const bk_ctx *restrict k, ct_idx node, ct_real X, ct_real Y,
+                              ct_real Z, ct_idx e0, ct_idx e1, ct_idx *restrict out)
+{
+    const ct_idx *restrict ent = k->ent;
+    const float *restrict fbox = k->fbox;
+    const ct_real d = k->d;
+    const float fx = (float)X, fy = (float)Y, fz = (float)Z;
+#if defined(__AVX__)
+    const __m256 pv = _mm256_setr_ps(fx, fy, fz, 0, -fx, -fy, -fz, 0);
+#endif
+    ct_idx n = 0;
+    for (ct_idx e = e0; e < e1; e++) {
+        const ct_idx j = ent[e];
+        /* Float pre-test: rounding is monotone and the float box is rounded
+         * outward, so a node that passes the predicate's first step passes
+         * it. */
+#if defined(__AVX__)
+        /* One compare of the 8 lanes (lo x y z 0, -hi x y z 0). */
+        const __m256 fb = _mm256_loadu_ps(fbox + (size_t)8 * j);
+        if (_mm256_movemask_ps(_mm256_cmp_ps(pv, fb, _CMP_LT_OQ)))
+            continue;
+#else
+        const float *restrict f = fbox + (size_t)8 * j;
+        if (fx < f[0] || fy < f[1] || fz < f[2] || -fx < f[4] || -fy < f[5] || -fz < f[6])
+            continue;
+#endif
+        int ok;
+        if (k->boxf) {
+            const ct_real *restrict r = k->box + (size_t)6 * j;
+            /* The predicate's first step, exactly, then its sum. */
+            if (X < r[0] - d || X > r[3] + d || Y < r[1] - d || Y > r[4] + d ||
+                Z < r[2] - d || Z > r[5] + d)
+                continue;
+            ct_real ex = X < r[0] ? r[0] - X : (X > r[3] ? X - r[3] : 0);
+            ct_real ey = Y < r[1] ? r[1] - Y : (Y > r[4] ? Y - r[4] : 0);
+            ct_real ez = Z < r[2] ? r[2] - Z : (Z > r[5] ? Z - r[5] : 0);
+            ct_real e2 = ex * ex + ey * ey + ez * ez;
+            if (e2 > k->d2hi)
+                continue;
+            if (k->self &&
+                (node == k->n1[j] || node == k->n2[j] || node == k->n3[j] || node == k->n4[j]))
+                continue;
+            const ct_real p[3] = {X, Y, Z};
+            /* The box's minima and maxima are the corners': the predicate
+             * on (lo, hi, lo, hi) is the predicate. */
+            ok = e2 <= k->d2lo || ct_pair_box_near(p, r, r + 3, r, r + 3, d);
+        } else if (k->srec) {
+            /* cti_pair_test_f with the corners from their record. */
+            if (k->self &&
+                (node == k->n1[j] || node == k->n2[j] || node == k->n3[j] || node == k->n4[j]))
+                continue;
+            const ct_real *restrict r = k->srec + (size_t)12 * j;
+            const ct_real p[3] = {X, Y, Z};
+            ok = ct_pair_may_touch(p, r, r + 3, r + 6, r + 9, d);
+        } else {
+            ok = cti_pair_test_f(k->x, k->y, k->z, node, k->n1[j], k->n2[j], k->n3[j],
+                                 k->n4[j], d, k->self, CT_FILTER_HULL);
+        }
+        out[n] = j;
+        n += ok != 0;
+    }
+    return n;
+}
+
+/* Pass 6, secondary order: blocks of consecutive positions; block 0 writes
+ * into o[0] (the output's arrays), block b > 0 into o[b]. Also checks the
+ * secondaries' indices and coordinates. Returns BK_E* bits. */
+int cti_bucket_query_direct(const bk_state *st, const ct_search_input *in, const bk_grid *g,
+                            int nb, bk_out *o)
+{
+    const ct_real *restrict x = in->x, *restrict y = in->y, *restrict z = in->z;
+    const ct_idx *restrict sec = in->sec;
+    const ct_idx *restrict start = st->start;
+    const ct_idx nx = g->n[0], ny = g->n[1], nz = g->n[2];
+    const ct_idx nsec = in->nsec;
+    const uint32_t nnode = (uint32_t)in->nnode;
+    bk_ctx k;
+    bk_ctx_init(&k, st, in);
+    int err = 0;
+#pragma omp parallel for schedule(static) reduction(| : err)
+    for (int b = 0; b < nb; b++) {
+        bk_out w = o[b];
+        w.n = 0;
+        ct_idx lo = (ct_idx)((int64_t)nsec * b / nb);
+        ct_idx hi = (ct_idx)((int64_t)nsec * (b + 1) / nb);
+        for (ct_idx i = lo; i < hi; i++) {
+            const ct_idx node = sec[i];
+            if ((uint32_t)node >= nnode) {
+                err |= BK_ERANGE;
+                continue;
+            }
+            const ct_real X = x[node], Y = y[node], Z = z[node];
+            if (!((X - X) + (Y - Y) + (Z - Z) == 0)) {
+                err |= BK_ENONFINITE;
+                continue;
+            }
+            if (X < g->lo[0] || X > g->hi[0] || Y < g->lo[1] || Y > g->hi[1] ||
+                Z < g->lo[2] || Z > g->hi[2])
+                continue;
+            ct_idx ix = bk_cell1(X, g->lo[0], g->inv[0], nx - 1);
+            ct_idx iy = bk_cell1(Y, g->lo[1], g->inv[1], ny - 1);
+            ct_idx iz = bk_cell1(Z, g->lo[2], g->inv[2], nz - 1);
+            size_t c = ((size_t)iz * ny + iy) * nx + ix;
+            ct_idx e0 = start[c], e1 = start[c + 1];
+            /* Room for every candidate of this cell. */
+            if (w.n + (size_t)(e1 - e0) > w.cap &&
+                cti_bucket_out_grow(&w, w.n + (size_t)(e1 - e0))) {
+                err |= BK_ENOMEM;
+                break;
+            }
+            ct_idx m = bk_cands(&k, node, X, Y, Z, e0, e1, w.seg + w.n);
+            for (ct_idx q = 0; q < m; q++)
+                w.node[w.n + q] = node;
+            w.n += (size_t)m;
+        }
+        o[b] = w;
+    }
+    return err;
+}
+
+/* Pass 6, cell order: the secondaries binned by cell (ord, ordc), blocks of
+ * consecutive binned nodes; the collector restores the secondary order. */
+int cti_bucket_query_cells(const bk_state *st, const ct_search_input *in, int nb,
+                           ct_idx nbinned, cti_collect *col)
+{
+    const ct_real *restrict x = in->x, *restrict y = in->y, *restrict z = in->z;
+    const ct_idx *restrict sec = in->sec;
+    const ct_idx *restrict start = st->start;
+    const ct_idx *restrict ord = st->ord, *restrict ordc = st->ordc;
+    const ct_idx *restrict ent = st->ent;
+    const float *restrict fbox = st->fbox;
+    const ct_real *restrict box = st->box;
+    const ct_real *restrict srec = st->srec_on ? st->srec : NULL;
+    const ct_idx *restrict n1 = in->n1, *restrict n2 = in->n2, *restrict n3 = in->n3,
+                 *restrict n4 = in->n4;
+    const int boxf = in->filter == CT_FILTER_BOX;
+    bk_ctx k;
+    bk_ctx_init(&k, st, in);
+    int err = 0;
+#pragma omp parallel for schedule(static) reduction(| : err)
+    for (int b = 0; b < nb; b++) {
+        const int t = cti_thread_id();
+        ct_idx lo = (ct_idx)((int64_t)nbinned * b / nb);
+        ct_idx hi = (ct_idx)((int64_t)nbinned * (b + 1) / nb);
+        ct_idx pfc = -1;
+        (void)ent, (void)fbox, (void)box, (void)srec, (void)n1, (void)n2, (void)n3, (void)n4;
+        (void)boxf, (void)pfc;
+        for (ct_idx q = lo; q < hi; q++) {
+#if defined(__GNUC__)
+            /* The segment numbers are random too: fetch the records of the
+             * cell a few nodes ahead, once per cell. */
+            if (q + 8 < hi && ordc[q + 8] != pfc) {
+                pfc = ordc[q + 8];
+                for (ct_idx e = start[pfc]; e < start[pfc + 1]; e++) {
+                    const ct_idx j = ent[e];
+                    __builtin_prefetch(fbox + (size_t)8 * j);
+                    if (boxf) {
+                        __builtin_prefetch(box + (size_t)6 * j);
+                    } else if (srec) {
+                        __builtin_prefetch(srec + (size_t)12 * j);
+                        __builtin_prefetch(srec + (size_t)12 * j + 11);
+                    } else {
+                        __builtin_prefetch(n1 + j);
+                        __builtin_prefetch(n2 + j);
+                        __builtin_prefetch(n3 + j);
+                        __builtin_prefetch(n4 + j);
+                    }
+                }
+            }
+            /* The positions are random: fetch a few nodes ahead. */
+            if (q + 16 < hi) {
+                ct_idx kn = sec[ord[q + 16]];
+                __builtin_prefetch(x + kn);
+                __builtin_prefetch(y + kn);
+                __builtin_prefetch(z + kn);
+            }
+            if (q + 32 < hi)
+                __builtin_prefetch(sec + ord[q + 32]);
+#endif
+            const ct_idx i = ord[q], node = sec[i];
+            const size_t c = (size_t)ordc[q];
+            const ct_idx e0 = start[c], e1 = start[c + 1];
+            const size_t s0 = col->len[t];
+            if (col->cap[t] - s0 < (size_t)(e1 - e0) &&
+                cti_collect_room(col, t, (size_t)(e1 - e0)) != CT_OK) {
+                err |= BK_ENOMEM;
+                break;
+            }
+            ct_idx m = bk_cands(&k, node, x[node], y[node], z[node], e0, e1, col->buf[t] + s0);
+            if (m > 0) { /* a count of 0 is the collector's default */
+                col->len[t] = s0 + (size_t)m;
+                cti_collect_mark(col, t, i, s0);
+            }
+        }
+    }
+    return err;
+}
