@@ -135,11 +135,7 @@ int ctd_run_main(int argc, char **argv)
     ctd_contact_hook *hooks = NULL;
     int nhook = 0;
     if (sc->interfaces_count) {
-        if (!ctd_interfaces_build) {
-            fprintf(stderr, "contact run: %s: the scene has interfaces, and this build has no "
-                            "interface module\n", scene);
-            code = CTD_EXIT_BADINPUT;
-        } else if (ctd_interfaces_build(&model, sc, &hooks, &nhook, err, sizeof err) != CT_OK) {
+        if (ctd_interfaces_build(&model, sc, &hooks, &nhook, err, sizeof err) != CT_OK) {
             fprintf(stderr, "contact run: %s\n", err);
             code = CTD_EXIT_BADINPUT;
         }

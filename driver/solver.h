@@ -121,13 +121,13 @@ typedef struct ctd_contact_hook {
 } ctd_contact_hook;
 
 /*
- * The interfaces of a scene, built on a model: defined by driver/interfaces
- * (weak here, so the solver links without them). *hooks receives a malloc'd
+ * The interfaces of a scene, built on a model (driver/interfaces/build.c).
+ * *hooks receives a malloc'd
  * array of *nhook hooks (the solver takes ownership of it and of each
  * ctx). Returns CT_OK or a negative code with err naming the interface.
  */
 int ctd_interfaces_build(const ctd_model *m, const ctd_scene *sc, ctd_contact_hook **hooks,
-                         int *nhook, char *err, size_t errlen) __attribute__((weak));
+                         int *nhook, char *err, size_t errlen);
 
 typedef struct ctd_solver_opts {
     double end_time;     /* > 0: overrides the scene's */

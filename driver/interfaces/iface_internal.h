@@ -108,6 +108,10 @@ int ctdi_pass_step(ctd_iface *it, ctdi_pass *p, ct_real dt, const ct_real *x,
                    const ct_real *vz, const ct_real *m, ct_real *fx, ct_real *fy,
                    ct_real *fz, ctd_iface_report *rep);
 void ctdi_pass_free(ctdi_pass *p);
+/* One pair per node side carries the contact (pair_select.c): called after
+ * the narrow phase; zeroes the other pairs' penetrations, moves the pair
+ * states with the contact, and returns the active pairs. */
+int64_t ctdi_pass_select(ctdi_pass *p, const ct_real *x, const ct_real *y, const ct_real *z);
 size_t ctdi_pass_memory(const ctdi_pass *p, ct_idx nnode);
 
 /* Per-type setup (type24.c, type7.c, type11.c). */
@@ -121,6 +125,8 @@ int ctdi_type11_step(ctd_iface *it, ct_real dt, const ct_real *x, const ct_real 
 void ctdi_type11_free(ctdi_epass *e);
 size_t ctdi_type11_memory(const ctdi_epass *e);
 void ctdi_type11_force_resort(ctdi_epass *e);
+/* Output fields of the last step (iface_fields.c). */
+void ctdi_type11_fields(const ctdi_epass *e, ct_real *pen, int32_t *nact);
 
 /* Segment stiffness with Stfac from the data's inputs for one surface
  * (E, t, B, A, V as ct_seg_stiffness); *out NULL when all inputs are NULL. */

@@ -530,6 +530,7 @@ int ctdi_pass_step(ctd_iface *it, ctdi_pass *p, ct_real dt, const ct_real *x,
                                 it->cfg.quad, p->two_sided, &p->geo, &ns);
     if (rc != CT_OK)
         return rc;
+    ns.active = ctdi_pass_select(p, x, y, z);
     if (p->first && p->law == CTDI_LAW_LINEAR)
         initial_state(it, p, n);
     p->first = 0;

@@ -683,3 +683,19 @@ int ctdi_type11_step(ctd_iface *it, ct_real dt, const ct_real *x, const ct_real 
     rep->nactive += (ct_idx)ns.active;
     return CT_OK;
 }
+
+void ctdi_type11_fields(const ctdi_epass *e, ct_real *pen, int32_t *nact)
+{
+    for (ct_idx k = 0; k < e->n; k++) {
+        ct_real p = e->geo.pen[k];
+        if (!(p > 0))
+            continue;
+        const ct_idx q[4] = {e->e1[e->pa[k]], e->e2[e->pa[k]], e->e1[e->pb[k]],
+                             e->e2[e->pb[k]]};
+        for (int a = 0; a < 4; a++) {
+            if (p > pen[q[a]])
+                pen[q[a]] = p;
+            nact[q[a]]++;
+        }
+    }
+}
