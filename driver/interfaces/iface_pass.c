@@ -461,6 +461,8 @@ static int timestep(ctd_iface *it, ctdi_pass *p, ct_idx n, const ct_real *m,
                          &dmin, &imin);
     if (rc != CT_OK)
         return rc;
+    if (dmin < CT_DT_NONE)
+        dmin *= (ct_real)ctdi_damped_dt_factor((double)it->cfg.VisS);
     if (dmin < rep->dt_nodal) {
         rep->dt_nodal = dmin;
         rep->dt_node = imin >= 0 ? p->pairs[p->cur].node[imin] : -1;

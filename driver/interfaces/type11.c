@@ -646,6 +646,8 @@ int ctdi_type11_step(ctd_iface *it, ct_real dt, const ct_real *x, const ct_real 
     ct_real dmin;
     ct_idx imin;
     rc = ct_dt_nodal(n, e->sl[0], m, it->kelem, r[E_KTAN], NULL, &dmin, &imin);
+    if (rc == CT_OK && dmin < CT_DT_NONE)
+        dmin *= (ct_real)ctdi_damped_dt_factor((double)it->cfg.VisS);
     if (rc == CT_OK && dmin < rep->dt_nodal) {
         rep->dt_nodal = dmin;
         rep->dt_node = imin >= 0 ? e->sl[0][imin] : -1;
