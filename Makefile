@@ -1,7 +1,7 @@
 # contact -- penalty contact kernels, driver, benchmarks and tests.
 #
 #   make            build libcontact, the driver, the tests
-#   make run        run the showcase
+#   make run        run the showcase scene (SCENE=path for another)
 #   make test       build and run the tests (Criterion)
 #   make bench      build and run the benchmarks (Google Benchmark)
 #   make check      tests under ASan+UBSan, then under ThreadSanitizer
@@ -143,9 +143,11 @@ $(BENCHBIN): $(BENCH_OBJ) $(LIBDRIVER) $(LIBCONTACT)
 
 # ---- User commands ----------------------------------------------------------
 
+# SCENE=path runs another scene; `contact demo` shows the search comparison.
+SCENE ?= data/scenes/showcase.yaml
 run: deps
 	@$(MAKE) --no-print-directory $(CONTACT)
-	$(CONTACT) demo
+	$(CONTACT) run $(SCENE) --out out/$(basename $(notdir $(SCENE)))
 
 # Criterion forks one process per test; tests set their own thread counts.
 TEST_ARGS ?= --jobs 1

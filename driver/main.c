@@ -4,7 +4,7 @@
  *   contact info                 build provenance and machine topology
  *   contact search [options]     run the contact searches on a synthetic case,
  *                                check each against the direct search, time them
- *   contact demo                 what `make run` shows: the search comparison on
+ *   contact demo                 the search comparison, each checked against direct: on
  *                                a self-contact sheet and on two plates
  *   contact run SCENE [options]  run a scene (explicit dynamics)
  *   contact check SCENE          validate a scene file without running it
@@ -324,7 +324,7 @@ static void usage(FILE *f)
     fprintf(f, "usage: contact <command> [options]\n"
                "  info      build provenance and machine topology\n"
                "  search    run and verify the contact searches on a synthetic case\n"
-               "  demo      the search comparison shown by `make run`\n"
+               "  demo      the search comparison on a self-contact sheet and two plates\n"
                "  run       run a scene: contact run SCENE [--out DIR] [--threads N] ...\n"
                "  check     validate a scene file (YAML) without running it\n"
                "Run `contact <command> --help` for a command's options.\n");

@@ -41,8 +41,18 @@ static const scene_case cases[] = {
      * tiny while the block settles) */
     {"sliding-block.yaml", 1e-2, 2e-4, 0},
     {"bar-wave.yaml", 1e-2, 0, 0},
+    /* measured: 3.5e-3; the ball on the folded sheet of `make run` */
+    {"showcase.yaml", 1e-2, 1e-3, 0},
 };
 #define NCASE (sizeof cases / sizeof cases[0])
+
+/* Momentum "to round-off": relative, over the few hundred steps of a
+ * scene, with the positions and velocities stored in ct_real. */
+#ifdef CT_SINGLE
+#define MOMENTUM_TOL 1e-6
+#else
+#define MOMENTUM_TOL 1e-12
+#endif
 
 static void scene_path(char *buf, size_t n, const char *name)
 {
@@ -137,7 +147,7 @@ Test(scenes, run_in_bounds_and_independent_of_threads, .timeout = 280)
             ctd_solver_momentum(&r.s, p);
             double ref = fmax(fabs(r.p0[0]) + fabs(r.p0[1]) + fabs(r.p0[2]), 1e-30);
             for (int d = 0; d < 3; d++)
-                cr_expect(fabs(p[d] - r.p0[d]) <= 1e-12 * ref,
+                cr_expect(fabs(p[d] - r.p0[d]) <= MOMENTUM_TOL * ref,
                           "%s: momentum %d changed from %.17g to %.17g", c->file, d, r.p0[d],
                           p[d]);
         }
