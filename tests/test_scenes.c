@@ -10,6 +10,7 @@
  *  - the final state is bit-identical with 1 and 2 threads.
  */
 #include <criterion/criterion.h>
+#include <criterion/redirect.h>
 #include <dirent.h>
 #include <math.h>
 #include <stdio.h>
@@ -20,6 +21,7 @@
 #include "scene.h"
 #include "solver.h"
 #include "solver_internal.h"
+#include "run.h"
 
 /* What each scene must reach: the largest final |energy error|, the
  * largest final penetration (m), and whether no external force acts. */
@@ -174,3 +176,35 @@ SCENE_TEST(folding_sheet, 2)
 SCENE_TEST(sliding_block, 3)
 SCENE_TEST(bar_wave, 4)
 SCENE_TEST(showcase, 5)
+
+/* An interface that cannot be built is bad input (exit 2), with a message
+ * naming the scene file, the line and the interface. */
+static void expect_build_error(const char *name, const char *text)
+{
+    char p[1024], err[1024] = "";
+    const char *f = __FILE__, *slash = strrchr(f, '/');
+    snprintf(p, sizeof p, "%.*s/data/scenes/%s", slash ? (int)(slash - f) : 1, slash ? f : ".",
+             name);
+    static ctd_scene_err se;
+    ctd_scene *sc = NULL;
+    cr_assert_eq(ctd_scene_load(p, &sc, &se), CT_OK, "%s", se.count ? se.msg[0].text : "?");
+    ctd_model m;
+    cr_assert_eq(ctd_model_build(&m, sc, err, sizeof err), CT_OK, "%s", err);
+    ctd_contact_hook *hooks = NULL;
+    int nhook = -1;
+    int rc = ctd_interfaces_build(&m, sc, &hooks, &nhook, err, sizeof err);
+    cr_expect_neq(rc, CT_OK, "%s built", name);
+    cr_expect(hooks == NULL && nhook == 0);
+    cr_expect(strstr(err, name) && strstr(err, ":11: interfaces[0]") && strstr(err, text),
+              "message: %s", err);
+    ctd_model_destroy(&m);
+    ctd_scene_free(sc);
+    char *argv[] = {p, "--quiet"};
+    cr_expect_eq(ctd_run_main(2, argv), CTD_EXIT_BADINPUT);
+}
+
+Test(scenes, interface_errors_name_file_line, .init = cr_redirect_stderr)
+{
+    expect_build_error("iface_empty_main.yaml", "main selects no surface segment");
+    expect_build_error("iface_unbuilt_type.yaml", "type 5 is not built yet");
+}

@@ -11,7 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "iface.h"
+#include "iface_internal.h"
 
 /* One hook's context: the interface and the element stiffness it borrows
  * (shared by the hooks of a run: the first hook owns it). */
@@ -135,7 +135,6 @@ typedef struct resolved {
     ct_nodeset sec, grnd;
     ct_idx *ea1, *ea2, *eb1, *eb2;
     ct_idx nea, neb;
-    ct_real *curve_p, *curve_f;
 } resolved;
 
 static void resolved_free(resolved *r)
@@ -148,51 +147,20 @@ static void resolved_free(resolved *r)
     ct_free(r->ea2);
     ct_free(r->eb1);
     ct_free(r->eb2);
-    free(r->curve_p);
-    free(r->curve_f);
     memset(r, 0, sizeof *r);
 }
 
-static int cmp_edge(const void *a, const void *b)
-{
-    const ct_idx *u = a, *v = b;
-    if (u[0] != v[0])
-        return (u[0] > v[0]) - (u[0] < v[0]);
-    return (u[1] > v[1]) - (u[1] < v[1]);
-}
-
-/* The unique edges (sorted by their smaller, then larger node) of segments. */
+/* The unique edges of segments (type11.c does the work). */
 static int surface_edges(const segs *s, ct_idx **e1, ct_idx **e2, ct_idx *n)
 {
-    *n = 0;
-    size_t cap = 4 * (size_t)s->n + 1;
-    ct_idx *pr = malloc(2 * cap * sizeof(ct_idx));
-    *e1 = ct_calloc(cap, sizeof(ct_idx));
-    *e2 = ct_calloc(cap, sizeof(ct_idx));
-    if (!pr || !*e1 || !*e2) {
-        free(pr);
-        return CT_ERR_NOMEM;
-    }
-    size_t k = 0;
-    for (ct_idx j = 0; j < s->n; j++) {
-        ct_idx v[4] = {s->q[0][j], s->q[1][j], s->q[2][j], s->q[3][j]};
-        int nv = v[3] == v[2] ? 3 : 4;
-        for (int a = 0; a < nv; a++) {
-            ct_idx p = v[a], q = v[(a + 1) % nv];
-            pr[2 * k] = p < q ? p : q;
-            pr[2 * k + 1] = p < q ? q : p;
-            k++;
-        }
-    }
-    qsort(pr, k, 2 * sizeof(ct_idx), cmp_edge);
-    for (size_t i = 0; i < k; i++)
-        if (i == 0 || pr[2 * i] != pr[2 * i - 2] || pr[2 * i + 1] != pr[2 * i - 1]) {
-            (*e1)[*n] = pr[2 * i];
-            (*e2)[*n] = pr[2 * i + 1];
-            (*n)++;
-        }
-    free(pr);
-    return CT_OK;
+    ctd_iface_data d;
+    memset(&d, 0, sizeof d);
+    d.nseg = s->n;
+    d.n1 = s->q[0];
+    d.n2 = s->q[1];
+    d.n3 = s->q[2];
+    d.n4 = s->q[3];
+    return ctdi_seg_edges(&d, e1, e2, n);
 }
 
 static int select_surface(const ctd_model *m, const ctd_scene_sel *sel, segs *out, char *err,
@@ -335,16 +303,6 @@ static ct_real mean_seg_stiffness(const ctd_build_data *bd, const segs *s, const
     return cnt ? (ct_real)(sum / (double)cnt) : 0;
 }
 
-/* The mass of the rigid body made of a selection's part (0: none). */
-static double body_mass(const ctd_model *m, const ctd_scene_sel *sel)
-{
-    int64_t part = sel ? (sel->part ? sel->part : sel->parts_count ? sel->parts[0] : 0) : 0;
-    for (int b = 0; b < m->nbody; b++)
-        if (m->body[b].part == part)
-            return m->body[b].rigid.mass;
-    return 0;
-}
-
 static int build_one(const ctd_model *m, const ctd_scene_interface *f, unsigned idx,
                      const ctd_build_data *bd, ct_real *kelem, int own_kelem,
                      ctd_contact_hook *hook, char *err, size_t len)
@@ -425,9 +383,10 @@ static int build_one(const ctd_model *m, const ctd_scene_interface *f, unsigned 
                           "%s: edges of lines have no stiffness of their own: give Istf: 1 "
                           "and Stfac: the contact stiffness (N/m)", where);
         }
-        if (t == 6)
-            rc = fail(err, len, CT_ERR_ARG, "%s: type 6 is not built yet", where);
-        (void)body_mass;
+        if (t == 3 || t == 5 || t == 6)
+            rc = fail(err, len, CT_ERR_ARG,
+                      "%s: type %d is not built yet; type 24 covers nodes to surface and "
+                      "surface to surface meanwhile", where, t);
     }
     ctd_iface *it = NULL;
     if (rc == CT_OK) {

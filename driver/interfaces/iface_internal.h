@@ -138,6 +138,9 @@ int ctdi_type11_step(ctd_iface *it, ct_real dt, const ct_real *x, const ct_real 
 void ctdi_type11_free(ctdi_epass *e);
 size_t ctdi_type11_memory(const ctdi_epass *e);
 void ctdi_type11_force_resort(ctdi_epass *e);
+/* The unique edges of segments d->n1..n4 (d->nseg of them), lower node
+ * first, sorted; *e1 and *e2 are ct_calloc'ed. */
+int ctdi_seg_edges(const ctd_iface_data *d, ct_idx **e1, ct_idx **e2, ct_idx *ne);
 /* Output fields of the last step (iface_fields.c). */
 void ctdi_type11_fields(const ctdi_epass *e, ct_real *pen, int32_t *nact);
 

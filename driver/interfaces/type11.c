@@ -151,8 +151,7 @@ static int cmp_edge(const void *a, const void *b)
     return (u[1] > v[1]) - (u[1] < v[1]);
 }
 
-/* The unique edges (lower node first, sorted) of segments. */
-static int seg_edges(const ctd_iface_data *d, ct_idx **e1, ct_idx **e2, ct_idx *ne)
+int ctdi_seg_edges(const ctd_iface_data *d, ct_idx **e1, ct_idx **e2, ct_idx *ne)
 {
     size_t cap = 4 * (size_t)d->nseg + 1;
     ct_idx *t = malloc(2 * cap * sizeof(ct_idx));
@@ -236,7 +235,7 @@ int ctdi_type11_setup(ctd_iface *it, const ctd_iface_data *d, ct_diag *diag)
                 d->n2[j] >= it->nnode || d->n3[j] < 0 || d->n3[j] >= it->nnode ||
                 d->n4[j] < 0 || d->n4[j] >= it->nnode)
                 return ctdi_fail(diag, CT_ERR_RANGE, j, "A TYPE11 segment node is out of range.");
-        rc = seg_edges(d, &e->e1, &e->e2, &e->na);
+        rc = ctdi_seg_edges(d, &e->e1, &e->e2, &e->na);
         if (rc != CT_OK)
             return rc;
         e->nb = 0;
