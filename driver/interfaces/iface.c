@@ -1,7 +1,8 @@
 /*
  * iface.c -- the interface object (iface.h): parameter checks, the data
- * shared by every type (node stiffness, node gaps), the step dispatch with
- * Tstart/Tstop and the report, and small helpers of iface_internal.h.
+ * shared by every type (node stiffness, node gaps), the pass builder of the
+ * node-to-surface types, the step dispatch with Tstart/Tstop and the
+ * report, and small helpers of iface_internal.h.
  */
 #include "iface_internal.h"
 
@@ -33,6 +34,9 @@ int ctdi_fail(ct_diag *diag, int code, int64_t index, const char *msg)
     return code;
 }
 
+/* True for the types of the seed 000 family (3, 5, 6). */
+static int family356(int type) { return type == 3 || type == 5 || type == 6; }
+
 ctd_iface_cfg ctd_iface_default_cfg(int type)
 {
     ctd_iface_cfg c;
@@ -44,9 +48,18 @@ ctd_iface_cfg ctd_iface_default_cfg(int type)
     c.asm_variant = CT_ASM_COLOUR;
     c.Stfac = 1;
     c.VisS = type == 24 ? (ct_real)1.0 : (ct_real)0.05;
-    c.two_sided = type == 24 ? 0 : 1;
-    c.self = type == 24 ? 0 : 1;
+    c.two_sided = type == 7 || type == 11;
+    c.self = type == 7 || type == 11;
     c.kt_scale = 1;
+    if (family356(type)) {
+        /* Radioss TYPE3/5/6: the engine's topological search (TYPE6 keeps
+         * the bucket search: rigid bodies may move far in one step), the
+         * closed-form projection, the seed's series scale 0.2, no damping. */
+        c.algo = type == 6 ? CT_SEARCH_BUCKET : CT_SEARCH_TOPO;
+        c.quad = CT_QUAD_CLOSED;
+        c.Stfac = (ct_real)CT_STIFF_SCALE_DEFAULT;
+        c.VisS = 0;
+    }
     return c;
 }
 
@@ -158,11 +171,63 @@ ct_real *ctdi_seg_gap(const ct_real *gnode, ct_idx nseg, const ct_idx *n1, const
     return g;
 }
 
+int ctdi_add_pass(ctd_iface *it, const ct_idx *const lists[6], const ct_idx counts[6],
+                  const ctdi_surf *s, int need_k, int reverse, int law, const char *what,
+                  ct_diag *diag)
+{
+    const ctd_iface_cfg *c = &it->cfg;
+    char msg[200];
+    if (it->npass >= 2)
+        return ctdi_fail(diag, CT_ERR_ARG, -1, "An interface has at most two passes.");
+    if (s->nseg <= 0 || !s->q1 || !s->q2 || !s->q3 || !s->q4) {
+        snprintf(msg, sizeof msg, "TYPE%d needs %s.", c->type, what);
+        return ctdi_fail(diag, CT_ERR_ARG, -1, msg);
+    }
+    if (c->two_sided && !(c->gap > 0)) {
+        snprintf(msg, sizeof msg, "TYPE%d two-sided (shell) contact needs a gap > 0.", c->type);
+        return ctdi_fail(diag, CT_ERR_ARG, -1, msg);
+    }
+    ct_real *kseg = NULL;
+    if (need_k && it->kconst == 0) {
+        int rc = ctdi_seg_stiffness(c->Stfac, s->nseg, s->E, s->t, s->B, s->A, s->V, &kseg,
+                                    diag);
+        if (rc != CT_OK)
+            return rc;
+        if (!kseg) {
+            snprintf(msg, sizeof msg,
+                     "TYPE%d needs a stiffness K or the stiffness inputs of its %s (E with t, "
+                     "or B with A and V).",
+                     c->type, what);
+            return ctdi_fail(diag, CT_ERR_ARG, -1, msg);
+        }
+    }
+    ct_idx *sec = NULL;
+    int64_t ns = ctdi_unique_nodes(it->nnode, lists, counts, &sec);
+    if (ns < 0) {
+        ct_free(kseg);
+        snprintf(msg, sizeof msg, "A TYPE%d secondary node index is out of range.", c->type);
+        return ctdi_fail(diag, (int)ns, -1, msg);
+    }
+    /* The pass owns sec and kseg from here, even when the setup fails. */
+    ctdi_pass *p = &it->pass[it->npass++];
+    int rc = ctdi_pass_setup(it, p, (ct_idx)ns, sec, s->nseg, s->q1, s->q2, s->q3, s->q4, kseg,
+                             1, c->two_sided != 0, law);
+    if (rc != CT_OK) {
+        snprintf(msg, sizeof msg,
+                 "TYPE%d setup failed against its %s (a node index out of range, or memory).",
+                 c->type, what);
+        return ctdi_fail(diag, rc, -1, msg);
+    }
+    p->reverse = reverse;
+    return CT_OK;
+}
+
 /* Common checks of the card. */
 static int check_cfg(const ctd_iface_cfg *c, ct_diag *diag)
 {
-    if (c->type != 7 && c->type != 11 && c->type != 24)
-        return ctdi_fail(diag, CT_ERR_ARG, c->type, "Interface type must be 7, 11 or 24.");
+    if (c->type != 7 && c->type != 11 && c->type != 24 && !family356(c->type))
+        return ctdi_fail(diag, CT_ERR_ARG, c->type,
+                         "Interface type must be 3, 5, 6, 7, 11 or 24.");
     if (c->algo < 0 || c->algo >= CT_SEARCH_NALGO || c->quad < 0 ||
         c->quad >= CT_QUAD_NMETHOD || c->asm_variant < 0 || c->asm_variant >= CT_ASM_NVARIANT)
         return ctdi_fail(diag, CT_ERR_ARG, -1, "Unknown search, projection or assembly.");
@@ -197,6 +262,12 @@ int ctd_iface_init(ctd_iface **out, const ctd_iface_cfg *cfg, const ctd_iface_da
     if (!it)
         return CT_ERR_NOMEM;
     it->cfg = *cfg;
+    /* The curve is TYPE6's (its setup swaps in owned copies); no other
+     * type keeps the caller's pointers. */
+    if (cfg->type != 6) {
+        it->cfg.ncurve = 0;
+        it->cfg.curve_p = it->cfg.curve_f = NULL;
+    }
     if (!(it->cfg.kt_scale > 0))
         it->cfg.kt_scale = 1;
     it->nnode = d->nnode;
@@ -234,12 +305,14 @@ int ctd_iface_init(ctd_iface **out, const ctd_iface_cfg *cfg, const ctd_iface_da
             it->knode[i] *= cfg->Stfac;
     }
     if (rc == CT_OK) {
-        if (cfg->type == 24)
-            rc = ctdi_type24_setup(it, d, diag);
-        else if (cfg->type == 7)
-            rc = ctdi_type7_setup(it, d, diag);
-        else
-            rc = ctdi_type11_setup(it, d, diag);
+        switch (cfg->type) {
+        case 3: rc = ctdi_type3_setup(it, d, diag); break;
+        case 5: rc = ctdi_type5_setup(it, d, diag); break;
+        case 6: rc = ctdi_type6_setup(it, d, diag); break;
+        case 7: rc = ctdi_type7_setup(it, d, diag); break;
+        case 24: rc = ctdi_type24_setup(it, d, diag); break;
+        default: rc = ctdi_type11_setup(it, d, diag); break;
+        }
     }
     if (rc != CT_OK) {
         ctd_iface_destroy(it);
@@ -256,6 +329,8 @@ void ctd_iface_destroy(ctd_iface *it)
     for (int i = 0; i < 2; i++)
         ctdi_pass_free(&it->pass[i]);
     ctdi_type11_free(it->ep);
+    ct_free(it->curve_p);
+    ct_free(it->curve_f);
     ct_free(it->knode);
     ct_free(it->gnode);
     free(it);
@@ -287,6 +362,7 @@ size_t ctd_iface_memory(const ctd_iface *it)
         b += (size_t)it->nnode * sizeof(ct_real);
     if (it->gnode)
         b += (size_t)it->nnode * sizeof(ct_real);
+    b += 2 * (size_t)it->ncurve * sizeof(ct_real);
     for (int i = 0; i < it->npass; i++)
         b += ctdi_pass_memory(&it->pass[i], it->nnode);
     if (it->ep)
@@ -297,7 +373,7 @@ size_t ctd_iface_memory(const ctd_iface *it)
 static void report_zero(ctd_iface_report *rep)
 {
     memset(rep, 0, sizeof *rep);
-    rep->dt_nodal = rep->dt_kin = rep->dt_tunnel = rep->dt = CT_DT_NONE;
+    rep->dt_nodal = rep->dt_kin = rep->dt_tunnel = rep->dt_curve = rep->dt = CT_DT_NONE;
     rep->dt_node = -1;
 }
 
@@ -334,6 +410,8 @@ int ctd_iface_step(ctd_iface *it, double time, ct_real dt, const ct_real *x, con
         rep->dt = rep->dt_kin;
     if (rep->dt_tunnel < rep->dt)
         rep->dt = rep->dt_tunnel;
+    if (rep->dt_curve < rep->dt)
+        rep->dt = rep->dt_curve;
     rep->resorts = it->resorts;
     rep->deactivated = it->deactivated;
     return rc;

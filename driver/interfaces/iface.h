@@ -1,7 +1,7 @@
 /*
- * iface.h -- the contact interfaces of the driver (TYPE24, TYPE7, TYPE11),
- * prefix ctd_iface, each composed from the kernels of contact.h
- * (DESIGN.md sections 4 to 8, seeds 001 and 002).
+ * iface.h -- the contact interfaces of the driver (TYPE3, TYPE5, TYPE6,
+ * TYPE7, TYPE11, TYPE24), prefix ctd_iface, each composed from the kernels
+ * of contact.h (DESIGN.md sections 4 to 8, seeds 000, 001, 002 and 004).
  *
  * One object serves every type. The solver resolves the scene's selections
  * into raw arrays (ctd_iface_data: global node indices, per-segment and
@@ -13,6 +13,23 @@
  * timers).
  *
  * What each type does:
+ *  - TYPE3: surface to surface between two oriented solid surfaces, in two
+ *    passes: the secondary surface's nodes against the main segments, and
+ *    the main surface's nodes against the secondary segments. Linear law
+ *    with the stiffness of two springs in series, K = Stfac Km Ks/(Km + Ks)
+ *    (Km the segment stiffness, Ks the node stiffness; seed 000), VisS
+ *    damping, friction. Topological search and the closed-form quad
+ *    projection by default, as in Radioss.
+ *  - TYPE5: secondary nodes against the main surface, one pass, one-sided
+ *    unless two_sided; otherwise as TYPE3 (seed 000). The reaction goes to
+ *    the main nodes with the shape functions, F_i = N_i(s_c, t_c) F.
+ *  - TYPE6: two rigid bodies (seed 004): secondary nodes (sec, and the
+ *    nodes of the secondary segments) against the main segments, one pass.
+ *    The total normal force is F = f(p_max), a user curve (piecewise-linear
+ *    table) of the largest penetration, spread over the penetrating nodes in
+ *    proportion to their penetration; the stored energy is the integral of
+ *    f from 0 to p_max; the time step is 0.1 sqrt(M_min / K) with
+ *    K = max(f'(p_max), f(p_max)/p_max) (report field dt_curve).
  *  - TYPE24: node-to-surface penalty with a constant stiffness. Passes:
  *    secondary nodes (plus grnd_IDs) against the main segments; with
  *    `symmetric` (surface to surface) also the main surface's nodes against
@@ -26,6 +43,13 @@
  *  - TYPE11: edges against edges (the edges of a surface against
  *    themselves, or set A against set B), TYPE7 law, forces on the four edge
  *    nodes (force and moment balanced); no friction.
+ * The node-to-segment types (3, 5, 6, 7, 24) share one pass engine: the
+ * narrow phase, one carrying pair per node side, the normal law, damping,
+ * friction and the race-free assembly. A linear pass (3, 5, 24) blends the
+ * stiffness when a penetration jumps (ct_penalty_linear), so a node found
+ * deep inside does not release energy no motion put in. In TYPE3, TYPE5
+ * and TYPE6 a node never pairs with a segment it belongs to (the seed
+ * forbids a node on both sides; this makes one harmless).
  * Every type searches with the algorithm of cfg.algo (TYPE11: direct, or its
  * own bucket grid over edge boxes for the other three names) and repeats the
  * search only when the re-sort criterion fires (ct_resort_needed).
@@ -46,24 +70,31 @@ extern "C" {
 
 /* The parameters, named as in the Radioss cards. */
 typedef struct ctd_iface_cfg {
-    int type;       /* 7, 11 or 24 */
+    int type;       /* 3, 5, 6, 7, 11 or 24 */
     int self;       /* 24: single surface (no secondary set); 7 and 11: always
-                       self unless data has a second edge set (11) */
-    int symmetric;  /* 24: surface to surface, both passes */
-    int two_sided;  /* 24: 1 for shell surfaces (gap on both sides), 0 for
-                       oriented solid faces; 7 is always two-sided */
+                       self unless data has a second edge set (11); not
+                       used by 3, 5, 6 */
+    int symmetric;  /* 24: surface to surface, both passes (3 always has
+                       both) */
+    int two_sided;  /* 3, 5, 6, 24: 1 for shell surfaces (gap on both sides,
+                       needs gap > 0), 0 for oriented solid faces (the
+                       default); 7 is always two-sided */
     ct_search_algo algo;             /* broad phase (bucket by default) */
     ct_search_filter filter;         /* shared predicate (hull by default) */
     ct_quad_method quad;             /* node-quad projection (4tri) */
     ct_assemble_variant asm_variant; /* assembly (colour) */
     /* Stiffness. TYPE24 Istf: 0 or 2 mean, 3 max, 4 min, 5 series, 1 or
      * 1000 main only. TYPE7/11: 1 -> K0 = Stfac (the stiffness itself),
-     * otherwise K0 = Stfac * Kseg / 2 (Radioss halves it in this law). The
-     * result is clamped to [Stmin, Stmax] (Stmax 0: no upper bound). */
+     * otherwise K0 = Stfac * Kseg / 2 (Radioss halves it in this law).
+     * TYPE3/5 (Istf not read): springs in series, K = Stfac Km Ks/(Km + Ks);
+     * with no node stiffness inputs, or for a node whose stiffness is 0 (a
+     * beam or spring node), K = Stfac Km; with data.K > 0, K = Stfac K.
+     * TYPE6 ignores them (the curve is the law). The result is clamped to
+     * [Stmin, Stmax] (Stmax 0: no upper bound). */
     int Istf;
     ct_real Stfac, Stmin, Stmax;
-    /* Gap: `gap` is the constant gap (24 with Igap0 = 0) or the minimum gap
-     * (24 with Igap0 = 1, 7, 11). Igap0 = 1 (and always for 7 and 11): the
+    /* Gap: `gap` is the constant gap (3, 5, 6, and 24 with Igap0 = 0) or
+     * the minimum gap (24 with Igap0 = 1, 7, 11). Igap0 = 1 (and always for 7 and 11): the
      * gap of a pair is max(gap, g_s + g_m) with the per-node gaps of the
      * data capped by Gap_max_s and Gap_max_m (0: no cap). */
     ct_real gap;
@@ -90,11 +121,24 @@ typedef struct ctd_iface_cfg {
     /* Re-sort margin (search distance gap + margin); 0 -> 0.2 times the
      * mean edge length of the main segments (or edges). */
     ct_real margin;
+    /* TYPE6: the force curve f(p), ncurve points (curve_p strictly
+     * ascending, every value finite: ct_curve_check), total normal force
+     * against the largest penetration; between and beyond the points f is
+     * linear (extrapolated from the end intervals), and a negative f counts
+     * as 0. Borrowed here: ctd_iface_init copies the table. */
+    ct_idx ncurve;
+    const ct_real *curve_p, *curve_f;
 } ctd_iface_cfg;
 
-/* Defaults for a type (24, 7, 11): bucket, hull filter, 4tri, colour,
- * Stfac 1, VisS 1.0 (24) or 0.05 (7, 11), two-sided for 7, everything else
- * 0 as in the scene defaults. */
+/* Defaults for a type:
+ *  - 24, 7, 11: bucket search, 4tri, Stfac 1, VisS 1.0 (24) or 0.05 (7,
+ *    11), two-sided and self for 7 and 11;
+ *  - 3, 5: topological search, closed-form quad projection, Stfac 0.2 (the
+ *    seed's series scale), VisS 0, one-sided;
+ *  - 6: bucket search, closed-form quad projection, Stfac 0.2 (unused),
+ *    VisS 0, one-sided, gap 0, no curve (the caller must give one);
+ * and for all: hull filter, colour assembly, kt_scale 1, everything else 0
+ * as in the scene defaults. */
 ctd_iface_cfg ctd_iface_default_cfg(int type);
 
 /*
@@ -102,11 +146,12 @@ ctd_iface_cfg ctd_iface_default_cfg(int type);
  * arrays are indexed by the global node index and have nnode entries.
  * Only the arrays a type needs are read; NULL means "none".
  *  - main segments n1..n4 (n4 == n3 for a triangle): the surface of 7, the
- *    main surface of 24, the surface whose edges 11 uses when it has no
- *    explicit edges;
- *  - secondary nodes sec (24 nodes to surface; any order, duplicates
- *    allowed) and secondary segments s1..s4 (24 surface to surface: their
- *    nodes are secondary nodes too, and the second pass uses them);
+ *    main surface of 3, 5, 6 and 24, the surface whose edges 11 uses when
+ *    it has no explicit edges;
+ *  - secondary nodes sec (5, 6, 24 nodes to surface; any order, duplicates
+ *    allowed) and secondary segments s1..s4 (3, and 24 surface to surface:
+ *    their nodes are secondary nodes too, and the second pass uses them;
+ *    6: their nodes are secondary nodes, nothing more);
  *  - grnd (24): extra secondary nodes;
  *  - edges (11): ea1/ea2 (set A) and eb1/eb2 (set B, nb = 0: A against
  *    itself); without edges, A is the unique edges of the main segments;
@@ -115,7 +160,12 @@ ctd_iface_cfg ctd_iface_default_cfg(int type);
  *    seg_V (brick faces), see ct_seg_stiffness, for the main segments, and
  *    ssg_* the same for the secondary segments, and node inputs node_B,
  *    node_vnode, node_et (ct_node_stiffness) for the nodes;
- *  - gap_node: per-node gap (half the shell thickness; 0 for solids).
+ *  - gap_node: per-node gap (half the shell thickness; 0 for solids; read
+ *    by 7, 11, and 24 with Igap0 = 1);
+ *  - mass_min (6): the smaller of the two rigid bodies' masses for the
+ *    time step; 0 -> the smaller of the sums of the nodal masses m of each
+ *    side's nodes (secondary nodes, main segment nodes) at the first
+ *    active step.
  */
 typedef struct ctd_iface_data {
     ct_idx nnode;
@@ -134,6 +184,7 @@ typedef struct ctd_iface_data {
     const ct_real *ssg_E, *ssg_t, *ssg_B, *ssg_A, *ssg_V;
     const ct_real *node_B, *node_vnode, *node_et;
     const ct_real *gap_node;
+    ct_real mass_min;
 } ctd_iface_data;
 
 /* Timer slots of the report (seconds). */
@@ -143,19 +194,27 @@ enum { CTD_IT_SEARCH = 0, CTD_IT_NARROW, CTD_IT_FORCE, CTD_IT_ASSEMBLE, CTD_IT_N
  * interface sets no limit. */
 typedef struct ctd_iface_report {
     int on;                /* 1 when Tstart <= time <= Tstop */
-    double e_contact;      /* elastic energy stored in the contact springs now */
+    double e_contact;      /* elastic energy stored in the contact springs now
+                              (TYPE6: the integral of the curve from 0 to
+                              p_max) */
     double e_damp;         /* normal damping dissipation of this step (>= 0) */
     double e_fric;         /* friction dissipation of this step (>= 0) */
     double force[3];       /* total force on the secondary side (sum over
                               pairs of the force on the secondary node or
-                              edge A); the main side gets the opposite */
-    ct_real kmax;          /* largest pair stiffness (tangent) this step */
+                              edge A; TYPE3's second pass counts minus the
+                              force on its node, a main node); the main side
+                              gets the opposite */
+    ct_real kmax;          /* largest pair stiffness (tangent) this step
+                              (TYPE6: the curve's K) */
     ct_real dt_nodal;      /* min over pairs of sqrt(2 m / (kelem + k)) at the
                               secondary node (kelem from ctd_iface_set_kelem) */
     ct_idx dt_node;        /* the node that sets dt_nodal (-1: none) */
     ct_real dt_kin;        /* TYPE7/11 kinematic step (g - p) / (2 (-vn)) */
     ct_real dt_tunnel;     /* 0.9 gap_min / |v_rel,max| over the candidates */
-    ct_real dt;            /* min of the three */
+    ct_real dt_curve;      /* TYPE6 0.1 sqrt(M_min / K), K = max(f'(p_max),
+                              f(p_max)/p_max) (TYPE6 sets no dt_nodal: its
+                              nodes move with their rigid bodies) */
+    ct_real dt;            /* min of the four */
     ct_idx ncand, nactive; /* candidate and active pairs (all passes) */
     int resorted;          /* searches run in this step */
     int64_t resorts;       /* searches over the interface's life */
@@ -191,7 +250,7 @@ void ctd_iface_set_kelem(ctd_iface *it, const ct_real *kelem);
 /* Force a search at the next cycle. */
 void ctd_iface_force_resort(ctd_iface *it);
 
-/* The type (7, 11, 24), and the number of secondary nodes of the first
+/* The type (3, 5, 6, 7, 11, 24), and the number of secondary nodes of the first
  * pass (after merging grnd_IDs) or of edges in set A (11). */
 int ctd_iface_type(const ctd_iface *it);
 ct_idx ctd_iface_nsec(const ctd_iface *it);

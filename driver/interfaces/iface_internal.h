@@ -1,7 +1,9 @@
 /*
  * iface_internal.h -- what the interface files share (not for the solver):
- * the interface object, the node-segment pass engine (iface_pass.c) and the
- * edge pass of TYPE11 (type11.c). Internal names use the prefix ctdi_.
+ * the interface object, the node-segment pass engine (iface_pass.c), the
+ * pass builder of the node-to-surface types (iface.c), the TYPE6 curve law
+ * (type6.c) and the edge pass of TYPE11 (type11.c). Internal names use the
+ * prefix ctdi_.
  */
 #ifndef CTD_IFACE_INTERNAL_H
 #define CTD_IFACE_INTERNAL_H
@@ -17,8 +19,9 @@
  * min/max reduction, so the results do not depend on it. */
 #define CTDI_PAR_MIN 2048
 
-/* Normal law of a pass. */
-enum { CTDI_LAW_LINEAR = 0, CTDI_LAW_TYPE7 = 1 };
+/* Normal law of a pass: linear with blending (3, 5, 24), TYPE7's
+ * nonlinear law (7), or TYPE6's user curve of the largest penetration. */
+enum { CTDI_LAW_LINEAR = 0, CTDI_LAW_TYPE7 = 1, CTDI_LAW_TYPE6 = 2 };
 
 /* Per-pair states carried across re-sorts (double-buffered, remapped). */
 enum { CTDI_ST_FTX = 0, CTDI_ST_FTY, CTDI_ST_FTZ, CTDI_ST_P0, CTDI_ST_PPREV, CTDI_ST_FCAP,
@@ -39,6 +42,14 @@ typedef struct ctdi_pass {
     ct_real *gseg; /* per-segment gap (NULL: none) */
     ct_real sgap;  /* search gap: the largest pair gap */
     int self, two_sided, law;
+    /* 1 for the second pass of a surface-to-surface interface (its nodes
+     * are the interface's main side): its forces count negative in the
+     * report's force. */
+    int reverse;
+    /* The law's totals of the last step: TYPE6's largest penetration,
+     * curve stiffness and stored energy (the energy is not held per pair). */
+    ct_real pmax, kcurve;
+    double e_law;
     /* Search and the re-sort criterion. */
     ct_search *search;
     ct_pairs pairs[2];
@@ -68,6 +79,13 @@ struct ctd_iface {
     ct_real *gnode;  /* per-node gap (NULL: none) */
     ct_real kconst;  /* > 0: the given stiffness (before Stfac) */
     int stiff_mode;  /* ct_stiff_combine */
+    int ks_fallback; /* 3, 5: a node of stiffness 0 takes the main one alone */
+    /* TYPE6: the curve (owned copies) and the smaller rigid-body mass
+     * (mass_set 0: still to be summed from the nodal masses). */
+    ct_idx ncurve;
+    ct_real *curve_p, *curve_f;
+    ct_real mass_min;
+    int mass_set;
     ct_real margin;
     int npass;
     ctdi_pass pass[2];
@@ -89,6 +107,13 @@ static inline double ctdi_damped_dt_factor(double viss)
 {
     double zeta = viss / 1.4142135623730951;
     return sqrt(1.0 + zeta * zeta) - zeta;
+}
+
+/* Whether the pairs' gaps come from the per-node gaps (7, 11, and 24 with
+ * Igap0 = 1) or are the constant cfg.gap (3, 5, 6, 24 with Igap0 = 0). */
+static inline int ctdi_var_gap(const ctd_iface_cfg *c)
+{
+    return c->type == 7 || c->type == 11 || (c->type == 24 && c->Igap0 != 0);
 }
 
 /* Wall clock (omp_get_wtime when OpenMP is on). */
@@ -127,7 +152,62 @@ void ctdi_pass_free(ctdi_pass *p);
 int64_t ctdi_pass_select(ctdi_pass *p, const ct_real *x, const ct_real *y, const ct_real *z);
 size_t ctdi_pass_memory(const ctdi_pass *p, ct_idx nnode);
 
-/* Per-type setup (type24.c, type7.c, type11.c). */
+/* One surface of a node-to-surface pass: its segments and their
+ * stiffness inputs (as ct_seg_stiffness; all NULL: none). */
+typedef struct ctdi_surf {
+    ct_idx nseg;
+    const ct_idx *q1, *q2, *q3, *q4;
+    const ct_real *E, *t, *B, *A, *V;
+} ctdi_surf;
+
+/* The main (n1..n4, seg_*) and the secondary (s1..s4, ssg_*) surface of
+ * the data. */
+static inline ctdi_surf ctdi_main_surf(const ctd_iface_data *d)
+{
+    ctdi_surf s = {d->nseg,  d->n1,    d->n2,    d->n3,    d->n4,
+                   d->seg_E, d->seg_t, d->seg_B, d->seg_A, d->seg_V};
+    return s;
+}
+static inline ctdi_surf ctdi_sec_surf(const ctd_iface_data *d)
+{
+    ctdi_surf s = {d->nsseg, d->s1,    d->s2,    d->s3,    d->s4,
+                   d->ssg_E, d->ssg_t, d->ssg_B, d->ssg_A, d->ssg_V};
+    return s;
+}
+
+/*
+ * Append a pass to it->pass (iface.c): the unique nodes of up to six lists
+ * (NULL lists skipped) against the segments of surface s, for the types
+ * with two distinct sides (3, 5, 6): a node never pairs with a segment it
+ * belongs to, and the pass is one-sided unless cfg.two_sided. With
+ * need_k, the segment stiffness Stfac Km comes from the surface's inputs
+ * unless the interface has a constant K, and its absence is an error.
+ * reverse marks the second pass of surface to surface (see ctdi_pass).
+ * Errors go to diag, naming the type and `what` (e.g. "main segments").
+ */
+int ctdi_add_pass(ctd_iface *it, const ct_idx *const lists[6], const ct_idx counts[6],
+                  const ctdi_surf *s, int need_k, int reverse, int law, const char *what,
+                  ct_diag *diag);
+
+/* TYPE6 (type6.c): copy and check the curve (ctdi_type6_setup, from
+ * ctd_iface_init); the normal law of a pass over its n pairs after the
+ * narrow phase (force fel, damping stiffness = curve K, friction stiffness
+ * = the pair's share of it, p_prev; the stored energy in p->e_law); the
+ * step 0.1 sqrt(M_min / K) at the pass's largest penetration (m: the nodal
+ * masses, summed once when data.mass_min was 0). */
+int ctdi_type6_normal(ctd_iface *it, ctdi_pass *p, ct_idx n);
+ct_real ctdi_type6_dt(ctd_iface *it, const ctdi_pass *p, const ct_real *m);
+
+/* The integral of max(0, f) from a to b (a <= b) for the piecewise-linear
+ * curve (x, y) of n >= 2 points with the end intervals extrapolated, as
+ * ct_curve_eval; exact up to round-off (double sums). */
+double ctdi_curve_integral(ct_idx n, const ct_real *x, const ct_real *y, double a, double b);
+
+/* Per-type setup (type3.c, type5.c, type6.c, type24.c, type7.c,
+ * type11.c). */
+int ctdi_type3_setup(ctd_iface *it, const ctd_iface_data *d, ct_diag *diag);
+int ctdi_type5_setup(ctd_iface *it, const ctd_iface_data *d, ct_diag *diag);
+int ctdi_type6_setup(ctd_iface *it, const ctd_iface_data *d, ct_diag *diag);
 int ctdi_type24_setup(ctd_iface *it, const ctd_iface_data *d, ct_diag *diag);
 int ctdi_type7_setup(ctd_iface *it, const ctd_iface_data *d, ct_diag *diag);
 int ctdi_type11_setup(ctd_iface *it, const ctd_iface_data *d, ct_diag *diag);

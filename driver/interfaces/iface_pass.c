@@ -1,9 +1,12 @@
 /*
- * iface_pass.c -- one node-segment pass of an interface (TYPE24 and TYPE7):
- * the re-sort criterion and the search, the per-pair states carried across
- * re-sorts (friction force, initial penetration, blending, Ipen_max
- * deactivation), the narrow phase, the normal law (linear with blending, or
- * TYPE7), damping, friction, race-free assembly and the time-step limits.
+ * iface_pass.c -- one node-segment pass of an interface (TYPE3, TYPE5,
+ * TYPE6, TYPE7 and TYPE24): the re-sort criterion and the search, the
+ * per-pair states carried across re-sorts (friction force, initial
+ * penetration, blending, Ipen_max deactivation), the narrow phase, the
+ * normal law (linear with blending, TYPE7, or TYPE6's curve, whose law and
+ * step live in type6.c), damping, friction, race-free assembly with the
+ * shape weights (segment node i gets -h_i times the node's force) and the
+ * time-step limits.
  */
 #include "iface_internal.h"
 
@@ -153,7 +156,7 @@ int ctdi_pass_setup(ctd_iface *it, ctdi_pass *p, ct_idx nsec, ct_idx *sec_owned,
         return (int)nm;
     p->nmain = (ct_idx)nm;
     /* Gaps: per segment from the node gaps when the type uses them. */
-    int var_gap = it->cfg.type != 24 || it->cfg.Igap0 != 0;
+    int var_gap = ctdi_var_gap(&it->cfg);
     ct_real gmax_s = 0, gmax_m = 0;
     if (var_gap && it->gnode) {
         p->gseg = ctdi_seg_gap(it->gnode, nseg, n1, n2, n3, n4);
@@ -199,7 +202,9 @@ int ctdi_pass_setup(ctd_iface *it, ctdi_pass *p, ct_idx nsec, ct_idx *sec_owned,
 }
 
 /* The pair stiffness (with Stfac, clamped): the linear law's K or TYPE7's
- * K0. */
+ * K0 (TYPE6 sets its own every step). Both kseg and knode already carry
+ * Stfac, and the series law is homogeneous of degree one, so for TYPE3/5
+ * series(Stfac Km, Stfac Ks) = Stfac Km Ks/(Km + Ks), the seed's law. */
 static void pair_stiffness(const ctd_iface *it, const ctdi_pass *p, ct_idx n,
                            const ct_idx *restrict node, const ct_idx *restrict seg,
                            ct_real *restrict K)
@@ -207,6 +212,7 @@ static void pair_stiffness(const ctd_iface *it, const ctdi_pass *p, ct_idx n,
     const ctd_iface_cfg *c = &it->cfg;
     const ct_real *restrict ks = p->kseg, *restrict kn = it->knode;
     const int mode = kn ? it->stiff_mode : CT_STIFF_MAIN, t7 = p->law == CTDI_LAW_TYPE7;
+    const int fb = it->ks_fallback;
     const ct_real stmin = c->Stmin, stmax = c->Stmax;
     ct_real kc = c->Stfac * it->kconst;
     if (t7)
@@ -220,6 +226,8 @@ static void pair_stiffness(const ctd_iface *it, const ctdi_pass *p, ct_idx n,
             v = kc;
         else if (t7)
             v = ks[seg[k]] / 2;
+        else if (fb && !(kn && kn[node[k]] > 0))
+            v = ks[seg[k]]; /* no node stiffness: the main one alone */
         else
             v = ct_stiffness_combine1(mode, ks[seg[k]], kn ? kn[node[k]] : 0, 1, 0, 0);
         if (v < stmin)
@@ -433,6 +441,8 @@ static int normal_force(ctd_iface *it, ctdi_pass *p, ct_idx n, ct_real dt)
     if (p->law == CTDI_LAW_TYPE7) {
         rc = ct_penalty_type7(n, g->pen, g->gap, r[CTDI_R_K], r[CTDI_R_FEL], r[CTDI_R_KTAN],
                               r[CTDI_R_EN], p->iflag);
+    } else if (p->law == CTDI_LAW_TYPE6) {
+        rc = ctdi_type6_normal(it, p, n);
     } else {
         ct_real *p0 = it->cfg.Inacti != 0 && it->cfg.Ipen0 == 0 ? st[CTDI_ST_P0] : NULL;
         rc = ct_penalty_linear(n, g->pen, r[CTDI_R_VN], r[CTDI_R_K], dt, p0, st[CTDI_ST_PPREV],
@@ -457,15 +467,23 @@ static int timestep(ctd_iface *it, ctdi_pass *p, ct_idx n, const ct_real *m,
 {
     ct_real dmin;
     ct_idx imin;
-    int rc = ct_dt_nodal(n, p->pairs[p->cur].node, m, it->kelem, p->r[CTDI_R_KTAN], NULL,
+    int rc = CT_OK;
+    if (p->law == CTDI_LAW_TYPE6) {
+        /* Rigid bodies: the curve's step on the smaller body mass. */
+        dmin = ctdi_type6_dt(it, p, m);
+        if (dmin < rep->dt_curve)
+            rep->dt_curve = dmin;
+    } else {
+        rc = ct_dt_nodal(n, p->pairs[p->cur].node, m, it->kelem, p->r[CTDI_R_KTAN], NULL,
                          &dmin, &imin);
-    if (rc != CT_OK)
-        return rc;
-    if (dmin < CT_DT_NONE)
-        dmin *= (ct_real)ctdi_damped_dt_factor((double)it->cfg.VisS);
-    if (dmin < rep->dt_nodal) {
-        rep->dt_nodal = dmin;
-        rep->dt_node = imin >= 0 ? p->pairs[p->cur].node[imin] : -1;
+        if (rc != CT_OK)
+            return rc;
+        if (dmin < CT_DT_NONE)
+            dmin *= (ct_real)ctdi_damped_dt_factor((double)it->cfg.VisS);
+        if (dmin < rep->dt_nodal) {
+            rep->dt_nodal = dmin;
+            rep->dt_node = imin >= 0 ? p->pairs[p->cur].node[imin] : -1;
+        }
     }
     if (p->law == CTDI_LAW_TYPE7) {
         rc = ct_dt_type7_kinematic(n, p->geo.pen, p->geo.gap, p->r[CTDI_R_VN], NULL, &dmin,
@@ -525,7 +543,7 @@ int ctdi_pass_step(ctd_iface *it, ctdi_pass *p, ct_real dt, const ct_real *x,
     const ct_pairs *pp = &p->pairs[p->cur];
     ct_idx n = pp->n;
     ct_narrow_stats ns;
-    int var_gap = it->cfg.type != 24 || it->cfg.Igap0 != 0;
+    int var_gap = ctdi_var_gap(&it->cfg);
     const ct_real *gn = var_gap ? it->gnode : NULL, *gs = var_gap ? p->gseg : NULL;
     rc = ct_narrow_node_segment(n, pp->node, pp->seg, p->n1, p->n2, p->n3, p->n4, x, y, z, gn,
                                 gs, it->cfg.gap, it->cfg.Gap_max_s, it->cfg.Gap_max_m,
@@ -552,13 +570,14 @@ int ctdi_pass_step(ctd_iface *it, ctdi_pass *p, ct_real dt, const ct_real *x,
         rc = friction(it, p, n, dt);
     if (rc != CT_OK)
         return rc;
-    rep->e_contact += ct_sum_ordered(n, p->r[CTDI_R_EN]);
+    rep->e_contact += ct_sum_ordered(n, p->r[CTDI_R_EN]) + p->e_law;
     rep->e_damp += ct_sum_ordered(n, p->r[CTDI_R_DD]);
     if (it->fric_on)
         rep->e_fric += ct_sum_ordered(n, fd);
-    rep->force[0] += ct_sum_ordered(n, p->r[CTDI_R_FX]);
-    rep->force[1] += ct_sum_ordered(n, p->r[CTDI_R_FY]);
-    rep->force[2] += ct_sum_ordered(n, p->r[CTDI_R_FZ]);
+    const double side = p->reverse ? -1.0 : 1.0;
+    rep->force[0] += side * ct_sum_ordered(n, p->r[CTDI_R_FX]);
+    rep->force[1] += side * ct_sum_ordered(n, p->r[CTDI_R_FY]);
+    rep->force[2] += side * ct_sum_ordered(n, p->r[CTDI_R_FZ]);
     double t3 = ctdi_wtime();
     ct_asm_map map = ct_asm_map_nodeseg(n, pp->node, p->s[0], p->s[1], p->s[2], p->s[3]);
     const ct_real *const w[5] = {NULL, p->geo.h1, p->geo.h2, p->geo.h3, p->geo.h4};
