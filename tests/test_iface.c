@@ -12,48 +12,9 @@
 #include <string.h>
 
 #include "interfaces/iface.h"
+#include "test_iface_util.h"
 
 /* Node arrays of a test. */
-typedef struct tnodes {
-    ct_idx n;
-    ct_real *x, *y, *z, *vx, *vy, *vz, *m, *fx, *fy, *fz;
-} tnodes;
-
-static void tn_init(tnodes *t, ct_idx n)
-{
-    t->n = n;
-    ct_real **a[10] = {&t->x, &t->y, &t->z, &t->vx, &t->vy, &t->vz, &t->m, &t->fx, &t->fy, &t->fz};
-    for (int i = 0; i < 10; i++) {
-        *a[i] = ct_calloc((size_t)n, sizeof(ct_real));
-        cr_assert(*a[i]);
-    }
-    for (ct_idx i = 0; i < n; i++)
-        t->m[i] = 1;
-}
-
-static void tn_free(tnodes *t)
-{
-    ct_real *a[10] = {t->x, t->y, t->z, t->vx, t->vy, t->vz, t->m, t->fx, t->fy, t->fz};
-    for (int i = 0; i < 10; i++)
-        ct_free(a[i]);
-}
-
-static void tn_set(tnodes *t, ct_idx i, double x, double y, double z)
-{
-    t->x[i] = (ct_real)x;
-    t->y[i] = (ct_real)y;
-    t->z[i] = (ct_real)z;
-}
-
-/* Zero the forces, run one step, check the status. */
-static void tstep(ctd_iface *it, tnodes *t, double time, double dt, ctd_iface_report *rep)
-{
-    memset(t->fx, 0, sizeof(ct_real) * (size_t)t->n);
-    memset(t->fy, 0, sizeof(ct_real) * (size_t)t->n);
-    memset(t->fz, 0, sizeof(ct_real) * (size_t)t->n);
-    int rc = ctd_iface_step(it, time, (ct_real)dt, t->x, t->y, t->z, t->vx, t->vy, t->vz, t->m,
-                            t->fx, t->fy, t->fz, rep);
-    cr_assert_eq(rc, CT_OK, "step: %s", ct_strerror(rc));
 }
 
 static double fsum(const ct_real *f, ct_idx n)
