@@ -597,6 +597,8 @@ int ctd_solver_run(ctd_solver *s)
                 break;
             }
         }
+        if (s->opts.observe)
+            s->opts.observe(s->opts.observe_ctx, s);
         if (out_step) {
             int rc = cti_solver_output(s);
             if (rc) {

@@ -83,7 +83,9 @@ typedef struct ctd_contact_report {
     double friction;    /* energy dissipated by friction in this step (>= 0) */
     double dt_limit;    /* the interface's stable step (no safety factor);
                            0 or CTD_DT_NONE: no limit */
-    double force;       /* total normal contact force magnitude */
+    double force;       /* magnitude of the total contact force on the
+                           secondary side (the main side gets the opposite) */
+    double fvec[3];     /* that force as a vector */
     int64_t active;     /* active pairs */
     int64_t resorts;    /* re-sorts (searches) so far */
     double t_search, t_narrow, t_force, t_assembly; /* seconds in this cycle */
@@ -129,6 +131,8 @@ typedef struct ctd_contact_hook {
 int ctd_interfaces_build(const ctd_model *m, const ctd_scene *sc, ctd_contact_hook **hooks,
                          int *nhook, char *err, size_t errlen);
 
+struct ctd_solver;
+
 typedef struct ctd_solver_opts {
     double end_time;     /* > 0: overrides the scene's */
     double dt_scale;     /* > 0: overrides solver.dt_scale (any value: for experiments) */
@@ -140,6 +144,15 @@ typedef struct ctd_solver_opts {
     int progress;        /* -1: on a terminal (stderr) only; 0 off; 1 on */
     FILE *report;        /* the report's stream (NULL: stdout) */
     int64_t max_cycles;  /* > 0: stop (status "ok") after this many cycles */
+    /* Called once per cycle (NULL: never), after the kick: s->time, the
+     * positions x(n), the velocities v(n+1/2) (rigid bodies' nodes
+     * included), s->dt (the step that led to x(n)) and each interface's
+     * report of x(n) in s->rep[i]. Energies in s->e are those of the last
+     * evaluation (every 100 cycles and at output steps). It records; it
+     * must not change the solver. Histories for validation and embedding
+     * codes come from here. */
+    void (*observe)(void *ctx, const struct ctd_solver *s);
+    void *observe_ctx;
 } ctd_solver_opts;
 
 /* The defaults: nothing overridden, progress -1. */
