@@ -172,6 +172,12 @@ int ctdi_pass_setup(ctd_iface *it, ctdi_pass *p, ct_idx nsec, ct_idx *sec_owned,
             gmax_m = it->cfg.Gap_max_m;
     }
     p->sgap = gmax_s + gmax_m > it->cfg.gap ? gmax_s + gmax_m : it->cfg.gap;
+    /* TYPE6: rigid bodies crush into each other as deep as the curve
+     * goes, far beyond the gap; the search must still see a node that
+     * deep (the search distance is unsigned), so it reaches the curve's
+     * last penetration beyond the gap. */
+    if (law == CTDI_LAW_TYPE6 && it->ncurve > 0)
+        p->sgap += it->curve_p[it->ncurve - 1];
     if (two_sided && !(p->sgap > 0))
         return CT_ERR_ARG; /* a two-sided surface needs a positive gap */
     ct_search_params sp = ct_search_default_params(it->cfg.algo);
@@ -441,6 +447,14 @@ static int normal_force(ctd_iface *it, ctdi_pass *p, ct_idx n, ct_real dt)
     if (p->law == CTDI_LAW_TYPE7) {
         rc = ct_penalty_type7(n, g->pen, g->gap, r[CTDI_R_K], r[CTDI_R_FEL], r[CTDI_R_KTAN],
                               r[CTDI_R_EN], p->iflag);
+        /* The law keeps no history, but p_prev marks the pairs that carried
+         * their node this step, so that the friction force follows the
+         * contact to the next segment (pair_select.c). */
+        const ct_real *restrict pen = g->pen;
+        ct_real *restrict pp = st[CTDI_ST_PPREV];
+#pragma omp parallel for simd schedule(static) if (n > CTDI_PAR_MIN)
+        for (ct_idx k = 0; k < n; k++)
+            pp[k] = pen[k] > 0 ? pen[k] : 0;
     } else if (p->law == CTDI_LAW_TYPE6) {
         rc = ctdi_type6_normal(it, p, n);
     } else {

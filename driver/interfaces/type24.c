@@ -104,5 +104,8 @@ int ctdi_type24_setup(ctd_iface *it, const ctd_iface_data *d, ct_diag *diag)
                          d->s4, kseg2, 0, two, CTDI_LAW_LINEAR);
     if (rc != CT_OK)
         return ctdi_fail(diag, rc, -1, "TYPE24 second pass setup failed.");
+    /* Its nodes are the main side's: the report counts its force negative,
+     * so that the total is the force on the secondary surface. */
+    it->pass[1].reverse = 1;
     return CT_OK;
 }
