@@ -46,6 +46,8 @@ static int hook_step(void *ctx, const ctd_state *s, ct_real *fx, ct_real *fy, ct
     rep->dt_limit = r.dt < CT_DT_NONE ? (double)r.dt : 0.0;
     rep->force = sqrt(r.force[0] * r.force[0] + r.force[1] * r.force[1] +
                       r.force[2] * r.force[2]);
+    for (int d = 0; d < 3; d++)
+        rep->fvec[d] = r.force[d];
     rep->active = r.nactive;
     rep->resorts = r.resorts;
     rep->t_search = r.t[CTD_IT_SEARCH];
@@ -303,6 +305,69 @@ static ct_real mean_seg_stiffness(const ctd_build_data *bd, const segs *s, const
     return cnt ? (ct_real)(sum / (double)cnt) : 0;
 }
 
+/* The TYPE6 force curve of the card (curve_count points [p, F]). */
+static int curve_of(const ctd_scene_interface *f, ctd_iface_cfg *c, ct_real **p, ct_real **F)
+{
+    *p = ct_calloc((size_t)f->curve_count + 1, sizeof(ct_real));
+    *F = ct_calloc((size_t)f->curve_count + 1, sizeof(ct_real));
+    if (!*p || !*F)
+        return CT_ERR_NOMEM;
+    for (unsigned k = 0; k < f->curve_count; k++) {
+        (*p)[k] = (ct_real)f->curve[k][0];
+        (*F)[k] = (ct_real)f->curve[k][1];
+    }
+    c->ncurve = (ct_idx)f->curve_count;
+    c->curve_p = *p;
+    c->curve_f = *F;
+    return CT_OK;
+}
+
+/* The mass of one side of a TYPE6 interface (the unique nodes of up to
+ * four lists): the mass of the rigid body they all belong to, infinite
+ * when that body is held in all three directions (it does not move, so it
+ * sets no step), otherwise the sum of their nodal masses. */
+static double side_mass(const ctd_model *m, const ct_idx *const l4[4], ct_idx cnt)
+{
+    const ct_idx *const lists[6] = {l4[0], l4[1], l4[2], l4[3], NULL, NULL};
+    const ct_idx counts[6] = {cnt, l4[1] ? cnt : 0, l4[2] ? cnt : 0, l4[3] ? cnt : 0, 0, 0};
+    ct_idx *u = NULL;
+    int64_t n = ctdi_unique_nodes(m->mesh.nodes.n, lists, counts, &u);
+    int body = -2;
+    double sum = 0;
+    for (int64_t k = 0; k < n; k++) {
+        int b = m->node_body[u[k]];
+        body = body == -2 || body == b ? b : -1;
+        sum += (double)m->mesh.nodes.m[u[k]];
+    }
+    ct_free(u);
+    if (body >= 0) {
+        const ctd_model_body *bd = &m->body[body];
+        if (bd->driven && bd->dof[0] && bd->dof[1] && bd->dof[2])
+            return INFINITY;
+        return bd->rigid.mass;
+    }
+    return sum;
+}
+
+/* M_min of the TYPE6 step 0.1 sqrt(M_min / K): the smaller of the two
+ * sides' masses; 0 (the interface then sums the nodal masses) when
+ * neither side can move. */
+static ct_real type6_mass_min(const ctd_model *m, const resolved *r)
+{
+    const ct_idx *const mn[4] = {r->main.q[0], r->main.q[1], r->main.q[2], r->main.q[3]};
+    double mm = side_mass(m, mn, r->main.n), ms;
+    if (r->sec_segs.n > 0) {
+        const ct_idx *const sn[4] = {r->sec_segs.q[0], r->sec_segs.q[1], r->sec_segs.q[2],
+                                     r->sec_segs.q[3]};
+        ms = side_mass(m, sn, r->sec_segs.n);
+    } else {
+        const ct_idx *const sn[4] = {r->sec.node, NULL, NULL, NULL};
+        ms = side_mass(m, sn, r->sec.n);
+    }
+    double v = mm < ms ? mm : ms;
+    return isfinite(v) && v > 0 ? (ct_real)v : 0;
+}
+
 static int build_one(const ctd_model *m, const ctd_scene_interface *f, unsigned idx,
                      const ctd_build_data *bd, ct_real *kelem, int own_kelem,
                      ctd_contact_hook *hook, char *err, size_t len)
@@ -327,6 +392,7 @@ static int build_one(const ctd_model *m, const ctd_scene_interface *f, unsigned 
     if (rc == CT_OK)
         rc = seg_inputs_of(bd, ssu.seg, ssu.n, &gs);
     ctd_iface_cfg c = card(f);
+    ct_real *curve_p = NULL, *curve_f = NULL;
     ctd_iface_data d;
     memset(&d, 0, sizeof d);
     d.nnode = m->mesh.nodes.n;
@@ -383,10 +449,24 @@ static int build_one(const ctd_model *m, const ctd_scene_interface *f, unsigned 
                           "%s: edges of lines have no stiffness of their own: give Istf: 1 "
                           "and Stfac: the contact stiffness (N/m)", where);
         }
-        if (t == 3 || t == 5 || t == 6)
-            rc = fail(err, len, CT_ERR_ARG,
-                      "%s: type %d is not built yet; type 24 covers nodes to surface and "
-                      "surface to surface meanwhile", where, t);
+        if ((t == 3 || t == 5) && shells) {
+            /* Shells: both faces, the gap half the largest thickness when
+             * the card gives none. (TYPE6 stays one-sided whatever the
+             * surface: its penetrations are the crush of the curve, far
+             * deeper than any shell's half thickness.) */
+            c.two_sided = 1;
+            ct_real tmax = 0;
+            for (ct_idx k = 0; k < msu.n; k++)
+                tmax = bd->seg_t[msu.seg[k]] > tmax ? bd->seg_t[msu.seg[k]] : tmax;
+            if (c.gap == 0)
+                c.gap = tmax / 2;
+        }
+        if (t == 6) {
+            d.mass_min = type6_mass_min(m, &r);
+            rc = curve_of(f, &c, &curve_p, &curve_f);
+            if (rc != CT_OK)
+                fail(err, len, rc, "%s: out of memory", where);
+        }
     }
     ctd_iface *it = NULL;
     if (rc == CT_OK) {
@@ -401,6 +481,8 @@ static int build_one(const ctd_model *m, const ctd_scene_interface *f, unsigned 
     ct_free(ssu.seg);
     seg_inputs_free(&gm);
     seg_inputs_free(&gs);
+    ct_free(curve_p);
+    ct_free(curve_f);
     if (rc != CT_OK)
         return rc;
     hook_ctx *h = calloc(1, sizeof *h);
