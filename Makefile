@@ -5,6 +5,7 @@
 #   make test       build and run the tests (Criterion)
 #   make bench      build and run the benchmarks (Google Benchmark)
 #   make check      tests under ASan+UBSan, then under ThreadSanitizer
+#   make validation the validation cases with their plots (docs/VALIDATION.md)
 #   make deps       install missing Debian packages (as root)
 #
 # Variables: CC=gcc|clang, PRECISION=double|single, ARCH=-march=native
@@ -83,7 +84,8 @@ ifneq ($(filter bench bench-full bench-test,$(MAKECMDGOALS)),)
 DEB_PKGS += libnanoflann-dev libcgal-dev libbullet-dev
 endif
 
-.PHONY: all deps run test bench bench-full bench-test check check-asan check-tsan clean vecreport lib
+.PHONY: all deps run test bench bench-full bench-test check check-asan check-tsan clean vecreport lib \
+        validation
 
 all: deps
 	@$(MAKE) --no-print-directory build-all
@@ -193,6 +195,18 @@ plots:
 bench-test: deps
 	@$(MAKE) --no-print-directory $(BENCHBIN)
 	$(BENCHBIN) --verify-peers
+
+# The validation cases of issue 6 (suites validation_*) again, recording
+# their curves and figures, then the plots (docs/validation/*.png) and the
+# results table of docs/VALIDATION.md. The assertions are the same as in
+# `make test`, which runs these cases too.
+VALID_OUT = build/validation
+validation: deps
+	@$(MAKE) --no-print-directory build-tests
+	@rm -rf $(VALID_OUT) && mkdir -p $(VALID_OUT)
+	CT_VALIDATION_OUT=$(abspath $(VALID_OUT)) CT_SHARED=$(abspath ../shared) \
+	  $(TESTS) --jobs 1 --filter 'validation_*/*'
+	python3 tests/validation_plots.py $(VALID_OUT) --out docs/validation --page docs/VALIDATION.md
 
 # ---- Sanitizers -------------------------------------------------------------
 # ASan+UBSan with gcc. The race check uses clang's ThreadSanitizer with LLVM's
