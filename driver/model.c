@@ -535,6 +535,8 @@ static int build_bcs(build *b)
                 m->gravity[d] = bc->value[d];
             continue;
         }
+        if (bc->kind == CTD_BC_FORCE || bc->kind == CTD_BC_PRESSURE)
+            continue; /* loads: the solver's (loads.c) */
         ct_nodeset ns = {0, NULL};
         int rc = ctd_model_select_nodes(m, bc->nodes, &ns, b->err, b->len);
         if (rc)

@@ -89,13 +89,28 @@
  *               element rigid. A rigid part listed in no body is a body of
  *               its own.
  *   boundary    list, optional: {kind, nodes, value, dofs}
- *                 kind   fixed | velocity | initial_velocity | gravity;
+ *                 kind   fixed | velocity | initial_velocity | gravity |
+ *                        force | pressure;
  *                 nodes  a node selection (below); required except for
- *                        gravity (which acts on every node);
- *                 value  [vx, vy, vz] (or [gx, gy, gz]), required for
- *                        velocity, initial_velocity, gravity;
+ *                        gravity (which acts on every node) and pressure;
+ *                 value  [vx, vy, vz] (or [gx, gy, gz], or the force
+ *                        [Fx, Fy, Fz] in N on EACH selected node), required
+ *                        for velocity, initial_velocity, gravity, force;
  *                 dofs   fixed and velocity only: which components, a string
- *                        of x, y, z (default "xyz").
+ *                        of x, y, z (default "xyz");
+ *                 surface   pressure only, required: a surface selection
+ *                        (below); each segment gets the force -pressure x its
+ *                        vector area, shared equally by its corners, from the
+ *                        current geometry (a follower load): a positive
+ *                        pressure pushes against the segment's normal, into a
+ *                        solid's outer face;
+ *                 pressure  pressure only, required: a finite number (Pa);
+ *                 curve  force and pressure only, optional: the load's
+ *                        factor against time, [[t0, s0], [t1, s1], ...], t
+ *                        strictly ascending, linear in between, constant before
+ *                        the first and after the last point (default: 1 at all
+ *                        times). The loads' work enters the energy balance as
+ *                        external work.
  *   interfaces  list, optional, each a mapping:
  *     type       required: 3, 5, 6, 7, 11 or 24.
  *     name       string, optional (default "if<index>").
@@ -244,7 +259,7 @@ typedef struct ctd_scene_rigid {
 } ctd_scene_rigid;
 
 enum ctd_bc_kind { CTD_BC_FIXED = 0, CTD_BC_VELOCITY, CTD_BC_INITIAL_VELOCITY,
-                   CTD_BC_GRAVITY, CTD_BC_NKIND };
+                   CTD_BC_GRAVITY, CTD_BC_FORCE, CTD_BC_PRESSURE, CTD_BC_NKIND };
 
 typedef struct ctd_scene_bc {
     char *kind_name;
@@ -252,6 +267,10 @@ typedef struct ctd_scene_bc {
     double *value;
     unsigned value_count;      /* 0 or 3 */
     char *dofs;                /* NULL: "xyz" */
+    ctd_scene_sel *surface;    /* pressure: the loaded segments */
+    double pressure;           /* pressure: its value (Pa) */
+    double (*curve)[2];        /* force, pressure: [time, factor] points */
+    unsigned curve_count;      /* 0: factor 1 at all times */
     /* Filled by the loader. */
     int kind;                  /* enum ctd_bc_kind */
     int dof[3];                /* 1 for each constrained component */

@@ -88,6 +88,9 @@ static const cyaml_schema_field_t f_bc[] = {
     CYAML_FIELD_MAPPING_PTR("nodes", OPT, ctd_scene_bc, nodes, f_sel),
     CYAML_FIELD_SEQUENCE("value", OPT | PTR, ctd_scene_bc, value, &v_float, 3, 3),
     STR("dofs", OPT, ctd_scene_bc, dofs),
+    CYAML_FIELD_MAPPING_PTR("surface", OPT, ctd_scene_bc, surface, f_sel),
+    NUM("pressure", OPT, ctd_scene_bc, pressure),
+    CYAML_FIELD_SEQUENCE("curve", OPT | PTR, ctd_scene_bc, curve, &v_point, 1, CYAML_UNLIMITED),
     CYAML_FIELD_END};
 static const cyaml_schema_value_t v_bc = {CYAML_VALUE_MAPPING(REQ, ctd_scene_bc, f_bc)};
 

@@ -18,7 +18,7 @@ const char *const cti_elem_names[CTD_ELEM_NKIND] = {"brick", "shell", "truss", "
 const char *const cti_gen_names[CTD_GEN_NKIND] = {"plate", "block", "sphere", "ball",
                                                   "tube",  "folded", "net",  "rod"};
 const char *const cti_bc_names[CTD_BC_NKIND] = {"fixed", "velocity", "initial_velocity",
-                                                "gravity"};
+                                                "gravity", "force", "pressure"};
 
 typedef struct vctx {
     ctd_scene *sc;
@@ -487,6 +487,43 @@ static void check_rigid(vctx *v)
     }
 }
 
+/* The fields of the loads (force, pressure): surface, pressure, curve. */
+static void check_load(vctx *v, unsigned i, ctd_scene_bc *b)
+{
+    const int pres = b->kind == CTD_BC_PRESSURE, load = pres || b->kind == CTD_BC_FORCE;
+    const char *ps = P(v, "boundary[%u].surface", i);
+    if (pres && !b->surface)
+        cti_err(v->e, CT_ERR_ARG, 0, ps,
+                "required field missing for kind pressure (expected a surface selection)");
+    else if (!pres && b->surface)
+        cti_err(v->e, CT_ERR_ARG, 0, ps, "only used by kind pressure");
+    else if (b->surface)
+        check_sel(v, ps, b->surface, SEL_SURF);
+    const char *pp = P(v, "boundary[%u].pressure", i);
+    if (pres && !has(v, pp))
+        cti_err(v->e, CT_ERR_ARG, 0, pp,
+                "required field missing for kind pressure (expected a finite number, Pa)");
+    else if (!pres && has(v, pp))
+        cti_err(v->e, CT_ERR_ARG, 0, pp, "only used by kind pressure");
+    else if (pres)
+        num(v, pp, b->pressure, -INFINITY, 0, INFINITY, 0, "a finite number");
+    if (b->curve && !load) {
+        cti_err(v->e, CT_ERR_ARG, 0, P(v, "boundary[%u].curve", i),
+                "only used by kinds force and pressure");
+        return;
+    }
+    for (unsigned k = 0; b->curve && k < b->curve_count; k++) {
+        num(v, P(v, "boundary[%u].curve[%u][0]", i, k), b->curve[k][0], -INFINITY, 0, INFINITY,
+            0, "a finite time");
+        num(v, P(v, "boundary[%u].curve[%u][1]", i, k), b->curve[k][1], -INFINITY, 0, INFINITY,
+            0, "a finite factor");
+        if (k > 0 && !(b->curve[k][0] > b->curve[k - 1][0]))
+            cti_err(v->e, CT_ERR_ARG, 0, P(v, "boundary[%u].curve[%u][0]", i, k),
+                    "expected times in strictly ascending order, got %g after %g",
+                    b->curve[k][0], b->curve[k - 1][0]);
+    }
+}
+
 static void check_boundary(vctx *v)
 {
     ctd_scene *sc = v->sc;
@@ -498,21 +535,25 @@ static void check_boundary(vctx *v)
         b->dof[0] = b->dof[1] = b->dof[2] = 1;
         if (b->kind < 0)
             continue;
-        if (b->kind == CTD_BC_GRAVITY && b->nodes)
+        const int pres = b->kind == CTD_BC_PRESSURE;
+        if ((b->kind == CTD_BC_GRAVITY || pres) && b->nodes)
             cti_err(v->e, CT_ERR_ARG, 0, P(v, "boundary[%u].nodes", i),
-                    "not used by gravity (it acts on every node)");
-        else if (b->kind != CTD_BC_GRAVITY && !b->nodes)
+                    pres ? "not used by pressure (it loads a surface: give surface)"
+                         : "not used by gravity (it acts on every node)");
+        else if (b->kind != CTD_BC_GRAVITY && !pres && !b->nodes)
             cti_err(v->e, CT_ERR_ARG, 0, P(v, "boundary[%u].nodes", i),
                     "required field missing for kind %s (expected a node selection)", b->kind_name);
         else if (b->nodes)
             check_sel(v, P(v, "boundary[%u].nodes", i), b->nodes, SEL_NODES);
-        int want_value = b->kind != CTD_BC_FIXED;
+        check_load(v, i, b);
+        int want_value = b->kind != CTD_BC_FIXED && !pres;
         if (want_value && !b->value)
             cti_err(v->e, CT_ERR_ARG, 0, P(v, "boundary[%u].value", i),
                     "required field missing for kind %s (expected a list of 3 numbers)",
                     b->kind_name);
         else if (!want_value && b->value)
-            cti_err(v->e, CT_ERR_ARG, 0, P(v, "boundary[%u].value", i), "not used by kind fixed");
+            cti_err(v->e, CT_ERR_ARG, 0, P(v, "boundary[%u].value", i), "not used by kind %s%s",
+                    b->kind_name, pres ? " (give pressure)" : "");
         for (unsigned k = 0; k < b->value_count; k++)
             num(v, P(v, "boundary[%u].value[%u]", i, k), b->value[k], -INFINITY, 0, INFINITY, 0,
                 "a finite number");

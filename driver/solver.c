@@ -73,6 +73,7 @@ void ctd_solver_destroy(ctd_solver *s)
         free(w->bc_node);
         free(w->part_sum);
         free(w->vc_old);
+        ctd_loads_destroy(&w->loads);
         free(w->if_force);
         free(w->if_active);
         free(w->if_resorts);
@@ -158,6 +159,9 @@ int ctd_solver_init(ctd_solver *s, ctd_model *m, const ctd_solver_opts *opts,
         if (m->node_body[i] < 0 && m->bc_mask[i])
             w->bc_node[w->nbc++] = i;
     }
+    int lrc = ctd_loads_init(&w->loads, m, err, errlen);
+    if (lrc != CT_OK)
+        return lrc == CT_ERR_NOMEM ? err_out(err, errlen, lrc, "out of memory") : lrc;
     /* Driven bodies start with their imposed velocity and no spin. */
     for (int b = 0; b < m->nbody; b++) {
         ctd_model_body *bd = &m->body[b];
@@ -544,6 +548,7 @@ int ctd_solver_run(ctd_solver *s)
         s->timers.elements += t1 - t0;
         if (contact_forces(s, out_step))
             break;
+        ctd_loads_apply(&w->loads, s->time, s->x, s->y, s->z, w->fx, w->fy, w->fz);
         if (m->has_gravity) {
             const ct_real gx = (ct_real)m->gravity[0], gy = (ct_real)m->gravity[1],
                           gz = (ct_real)m->gravity[2];

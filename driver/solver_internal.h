@@ -5,6 +5,7 @@
 #ifndef CTD_SOLVER_INTERNAL_H
 #define CTD_SOLVER_INTERNAL_H
 
+#include "loads.h"
 #include "solver.h"
 
 /* Energy sums go through fixed chunks of nodes (bit-identical for any
@@ -32,6 +33,7 @@ typedef struct cti_solver_work {
     double w_bc;                  /* imposed-velocity work up to the last step (both halves) */
     double w_bc_back;             /* this step's backward half */
     double w_bc_fwd;              /* this step's forward half */
+    ctd_loads loads;              /* nodal forces and pressures, and their work */
     double damping, friction;     /* dissipation so far */
     double internal;              /* elements' energy at x(n) */
     double contact;               /* interfaces' stored energy at x(n) */

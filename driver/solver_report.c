@@ -103,7 +103,7 @@ void cti_solver_energies(ctd_solver *s)
     e->contact = w->contact;
     e->damping = w->damping;
     e->friction = w->friction;
-    e->external = cti_solver_gravity_work(s) + w->w_bc + w->w_bc_back;
+    e->external = cti_solver_gravity_work(s) + w->w_bc + w->w_bc_back + w->loads.work;
     e->total = e->kinetic + e->internal + e->contact + e->damping + e->friction;
     if (s->cycle == 0) {
         s->e0 = *e;

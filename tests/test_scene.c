@@ -184,6 +184,8 @@ static const broken broken_files[] = {
     {"malformed.yaml", 5, "mesh[1].generate.origin", "malformed YAML: did not find expected ',' or ']'", CT_ERR_ARG},
     {"import_bad_deck.yaml", 4, "mesh[0].import.file", "bad_number.rad:5: field 'y' of /NODE", CT_ERR_ARG},
     {"import_missing_part.yaml", 4, "mesh[0].import.file", "the deck's part 3", CT_ERR_RANGE},
+    {"bad_load_surface.yaml", 10, "boundary[1].surface", "required field missing for kind pressure", CT_ERR_ARG},
+    {"bad_load_curve.yaml", 11, "boundary[0].curve[2][0]", "strictly ascending order, got 1e-05 after 2e-05", CT_ERR_ARG},
 };
 
 Test(scene, broken_files_name_file_line_field, .init = cr_redirect_stderr)
