@@ -22,6 +22,7 @@
 #include "solver.h"
 #include "solver_internal.h"
 #include "run.h"
+#include "test_util.h"
 
 /* What each scene must reach: the largest final |energy error|, the
  * largest final penetration (m), and whether no external force acts. */
@@ -45,13 +46,14 @@ static const scene_case cases[] = {
     {"bar-wave.yaml", 1e-2, 0, 0},
     /* measured: 3.5e-3; the ball on the folded sheet of `make run` */
     {"showcase.yaml", 1e-2, 1e-3, 0},
-    /* measured: 3.8e-4 (most of it the flat net sagging under gravity
-     * before the ball arrives); TYPE5, cable nodes on the ball's faces */
-    {"truss-net-drop.yaml", 1e-3, 1e-4, 0},
-    /* measured: 1.3e-5; TYPE3 at its default Stfac 0.2 (springs in
-     * series) is soft: the press ends with the surfaces 7.9e-5 into each
+    /* measured: 3.8e-4 (1.1e-3 in single precision; most of it the flat
+     * net sagging under gravity before the ball arrives); TYPE5, cable
+     * nodes on the ball's faces */
+    {"truss-net-drop.yaml", CTT_TOL(1e-3, 3e-3), 1e-4, 0},
+    /* measured: 1.3e-5 (5.4e-4 in single); TYPE3 at its default Stfac
+     * 0.2 (springs in series) is soft: the press ends with the surfaces 7.9e-5 into each
      * other under 2e5 N, against 1.5e-4 of imposed travel */
-    {"pressed-blocks.yaml", 1e-4, 1e-4, 0},
+    {"pressed-blocks.yaml", CTT_TOL(1e-4, 2e-3), 1e-4, 0},
     /* measured: 1.3e-5; TYPE6, the knee crushes 33.6 mm into the bolster
      * along the curve and is thrown back (nothing penetrates at the end) */
     {"knee-bolster.yaml", 1e-4, 1e-9, 0},
