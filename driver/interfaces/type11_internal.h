@@ -1,0 +1,54 @@
+/*
+ * type11_internal.h -- what the two files of TYPE11 share: the edge pass
+ * (its pairs and per-pair arrays) of type11.c and the edge search of
+ * type11_search.c.
+ */
+#ifndef CTD_TYPE11_INTERNAL_H
+#define CTD_TYPE11_INTERNAL_H
+
+#include "iface_internal.h"
+
+/* Per-pair reals. */
+enum { E_DIST = 0, E_PEN, E_NX, E_NY, E_NZ, E_SA, E_SB, E_PAX, E_PAY, E_PAZ, E_PBX, E_PBY,
+       E_PBZ, E_GAP, E_K0, E_FEL, E_KTAN, E_EN, E_VN, E_MS, E_MM, E_FN, E_FX, E_FY, E_FZ, E_DD,
+       E_W1, E_W2, E_W3, E_W4, E_VR2, E_N };
+
+struct ctdi_epass {
+    ct_idx na, nb, ne;     /* edges of A, of B (0: self), total */
+    ct_idx *e1, *e2;       /* ne edges */
+    ct_real *gedge;        /* per-edge gap */
+    ct_real sgap;          /* largest pair gap */
+    ct_idx nan, nbn;
+    ct_idx *an, *bn;       /* unique nodes of A and of B */
+    int self, bucket, need_sort;
+    ct_real k0;
+    ct_real *x0, *y0, *z0;
+    /* Pairs and per-pair arrays. */
+    ct_idx n;
+    size_t cap;
+    ct_idx *pa, *pb, *sl[4];
+    ct_real *r[E_N];
+    uint8_t *flag;
+    int32_t *iflag;
+    ct_edge_geo geo;
+    /* Search scratch. */
+    ct_real *box;          /* 6 per edge: lo xyz, hi xyz */
+    ct_idx *cnt;           /* per A edge: pair counts, then offsets (na + 1) */
+    ct_idx *cell_off, *cell_edge;
+    size_t cap_cell, cap_ce;
+    ct_idx *tmp_a, *tmp_b;
+    size_t cap_tmp;
+    ct_assemble_ws ws;
+    int ws_ok;
+};
+
+/* Pair arrays for n pairs (contents not kept; type11.c). */
+int ctdi_epass_grow(ctdi_epass *e, size_t n);
+
+/* The search when the re-sort criterion asks for it (or a re-sort was
+ * forced), then the pairs' node slots, the assembly preparation and the
+ * per-pair stiffness (type11_search.c). *did is 1 when it searched. */
+int ctdi_type11_search(ctd_iface *it, ctdi_epass *e, const ct_real *x, const ct_real *y,
+                       const ct_real *z, int *did);
+
+#endif /* CTD_TYPE11_INTERNAL_H */

@@ -1,0 +1,272 @@
+/*
+ * type11_search.c -- the broad phase of TYPE11 (type11.c): edge boxes
+ * inflated by half the search distance, the direct search or a bucket grid
+ * over set B's boxes, and the re-sort criterion.
+ *
+ * Each edge's box is inflated by half the search distance
+ * d = (largest pair gap) + margin, so two boxes overlap when the edges may
+ * be within d. The bucket grid sorts set B's boxes into cells (counting
+ * sort in edge order); each A edge visits the cells its box covers and
+ * keeps a B edge only in the first cell of the two boxes' intersection (no
+ * duplicates, no marks), then sorts its list: pairs come out ordered by
+ * (a, b), the same for any thread count and equal to the direct search's.
+ */
+#include "type11_internal.h"
+
+#include "ct_internal.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+static inline int boxes_overlap(const ct_real *a, const ct_real *b)
+{
+    return a[0] <= b[3] && b[0] <= a[3] && a[1] <= b[4] && b[1] <= a[4] && a[2] <= b[5] &&
+           b[2] <= a[5];
+}
+
+/* 1 when edges a and b may pair (self: b > a and no shared node). */
+static inline int admissible(const ctdi_epass *e, ct_idx a, ct_idx b)
+{
+    if (!e->self)
+        return 1;
+    if (b <= a)
+        return 0;
+    return e->e1[a] != e->e1[b] && e->e1[a] != e->e2[b] && e->e2[a] != e->e1[b] &&
+           e->e2[a] != e->e2[b];
+}
+
+/* The grid: origin, cell size, dimensions. */
+typedef struct grid {
+    double o[3], h;
+    int64_t n[3];
+} grid;
+
+static inline int64_t cell_of(const grid *g, int ax, double v)
+{
+    int64_t c = (int64_t)floor((v - g->o[ax]) / g->h);
+    return c < 0 ? 0 : (c >= g->n[ax] ? g->n[ax] - 1 : c);
+}
+
+static void insertion_sort(ct_idx *a, ct_idx n)
+{
+    for (ct_idx i = 1; i < n; i++) {
+        ct_idx v = a[i], j = i - 1;
+        while (j >= 0 && a[j] > v) {
+            a[j + 1] = a[j];
+            j--;
+        }
+        a[j + 1] = v;
+    }
+}
+
+/* Candidates of A edge a (count only when out is NULL). */
+static ct_idx query(const ctdi_epass *e, const grid *g, ct_idx a, ct_idx b0, ct_idx *out)
+{
+    const ct_real *ba = e->box + 6 * (size_t)a;
+    ct_idx k = 0;
+    if (!e->bucket) {
+        ct_idx bend = e->self ? e->na : e->ne;
+        for (ct_idx b = b0; b < bend; b++)
+            if (admissible(e, a, b) && boxes_overlap(ba, e->box + 6 * (size_t)b)) {
+                if (out)
+                    out[k] = b;
+                k++;
+            }
+        return k;
+    }
+    int64_t lo[3], hi[3];
+    for (int ax = 0; ax < 3; ax++) {
+        lo[ax] = cell_of(g, ax, (double)ba[ax]);
+        hi[ax] = cell_of(g, ax, (double)ba[3 + ax]);
+    }
+    for (int64_t cz = lo[2]; cz <= hi[2]; cz++)
+        for (int64_t cy = lo[1]; cy <= hi[1]; cy++)
+            for (int64_t cx = lo[0]; cx <= hi[0]; cx++) {
+                int64_t cell = (cz * g->n[1] + cy) * g->n[0] + cx;
+                for (ct_idx s = e->cell_off[cell]; s < e->cell_off[cell + 1]; s++) {
+                    ct_idx b = e->cell_edge[s];
+                    const ct_real *bb = e->box + 6 * (size_t)b;
+                    if (!admissible(e, a, b) || !boxes_overlap(ba, bb))
+                        continue;
+                    /* Count b only in the first cell of the intersection. */
+                    double mx = ba[0] > bb[0] ? ba[0] : bb[0], my = ba[1] > bb[1] ? ba[1] : bb[1],
+                           mz = ba[2] > bb[2] ? ba[2] : bb[2];
+                    if (cell_of(g, 0, mx) != cx || cell_of(g, 1, my) != cy ||
+                        cell_of(g, 2, mz) != cz)
+                        continue;
+                    if (out)
+                        out[k] = b;
+                    k++;
+                }
+            }
+    if (out)
+        insertion_sort(out, k);
+    return k;
+}
+
+static int grow_idx(ct_idx **p, size_t *cap, size_t n)
+{
+    if (n <= *cap && *p)
+        return CT_OK;
+    ct_free(*p);
+    size_t c = n + n / 2 + 64;
+    *p = ct_calloc(c, sizeof(ct_idx));
+    *cap = *p ? c : 0;
+    return *p ? CT_OK : CT_ERR_NOMEM;
+}
+
+static int edge_search(ctd_iface *it, ctdi_epass *e, const ct_real *x, const ct_real *y,
+                       const ct_real *z)
+{
+    const ct_real half = (e->sgap + it->margin) / 2;
+    const ct_idx ne = e->ne, na = e->na;
+    ct_real *restrict box = e->box;
+#pragma omp parallel for schedule(static) if (ne > CTDI_PAR_MIN)
+    for (ct_idx i = 0; i < ne; i++) {
+        ct_idx p = e->e1[i], q = e->e2[i];
+        box[6 * i + 0] = (x[p] < x[q] ? x[p] : x[q]) - half;
+        box[6 * i + 1] = (y[p] < y[q] ? y[p] : y[q]) - half;
+        box[6 * i + 2] = (z[p] < z[q] ? z[p] : z[q]) - half;
+        box[6 * i + 3] = (x[p] > x[q] ? x[p] : x[q]) + half;
+        box[6 * i + 4] = (y[p] > y[q] ? y[p] : y[q]) + half;
+        box[6 * i + 5] = (z[p] > z[q] ? z[p] : z[q]) + half;
+    }
+    const ct_idx b0 = e->self ? 0 : na, b1 = e->self ? na : ne;
+    grid g;
+    memset(&g, 0, sizeof g);
+    int rc;
+    if (e->bucket) {
+        double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300}, ext = 0;
+        for (ct_idx b = b0; b < b1; b++)
+            for (int ax = 0; ax < 3; ax++) {
+                lo[ax] = fmin(lo[ax], (double)box[6 * b + ax]);
+                hi[ax] = fmax(hi[ax], (double)box[6 * b + 3 + ax]);
+                ext += (double)box[6 * b + 3 + ax] - (double)box[6 * b + ax];
+            }
+        int64_t nbox = b1 - b0;
+        g.h = nbox > 0 ? ext / (3.0 * (double)nbox) : 1.0;
+        if (!(g.h > 0))
+            g.h = 1.0;
+        int64_t maxc = 2 * (int64_t)ne + 1024;
+        for (;;) {
+            int64_t tot = 1;
+            for (int ax = 0; ax < 3; ax++) {
+                g.o[ax] = lo[ax];
+                g.n[ax] = nbox > 0 ? (int64_t)((hi[ax] - lo[ax]) / g.h) + 1 : 1;
+                tot *= g.n[ax];
+            }
+            if (tot <= maxc)
+                break;
+            g.h *= 1.5;
+        }
+        int64_t ncell = g.n[0] * g.n[1] * g.n[2];
+        if ((rc = grow_idx(&e->cell_off, &e->cap_cell, (size_t)ncell + 1)) != CT_OK)
+            return rc;
+        memset(e->cell_off, 0, ((size_t)ncell + 1) * sizeof(ct_idx));
+        int64_t total = 0;
+        for (ct_idx b = b0; b < b1; b++) {
+            int64_t l[3], h[3];
+            for (int ax = 0; ax < 3; ax++) {
+                l[ax] = cell_of(&g, ax, (double)box[6 * b + ax]);
+                h[ax] = cell_of(&g, ax, (double)box[6 * b + 3 + ax]);
+            }
+            for (int64_t cz = l[2]; cz <= h[2]; cz++)
+                for (int64_t cy = l[1]; cy <= h[1]; cy++)
+                    for (int64_t cx = l[0]; cx <= h[0]; cx++) {
+                        e->cell_off[(cz * g.n[1] + cy) * g.n[0] + cx + 1]++;
+                        total++;
+                    }
+        }
+        if (total > INT32_MAX)
+            return CT_ERR_TOOBIG;
+        for (int64_t c = 0; c < ncell; c++)
+            e->cell_off[c + 1] += e->cell_off[c];
+        if ((rc = grow_idx(&e->cell_edge, &e->cap_ce, (size_t)total + 1)) != CT_OK ||
+            (rc = grow_idx(&e->tmp_a, &e->cap_tmp, (size_t)ncell + 1)) != CT_OK)
+            return rc;
+        ct_idx *cur = e->tmp_a;
+        memcpy(cur, e->cell_off, (size_t)ncell * sizeof(ct_idx));
+        for (ct_idx b = b0; b < b1; b++) {
+            int64_t l[3], h[3];
+            for (int ax = 0; ax < 3; ax++) {
+                l[ax] = cell_of(&g, ax, (double)box[6 * b + ax]);
+                h[ax] = cell_of(&g, ax, (double)box[6 * b + 3 + ax]);
+            }
+            for (int64_t cz = l[2]; cz <= h[2]; cz++)
+                for (int64_t cy = l[1]; cy <= h[1]; cy++)
+                    for (int64_t cx = l[0]; cx <= h[0]; cx++)
+                        e->cell_edge[cur[(cz * g.n[1] + cy) * g.n[0] + cx]++] = b;
+        }
+    }
+    /* Count, prefix, fill: canonical order (a, then b). */
+    ct_idx *cnt = e->cnt;
+    const int64_t bstart = e->self ? 0 : na;
+#pragma omp parallel for schedule(dynamic, 64) if (na > CTDI_PAR_MIN)
+    for (ct_idx a = 0; a < na; a++)
+        cnt[a + 1] = query(e, &g, a, (ct_idx)bstart, NULL);
+    cnt[0] = 0;
+    int64_t tot = 0;
+    for (ct_idx a = 0; a < na; a++) {
+        tot += cnt[a + 1];
+        if (tot > INT32_MAX)
+            return CT_ERR_TOOBIG;
+        cnt[a + 1] = (ct_idx)tot;
+    }
+    if ((rc = ctdi_epass_grow(e, (size_t)tot)) != CT_OK)
+        return rc;
+    ct_idx *pa = e->pa, *pb = e->pb;
+#pragma omp parallel for schedule(dynamic, 64) if (na > CTDI_PAR_MIN)
+    for (ct_idx a = 0; a < na; a++) {
+        ct_idx k0 = cnt[a];
+        query(e, &g, a, (ct_idx)bstart, pb + k0);
+        for (ct_idx k = k0; k < cnt[a + 1]; k++)
+            pa[k] = a;
+    }
+    e->n = (ct_idx)tot;
+    return CT_OK;
+}
+
+int ctdi_type11_search(ctd_iface *it, ctdi_epass *e, const ct_real *x, const ct_real *y,
+                       const ct_real *z, int *did)
+{
+    *did = 0;
+    if (!e->need_sort &&
+        !ct_resort_needed(e->nan, e->an, e->nbn, e->bn, e->x0, e->y0, e->z0, x, y, z,
+                          it->margin, NULL))
+        return CT_OK;
+    int rc = edge_search(it, e, x, y, z);
+    if (rc != CT_OK)
+        return rc;
+    const ct_idx n = e->n;
+    const ct_idx *restrict pa = e->pa, *restrict pb = e->pb, *restrict e1 = e->e1,
+                           *restrict e2 = e->e2;
+    ct_idx *restrict a1 = e->sl[0], *restrict a2 = e->sl[1], *restrict b1 = e->sl[2],
+                     *restrict b2 = e->sl[3];
+    ct_real *restrict k0 = e->r[E_K0];
+    const ct_real K0 = e->k0;
+#pragma omp parallel for schedule(static) if (n > CTDI_PAR_MIN)
+    for (ct_idx k = 0; k < n; k++) {
+        a1[k] = e1[pa[k]];
+        a2[k] = e2[pa[k]];
+        b1[k] = e1[pb[k]];
+        b2[k] = e2[pb[k]];
+        k0[k] = K0;
+    }
+    ct_asm_map map = ct_asm_map_edge(n, a1, a2, b1, b2);
+    rc = ct_assemble_prepare(&e->ws, it->cfg.asm_variant, &map, it->nnode);
+    if (rc != CT_OK)
+        return rc;
+    const ct_idx nn = it->nnode;
+    ct_real *restrict X = e->x0, *restrict Y = e->y0, *restrict Z = e->z0;
+#pragma omp parallel for simd schedule(static) if (nn > CTDI_PAR_MIN)
+    for (ct_idx i = 0; i < nn; i++) {
+        X[i] = x[i];
+        Y[i] = y[i];
+        Z[i] = z[i];
+    }
+    e->need_sort = 0;
+    *did = 1;
+    return CT_OK;
+}
+
