@@ -14,9 +14,6 @@
 #include "interfaces/iface.h"
 #include "test_iface_util.h"
 
-/* Node arrays of a test. */
-}
-
 static double fsum(const ct_real *f, ct_idx n)
 {
     double s = 0;

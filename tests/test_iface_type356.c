@@ -15,9 +15,6 @@
 #include "interfaces/iface.h"
 #include "test_iface_util.h"
 
-/* Node arrays of a test. */
-}
-
 static ctd_iface *make_iface(const ctd_iface_cfg *c, const ctd_iface_data *d)
 {
     ctd_iface *it = NULL;

@@ -51,5 +51,6 @@ static inline void tstep(ctd_iface *it, tnodes *t, double time, double dt, ctd_i
     int rc = ctd_iface_step(it, time, (ct_real)dt, t->x, t->y, t->z, t->vx, t->vy, t->vz, t->m,
                             t->fx, t->fy, t->fz, rep);
     cr_assert_eq(rc, CT_OK, "step: %s", ct_strerror(rc));
+}
 
 #endif /* TEST_IFACE_UTIL_H */
