@@ -260,6 +260,64 @@ int ctdi_type11_setup(ctd_iface *it, const ctd_iface_data *d, ct_diag *diag)
     return rc;
 }
 
+/*
+ * The nodal step of the edge pairs. A pair's spring K acts on the gap
+ * w . u of its four nodes (weights w = (1 - sa, sa, 1 - sb, sb), the
+ * force on node i being w_i F), a rank-one stiffness K w w^T whose largest
+ * frequency on the lumped masses is omega^2 = K sum_i w_i^2 / m_i. With
+ * the element stiffness (the largest kelem_i / m_i of the four nodes)
+ * added, the step is sqrt(2 / (max_i kelem_i / m_i + K sum_i w_i^2 / m_i)),
+ * which is the node-segment formula sqrt(2 m / (kelem + K)) when one node
+ * carries the whole weight. Nodes without mass are left out. *node gets
+ * the node of the limiting pair with the largest w_i^2 / m_i (-1: no
+ * active pair). The maximum is a parallel reduction; the limiting pair is
+ * then the first one that reaches it, the same for any thread count.
+ */
+static double edge_pair_lambda(const ctdi_epass *e, ct_idx k, const ct_real *m,
+                               const ct_real *kelem)
+{
+    const ct_real *w[4] = {e->r[E_W1], e->r[E_W2], e->r[E_W3], e->r[E_W4]};
+    double le = 0, lc = 0;
+    for (int a = 0; a < 4; a++) {
+        const ct_idx i = e->sl[a][k];
+        if (!(m[i] > 0))
+            continue;
+        double ke = kelem ? (double)kelem[i] / m[i] : 0;
+        le = ke > le ? ke : le;
+        lc += (double)w[a][k] * w[a][k] / m[i];
+    }
+    return le + (double)e->r[E_KTAN][k] * lc;
+}
+
+static void edge_dt_nodal(const ctdi_epass *e, ct_idx n, const ct_real *m, const ct_real *kelem,
+                          ct_real *dt, ct_idx *node)
+{
+    const ct_real *restrict kt = e->r[E_KTAN], *w[4] = {e->r[E_W1], e->r[E_W2], e->r[E_W3],
+                                                        e->r[E_W4]};
+    double lmax = 0;
+#pragma omp parallel for schedule(static) reduction(max : lmax) if (n > CTDI_PAR_MIN)
+    for (ct_idx k = 0; k < n; k++)
+        if (kt[k] > 0) {
+            double l = edge_pair_lambda(e, k, m, kelem);
+            lmax = l > lmax ? l : lmax;
+        }
+    ct_idx kmax = -1;
+    for (ct_idx k = 0; lmax > 0 && k < n && kmax < 0; k++)
+        if (kt[k] > 0 && edge_pair_lambda(e, k, m, kelem) == lmax)
+            kmax = k;
+    *dt = lmax > 0 ? (ct_real)sqrt(2.0 / lmax) : CT_DT_NONE;
+    *node = -1;
+    double best = -1;
+    for (int a = 0; kmax >= 0 && a < 4; a++) {
+        const ct_idx i = e->sl[a][kmax];
+        double r = m[i] > 0 ? (double)w[a][kmax] * w[a][kmax] / m[i] : -1;
+        if (r > best) {
+            best = r;
+            *node = i;
+        }
+    }
+}
+
 int ctdi_type11_step(ctd_iface *it, ct_real dt, const ct_real *x, const ct_real *y,
                      const ct_real *z, const ct_real *vx, const ct_real *vy,
                      const ct_real *vz, const ct_real *m, ct_real *fx, ct_real *fy,
@@ -345,18 +403,17 @@ int ctdi_type11_step(ctd_iface *it, ct_real dt, const ct_real *x, const ct_real 
     double t4 = ctdi_wtime();
     if (rc != CT_OK)
         return rc;
-    /* Time steps: nodal at A's first node, kinematic, tunnelling. */
+    /* Time steps: nodal over the four edge nodes, kinematic, tunnelling. */
     ct_real dmin;
     ct_idx imin;
-    rc = ct_dt_nodal(n, e->sl[0], m, it->kelem, r[E_KTAN], NULL, &dmin, &imin);
-    if (rc == CT_OK && dmin < CT_DT_NONE)
+    edge_dt_nodal(e, n, m, it->kelem, &dmin, &imin);
+    if (dmin < CT_DT_NONE)
         dmin *= (ct_real)ctdi_damped_dt_factor((double)it->cfg.VisS);
-    if (rc == CT_OK && dmin < rep->dt_nodal) {
+    if (dmin < rep->dt_nodal) {
         rep->dt_nodal = dmin;
-        rep->dt_node = imin >= 0 ? e->sl[0][imin] : -1;
+        rep->dt_node = imin;
     }
-    if (rc == CT_OK)
-        rc = ct_dt_type7_kinematic(n, r[E_PEN], r[E_GAP], r[E_VN], NULL, &dmin, &imin);
+    rc = ct_dt_type7_kinematic(n, r[E_PEN], r[E_GAP], r[E_VN], NULL, &dmin, &imin);
     if (rc != CT_OK)
         return rc;
     if (dmin < rep->dt_kin)

@@ -1,0 +1,66 @@
+/*
+ * test_iface_type11.c -- TYPE11 edge-to-edge details beyond
+ * test_iface.c's crossed rods (suite iface_type11): the nodal contact step
+ * over the four edge nodes.
+ */
+#include <math.h>
+#include <string.h>
+
+#include "test_iface_util.h"
+
+/* One pair: A from (-1, 0, 0) to (1, 0, 0), B across it at x = 0.5 from
+ * (0.5, -1, h) to (0.5, 1, h), so the contact points are at sa = 0.75 and
+ * sb = 0.5 and the weights are w = (0.25, 0.75, 0.5, 0.5). With masses
+ * m = (1, 4, 2, 0.5) and no element stiffness, the rank-one contact
+ * stiffness K w w^T has the largest frequency omega^2 = K sum w_i^2 / m_i
+ * (= 0.828125 K), so the step is sqrt(2 / (0.828125 K)), limited by node 3
+ * (the largest w_i^2 / m_i). The former estimate, sqrt(2 m_A1 / K) at A's
+ * first node, was 1.29 times too long here. */
+Test(iface_type11, nodal_step_over_the_four_edge_nodes)
+{
+    const double r = 0.1, h = 0.15, K0 = 1e3;
+    tnodes t;
+    tn_init(&t, 4);
+    tn_set(&t, 0, -1, 0, 0);
+    tn_set(&t, 1, 1, 0, 0);
+    tn_set(&t, 2, 0.5, -1, h);
+    tn_set(&t, 3, 0.5, 1, h);
+    const double mass[4] = {1, 4, 2, 0.5};
+    for (int i = 0; i < 4; i++)
+        t.m[i] = (ct_real)mass[i];
+    ct_real g[4] = {(ct_real)r, (ct_real)r, (ct_real)r, (ct_real)r};
+    const ct_idx a1[1] = {0}, a2[1] = {1}, b1[1] = {2}, b2[1] = {3};
+    ctd_iface_cfg cfg = ctd_iface_default_cfg(11);
+    cfg.Istf = 1;
+    cfg.Stfac = (ct_real)K0;
+    cfg.VisS = 0;
+    cfg.algo = CT_SEARCH_DIRECT;
+    ctd_iface_data d;
+    memset(&d, 0, sizeof d);
+    d.nnode = 4;
+    d.nea = 1;
+    d.ea1 = a1;
+    d.ea2 = a2;
+    d.neb = 1;
+    d.eb1 = b1;
+    d.eb2 = b2;
+    d.gap_node = g;
+    ctd_iface *it = NULL;
+    ct_diag diag;
+    cr_assert_eq(ctd_iface_init(&it, &cfg, &d, &diag), CT_OK, "%s", diag.msg);
+    ctd_iface_report rep;
+    tstep(it, &t, 0, 1e-4, &rep);
+    cr_assert_eq(rep.nactive, 1);
+    cr_assert(rep.kmax > 0);
+    const double w[4] = {0.25, 0.75, 0.5, 0.5};
+    double s = 0;
+    for (int i = 0; i < 4; i++)
+        s += w[i] * w[i] / mass[i];
+    cr_assert(fabs(s - 0.828125) < 1e-15);
+    double want = sqrt(2.0 / ((double)rep.kmax * s));
+    cr_expect(fabs((double)rep.dt_nodal - want) <= CTT_TOL(1e-12, 1e-6) * want,
+              "dt_nodal %.9g, expected %.9g", (double)rep.dt_nodal, want);
+    cr_expect_eq(rep.dt_node, 3, "limiting node %lld", (long long)rep.dt_node);
+    ctd_iface_destroy(it);
+    tn_free(&t);
+}
