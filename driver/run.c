@@ -16,13 +16,15 @@ static void usage(FILE *f)
 {
     fprintf(f,
             "usage: contact run SCENE [--out DIR] [--threads N] [--search ALGO] [--end T]\n"
-            "                         [--dt-scale S] [--quiet]\n"
+            "                         [--dt-scale S] [--refine N] [--quiet]\n"
             "Runs a scene (YAML, see `contact check`) with the explicit solver and writes\n"
             "a VTU/PVD series, history.csv, summary.json and energies.png.\n"
             "  --out DIR       output directory (default: the scene's output.dir)\n"
             "  --threads N     OpenMP threads (default: solver.threads or OpenMP's default)\n"
             "  --search ALGO   direct | topological | bucket | bsp: every interface's search\n"
             "  --end T         end time in seconds (default: the scene's end_time)\n"
+            "  --refine N      multiply every generated mesh's cells by N (1..1000),\n"
+            "                  replacing the scene's refine\n"
             "  --dt-scale S    safety factor on the stable time step (default: the scene's;\n"
             "                  values above 1 are allowed here, for experiments)\n"
             "  --quiet         no progress line and no report\n"
@@ -46,6 +48,7 @@ int ctd_run_main(int argc, char **argv)
     const char *scene = NULL, *out = NULL, *search = NULL;
     double end = 0, dts = 0;
     int threads = 0, quiet = 0;
+    int64_t refine = 0;
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i];
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
@@ -90,6 +93,13 @@ int ctd_run_main(int argc, char **argv)
                 fprintf(stderr, "contact run: --dt-scale expects a number > 0, got '%s'\n", v);
                 return CTD_EXIT_USAGE;
             }
+        } else if (!strcmp(a, "--refine")) {
+            if (parse_pos(v, &x) || x != (int)x || x > 1000) {
+                fprintf(stderr, "contact run: --refine expects an integer in 1..1000, got "
+                                "'%s'\n", v);
+                return CTD_EXIT_USAGE;
+            }
+            refine = (int64_t)x;
         } else if (!strcmp(a, "--threads")) {
             if (parse_pos(v, &x) || x != (int)x || x > 4096) {
                 fprintf(stderr, "contact run: --threads expects an integer in 1..4096, got "
@@ -110,7 +120,7 @@ int ctd_run_main(int argc, char **argv)
     ctd_scene_err *se = calloc(1, sizeof *se);
     if (!se)
         return CTD_EXIT_OUTPUT;
-    if (ctd_scene_load(scene, &sc, se) != CT_OK) {
+    if (ctd_scene_load_refined(scene, refine, &sc, se) != CT_OK) {
         for (int k = 0; k < se->count && k < CTD_SCENE_MAXERR; k++)
             fprintf(stderr, "%s\n", se->msg[k].text); /* "FILE:LINE: FIELD: what" */
         if (se->count > CTD_SCENE_MAXERR)

@@ -103,6 +103,12 @@ void ctd_scene_free(ctd_scene *sc)
 
 int ctd_scene_load(const char *path, ctd_scene **out, ctd_scene_err *err)
 {
+    return ctd_scene_load_refined(path, 0, out, err);
+}
+
+int ctd_scene_load_refined(const char *path, int64_t refine, ctd_scene **out,
+                           ctd_scene_err *err)
+{
     if (err)
         memset(err, 0, sizeof *err);
     if (out)
@@ -155,7 +161,7 @@ int ctd_scene_load(const char *path, ctd_scene **out, ctd_scene_err *err)
         ctd_scene_free(sc);
         return cti_err(&e, CT_ERR_NOMEM, 0, "", "out of memory");
     }
-    int rcv = cti_scene_validate(sc, &e);
+    int rcv = cti_scene_validate(sc, &e, refine);
     if (rcv != CT_OK || e.count > 0) {
         ctd_scene_free(sc);
         return e.code ? e.code : rcv;

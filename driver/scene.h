@@ -354,6 +354,13 @@ typedef struct ctd_scene_err {
  * NULL) lists the errors. Imported decks are read here. Nothing is printed.
  */
 int ctd_scene_load(const char *path, ctd_scene **out, ctd_scene_err *err);
+
+/* The same with the scene's `refine` replaced by refine (1..1000; 0 keeps
+ * the file's): `contact run --refine N`, and tests that need a scene
+ * larger than its CI size. An out-of-range value is an error on the field
+ * "refine". */
+int ctd_scene_load_refined(const char *path, int64_t refine, ctd_scene **out,
+                           ctd_scene_err *err);
 void ctd_scene_free(ctd_scene *sc);
 
 /* The part with this id, or NULL. */

@@ -74,6 +74,6 @@ extern const char *const cti_gen_names[CTD_GEN_NKIND];
 extern const char *const cti_bc_names[CTD_BC_NKIND];
 
 /* Checks after the typed load: defaults, enum names, ranges, references. */
-int cti_scene_validate(ctd_scene *sc, cti_errs *e);
+int cti_scene_validate(ctd_scene *sc, cti_errs *e, int64_t refine);
 
 #endif

@@ -24,6 +24,7 @@ typedef struct vctx {
     ctd_scene *sc;
     cti_errs *e;
     int deck_failed; /* an import failed: references into decks are not checked */
+    int64_t refine;  /* > 0: replaces the file's refine */
     char p[160];     /* scratch path */
 } vctx;
 
@@ -727,6 +728,11 @@ static int check_top(vctx *v)
                 (long long)sc->refine);
         sc->refine = 1;
     }
+    if (v->refine > 1000)
+        cti_err(v->e, CT_ERR_ARG, 0, "refine", "expected an integer in 1..1000 from the "
+                "caller, got %lld", (long long)v->refine);
+    else if (v->refine > 0)
+        sc->refine = v->refine;
     if (!sc->output && !(sc->output = calloc(1, sizeof *sc->output)))
         return CT_ERR_NOMEM;
     if (!sc->solver && !(sc->solver = calloc(1, sizeof *sc->solver)))
@@ -769,9 +775,9 @@ static int check_top(vctx *v)
     return CT_OK;
 }
 
-int cti_scene_validate(ctd_scene *sc, cti_errs *e)
+int cti_scene_validate(ctd_scene *sc, cti_errs *e, int64_t refine)
 {
-    vctx v = {.sc = sc, .e = e};
+    vctx v = {.sc = sc, .e = e, .refine = refine};
     int rc = check_top(&v);
     if (rc != CT_OK)
         return cti_err(e, rc, 0, "", "out of memory");

@@ -259,3 +259,33 @@ Test(scene, names)
     cr_assert_str_eq(ctd_bc_kind_name(CTD_BC_INITIAL_VELOCITY), "initial_velocity");
     cr_assert_str_eq(ctd_element_name(99), "?");
 }
+
+/* ctd_scene_load_refined (contact run --refine N): the given refine
+ * replaces the file's, multiplying every generated mesh's cells; 0 keeps
+ * the file's; out of range is an error on the field "refine". */
+Test(scene, refine_override)
+{
+    char p[1024];
+    scene_path(p, sizeof p, "valid.yaml");
+    static ctd_scene_err err;
+    ctd_scene *base = NULL, *sc = NULL;
+    cr_assert_eq(ctd_scene_load_refined(p, 0, &base, &err), CT_OK, "%s", err.msg[0].text);
+    cr_assert_eq(ctd_scene_load_refined(p, 3, &sc, &err), CT_OK, "%s", err.msg[0].text);
+    cr_expect_eq(sc->refine, 3);
+    int generated = 0;
+    for (unsigned i = 0; i < sc->mesh_count; i++) {
+        const ctd_scene_generate *g = sc->mesh[i].generate, *g0 = base->mesh[i].generate;
+        if (!g)
+            continue;
+        generated++;
+        for (int k = 0; k < 3; k++)
+            cr_expect_eq(g->cells_eff[k], g0->cells_eff[k] / base->refine * 3,
+                         "mesh %u axis %d: %lld cells", i, k, (long long)g->cells_eff[k]);
+    }
+    cr_expect_gt(generated, 0);
+    ctd_scene_free(sc);
+    ctd_scene_free(base);
+    cr_expect_eq(ctd_scene_load_refined(p, 1001, &sc, &err), CT_ERR_ARG);
+    cr_expect_null(sc);
+    cr_expect_str_eq(err.msg[0].field, "refine");
+}
