@@ -170,6 +170,13 @@ int main(void)
     check_assembly();
     extern void race_check_kernels(int *failures);
     race_check_kernels(&failures);
+    /* The scenes of data/scenes, found from this file's path. */
+    extern void race_check_scenes(const char *dir, int *failures);
+    const char *f = __FILE__, *slash = strrchr(f, '/');
+    char dir[1024];
+    snprintf(dir, sizeof dir, "%.*s/../../data/scenes", slash ? (int)(slash - f) : 1,
+             slash ? f : ".");
+    race_check_scenes(dir, &failures);
     printf("race check: %s (%d failure%s)\n", failures ? "FAILED" : "passed", failures,
            failures == 1 ? "" : "s");
     return failures ? 1 : 0;
