@@ -256,3 +256,63 @@ Test(plots, unreadable_file)
     free(out);
     dir_remove(&d);
 }
+
+/* The validation script (tests/validation_plots.py, `make validation`): one
+ * case's curve and figure, written as tests/test_validation.h writes them,
+ * give a PNG of the script's size (800 x 520) and the results table between
+ * the markers of the page. (Its gnuplot commands must all be valid: a bad
+ * one fails every plot.) */
+Test(plots, validation_script_draws_and_tabulates)
+{
+    need_tools();
+    plot_dir d;
+    dir_make(&d);
+    char path[256], cmd[768];
+    cr_assert(mkdir(d.data, 0700) == 0);
+    snprintf(path, sizeof path, "%s/case.csv", d.data);
+    FILE *f = fopen(path, "w");
+    cr_assert(f != NULL);
+    fputs("t,F_sim,F_ref\n0,0,0\n1,1.5,1.4\n2,0.5,nan\n", f);
+    fclose(f);
+    snprintf(path, sizeof path, "%s/case.plot", d.data);
+    f = fopen(path, "w");
+    cr_assert(f != NULL);
+    fputs("title\tA case\nxlabel\tt\nylabel\tF\nseries\t1,2,points,simulated;1,3,lines,"
+          "analytic\noptions\t\n",
+          f);
+    fclose(f);
+    snprintf(path, sizeof path, "%s/results.tsv", d.data);
+    f = fopen(path, "w");
+    cr_assert(f != NULL);
+    fputs("case_a\tpeak force (N)\t1.5\t1.4\t0.0714\t0.1\tpass\ta note\n", f);
+    fclose(f);
+    snprintf(path, sizeof path, "%s/page.md", d.root);
+    f = fopen(path, "w");
+    cr_assert(f != NULL);
+    fputs("# Page\n<!-- results:begin -->\nold\n<!-- results:end -->\ntail\n", f);
+    fclose(f);
+    snprintf(cmd, sizeof cmd, "python3 tests/validation_plots.py '%s' --out '%s' --page '%s' 2>&1",
+             d.data, d.out, path);
+    int status = -1;
+    char *out = ctt_run_cmd(cmd, &status);
+    cr_expect_eq(status, 0, "validation_plots.py failed:\n%s", out);
+    free(out);
+    char png[256];
+    snprintf(png, sizeof png, "%s/case.png", d.out);
+    FILE *p = fopen(png, "rb");
+    cr_assert(p != NULL, "%s was not written", png);
+    unsigned char h[24];
+    size_t n = fread(h, 1, sizeof h, p);
+    fclose(p);
+    cr_assert_eq(n, sizeof h, "%s: shorter than a PNG header", png);
+    cr_expect(memcmp(h + 1, "PNG", 3) == 0 && memcmp(h + 12, "IHDR", 4) == 0, "not a PNG");
+    cr_expect(be32(h + 16) == 800u && be32(h + 20) == 520u, "size %u x %u", be32(h + 16),
+              be32(h + 20));
+    char *page = read_text(path);
+    const char *row = "| case_a | peak force (N) | 1.5 | 1.4 | 0.0714 | 0.1 | pass | a note |";
+    cr_expect(strstr(page, row) != NULL && strstr(page, "old") == NULL &&
+                  strstr(page, "tail") != NULL,
+              "page:\n%s", page);
+    free(page);
+    dir_remove(&d);
+}

@@ -78,7 +78,7 @@ def plot(name, spec, src, out, term):
              f"set output {quote(os.path.join(out, name + '.png'))}",
              "set datafile separator ','", "set key autotitle columnhead",
              f"set title {quote(spec['title'])}", f"set xlabel {quote(spec['xlabel'])}",
-             f"set ylabel {quote(spec['ylabel'])}", "set grid", "set key best"]
+             f"set ylabel {quote(spec['ylabel'])}", "set grid"]
     if "logx" in spec["options"]:
         lines.append("set logscale x")
     if "logy" in spec["options"]:
