@@ -476,6 +476,17 @@ Test(iface_type356, type6_curve_force_energy_timestep)
     tstep(it, &tn, 0, 1e-3, &rep);
     const double dtw = 0.1 * sqrt(3 / 9000.0);
     cr_assert(fabs((double)rep.dt - dtw) <= tol * dtw, "dt %g expected %g", (double)rep.dt, dtw);
+    /* Lifted clear of the face: nothing penetrates, and the step is the
+     * curve's at its first point beyond 0, not unbounded: at p = 0.01,
+     * f/p = 10000 and the slope of the interval starting there is 20000
+     * (ct_curve_eval takes the interval a breakpoint starts). */
+    for (ct_idx k = 9; k < 16; k++)
+        tn.z[k] += (ct_real)0.5;
+    tstep(it, &tn, 2e-3, 1e-3, &rep);
+    cr_assert_eq(rep.nactive, 0);
+    const double dt0 = 0.1 * sqrt(3 / 20000.0);
+    cr_assert(fabs((double)rep.dt_curve - dt0) <= tol * dt0, "dt before contact %g, expected %g",
+              (double)rep.dt_curve, dt0);
     ctd_iface_destroy(it);
     tn_free(&tn);
 }

@@ -29,7 +29,8 @@
  *    table) of the largest penetration, spread over the penetrating nodes in
  *    proportion to their penetration; the stored energy is the integral of
  *    f from 0 to p_max; the time step is 0.1 sqrt(M_min / K) with
- *    K = max(f'(p_max), f(p_max)/p_max) (report field dt_curve).
+ *    K = max(f'(p_max), f(p_max)/p_max), at the curve's first point
+ *    beyond zero before anything penetrates (report field dt_curve).
  *  - TYPE24: node-to-surface penalty with a constant stiffness. Passes:
  *    secondary nodes (plus grnd_IDs) against the main segments; with
  *    `symmetric` (surface to surface) also the main surface's nodes against
@@ -212,8 +213,10 @@ typedef struct ctd_iface_report {
     ct_real dt_kin;        /* TYPE7/11 kinematic step (g - p) / (2 (-vn)) */
     ct_real dt_tunnel;     /* 0.9 gap_min / |v_rel,max| over the candidates */
     ct_real dt_curve;      /* TYPE6 0.1 sqrt(M_min / K), K = max(f'(p_max),
-                              f(p_max)/p_max) (TYPE6 sets no dt_nodal: its
-                              nodes move with their rigid bodies) */
+                              f(p_max)/p_max), p_max the first curve point
+                              beyond 0 while nothing penetrates (TYPE6 sets
+                              no dt_nodal: its nodes move with their rigid
+                              bodies) */
     ct_real dt;            /* min of the four */
     ct_idx ncand, nactive; /* candidate and active pairs (all passes) */
     int resorted;          /* searches run in this step */

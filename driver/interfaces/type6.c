@@ -17,7 +17,8 @@
  * pair (C = VisS sqrt(2 K m), VisS 0 by default) and sets the step
  * 0.1 sqrt(M_min / K) (ct_dt_type6), M_min the smaller rigid-body mass
  * (data.mass_min, or the smaller of the two sides' nodal mass sums at the
- * first active step). The nodal step is not used: the nodes move with
+ * first active step); before any penetration, K is the curve's at its
+ * first point beyond zero. The nodal step is not used: the nodes move with
  * their bodies. Friction sees each pair's share of K, K F_k / F, as its
  * tangential stiffness, so the tangential springs of the pass add up to K.
  */
@@ -142,5 +143,12 @@ ct_real ctdi_type6_dt(ctd_iface *it, const ctdi_pass *p, const ct_real *m)
         it->mass_min = (ct_real)(ms < mm ? ms : mm);
         it->mass_set = 1;
     }
-    return ct_dt_type6(it->mass_min, p->pmax, it->ncurve, it->curve_p, it->curve_f);
+    /* Before the first contact (nothing penetrates) the step is that of
+     * the curve's first point beyond zero: otherwise nothing bounds the
+     * step until the bodies are already in, and the first contact cycle
+     * finds them deep inside. */
+    ct_real pe = p->pmax;
+    for (ct_idx k = 0; !(pe > 0) && k < it->ncurve; k++)
+        pe = it->curve_p[k];
+    return ct_dt_type6(it->mass_min, pe, it->ncurve, it->curve_p, it->curve_f);
 }
