@@ -8,12 +8,12 @@
  * it transmits that state exactly: every contact node carries sigma times
  * its tributary area and every brick has the stress -sigma.
  *
- * The classic result (Taylor & Papadopoulos, Int. J. Numer. Meth. Eng. 31
- * (1991) 2279; Zavarise & De Lorenzis, Comput. Methods Appl. Mech. Eng.
- * 198 (2009) 3428; Papadopoulos & Taylor 1992 for the two-pass variant):
- * one-pass node-to-segment contact fails the patch test on non-matching
- * meshes; two passes can pass it for some meshes, not all, and lock or
- * over-constrain others. We measure four interfaces on the same blocks:
+ * The classic result (Taylor & Papadopoulos, "On a patch test for contact
+ * problems in two dimensions", in Wriggers & Wagner (eds.), Nonlinear
+ * Computational Mechanics, Springer 1991; Zavarise & De Lorenzis, Comput.
+ * Methods Appl. Mech. Eng. 198 (2009) 3428): one-pass node-to-segment
+ * contact fails the patch test on non-matching meshes; two passes can pass
+ * it for some meshes, not all, and over-constrain others. We measure four interfaces on the same blocks:
  * TYPE5 and TYPE24 nodes to surface (one pass: the upper block's bottom
  * nodes against the lower block's top face) and TYPE3 and TYPE24 surface to
  * surface (two passes). Quasi-static: the pressure is ramped smoothly over
