@@ -126,6 +126,32 @@ Test(iface, type24_approach_no_blending)
     tn_free(&t);
 }
 
+Test(iface, type24_step_kept_while_the_pair_is_open)
+{
+    /* A node just above the plate (a candidate, not in contact), then in
+     * contact, then just above again (contact chatter): the nodal step stays
+     * sqrt(2 m / K) throughout. It must not jump back to the element step
+     * (no limit) while the pair is open, since the spring can act again at
+     * the next cycle with that longer step (the two-bar impact of
+     * validation_bars ran away that way). */
+    const double K = 500, tol = CTT_TOL(1e-12, 2e-6);
+    const double zs[3] = {1e-4, -1e-4, 2e-4};
+    tnodes t;
+    plate_nodes(&t, 1);
+    ctd_iface_cfg cfg = plate_cfg();
+    ctd_iface *it = plate_iface(&cfg, (ct_real)K);
+    for (int k = 0; k < 3; k++) {
+        tn_set(&t, 4, 0.1, 0.2, zs[k]);
+        ctd_iface_report rep;
+        tstep(it, &t, k * 1e-3, 1e-3, &rep);
+        cr_assert_eq(rep.nactive, zs[k] < 0, "step %d", k);
+        cr_assert(fabs(rep.dt_nodal - sqrt(2.0 / K)) <= tol * sqrt(2.0 / K),
+                  "step %d: dt_nodal %g expected %g", k, (double)rep.dt_nodal, sqrt(2.0 / K));
+    }
+    ctd_iface_destroy(it);
+    tn_free(&t);
+}
+
 Test(iface, type24_stiffness_modes)
 {
     /* Km = Stfac E t = 2 * 100 * 1 = 200, Ks = Stfac * et = 2 * 40 = 80. */

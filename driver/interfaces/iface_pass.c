@@ -488,8 +488,13 @@ static int timestep(ctd_iface *it, ctdi_pass *p, ct_idx n, const ct_real *m,
         if (dmin < rep->dt_curve)
             rep->dt_curve = dmin;
     } else {
-        rc = ct_dt_nodal(n, p->pairs[p->cur].node, m, it->kelem, p->r[CTDI_R_KTAN], NULL,
-                         &dmin, &imin);
+        /* The linear law's stiffness K counts for every candidate pair, in
+         * contact or not: a pair that opens for a step (chatter) or is about
+         * to close keeps the contact step, which must not jump back to the
+         * element step in the cycle before the spring acts again. */
+        const ct_real *kdt =
+            p->law == CTDI_LAW_LINEAR ? p->r[CTDI_R_K] : p->r[CTDI_R_KTAN];
+        rc = ct_dt_nodal(n, p->pairs[p->cur].node, m, it->kelem, kdt, NULL, &dmin, &imin);
         if (rc != CT_OK)
             return rc;
         if (dmin < CT_DT_NONE)
