@@ -291,3 +291,46 @@ int ct_assemble_coloured(const ct_assemble_ws *ws, const ct_asm_map *map,
     }
     return CT_OK;
 }
+
+/* Pair k's scalar contributions, slot by slot. */
+static inline void scalar_pair(ct_idx k, int ns, const ct_idx *const slot[],
+                               const ct_real *const w[], const ct_real *sign,
+                               const ct_real *restrict f, ct_real *restrict fn)
+{
+    for (int s = 0; s < ns; s++) {
+        ct_real ww = cti_asm_weight(w, sign, s, k, 0);
+        fn[slot[s][k]] += ww * f[k];
+    }
+}
+
+int ct_assemble_scalar(const ct_assemble_ws *ws, ct_assemble_variant variant,
+                       const ct_asm_map *map, const ct_real *const w[],
+                       const ct_real *restrict f, ct_idx nnode, ct_real *restrict fn)
+{
+    if (!cti_asm_map_ok(map) || !w || !f || !fn || nnode < 0)
+        return CT_ERR_ARG;
+    const int ns = map->nslot;
+    const ct_idx npair = map->npair;
+    const ct_idx *const *slot = map->slot;
+    const ct_real *sign = map->sign;
+    if (variant != CT_ASM_COLOUR) {
+        for (ct_idx k = 0; k < npair; k++)
+            scalar_pair(k, ns, slot, w, sign, f, fn);
+        return CT_OK;
+    }
+    if (!ws || ws->col_npair != npair || ws->col_nslot != ns || ws->col_nnode != nnode)
+        return CT_ERR_ARG;
+    const ct_idx B = ws->block, ncol = ws->ncolour;
+    const ct_idx *restrict off = ws->col_off, *restrict bperm = ws->bperm;
+#pragma omp parallel if (npair > 4096)
+    for (ct_idx c = 0; c < ncol; c++) {
+#pragma omp for schedule(static)
+        for (ct_idx j = off[c]; j < off[c + 1]; j++) {
+            ct_idx lo, hi;
+            cti_block_range(bperm[j], B, npair, &lo, &hi);
+            for (ct_idx k = lo; k < hi; k++)
+                scalar_pair(k, ns, slot, w, sign, f, fn);
+        }
+    }
+    return CT_OK;
+}

@@ -182,6 +182,18 @@ int ct_assemble(ct_assemble_ws *ws, ct_assemble_variant variant, const ct_asm_ma
                 const ct_real *CT_RESTRICT fy, const ct_real *CT_RESTRICT fz, ct_idx nnode,
                 ct_real *CT_RESTRICT fxn, ct_real *CT_RESTRICT fyn, ct_real *CT_RESTRICT fzn);
 
+/*
+ * One value per pair instead of a vector: fn[slot s of pair k] +=
+ * w[s][k] sign[s] f[k] (w[s] NULL: 1), e.g. a contact stiffness spread
+ * onto the pair's nodes for the nodal time step. CT_ASM_COLOUR uses the
+ * colouring ws was prepared with for this map (CT_ERR_ARG otherwise) and
+ * runs each colour in parallel; every other variant sums serially in pair
+ * order. Either way the result does not depend on the thread count.
+ */
+int ct_assemble_scalar(const ct_assemble_ws *ws, ct_assemble_variant variant,
+                       const ct_asm_map *map, const ct_real *const w[],
+                       const ct_real *CT_RESTRICT f, ct_idx nnode, ct_real *CT_RESTRICT fn);
+
 /* The variants, explicitly (same arguments). */
 int ct_assemble_coloured(const ct_assemble_ws *ws, const ct_asm_map *map,
                          const ct_real *const w[], const ct_real *CT_RESTRICT fx,
