@@ -304,6 +304,9 @@ int ctd_iface_init(ctd_iface **out, const ctd_iface_cfg *cfg, const ctd_iface_da
         for (ct_idx i = 0; rc == CT_OK && i < d->nnode; i++)
             it->knode[i] *= cfg->Stfac;
     }
+    if (rc == CT_OK && cfg->type != 6 && cfg->type != 11 &&
+        !(it->kc = ct_calloc((size_t)(d->nnode > 0 ? d->nnode : 1), sizeof(ct_real))))
+        rc = CT_ERR_NOMEM;
     if (rc == CT_OK) {
         switch (cfg->type) {
         case 3: rc = ctdi_type3_setup(it, d, diag); break;
@@ -333,6 +336,7 @@ void ctd_iface_destroy(ctd_iface *it)
     ct_free(it->curve_f);
     ct_free(it->knode);
     ct_free(it->gnode);
+    ct_free(it->kc);
     free(it);
 }
 
@@ -361,6 +365,8 @@ size_t ctd_iface_memory(const ctd_iface *it)
     if (it->knode)
         b += (size_t)it->nnode * sizeof(ct_real);
     if (it->gnode)
+        b += (size_t)it->nnode * sizeof(ct_real);
+    if (it->kc)
         b += (size_t)it->nnode * sizeof(ct_real);
     b += 2 * (size_t)it->ncurve * sizeof(ct_real);
     for (int i = 0; i < it->npass; i++)
@@ -401,8 +407,11 @@ int ctd_iface_step(ctd_iface *it, double time, ct_real dt, const ct_real *x, con
     it->was_on = 1;
     rep->on = 1;
     int rc = CT_OK;
+    ctdi_nodal_begin(it);
     for (int i = 0; i < it->npass && rc == CT_OK; i++)
         rc = ctdi_pass_step(it, &it->pass[i], dt, x, y, z, vx, vy, vz, m, fx, fy, fz, rep);
+    if (rc == CT_OK)
+        ctdi_nodal_finish(it, m, rep);
     if (rc == CT_OK && it->ep)
         rc = ctdi_type11_step(it, dt, x, y, z, vx, vy, vz, m, fx, fy, fz, rep);
     rep->dt = rep->dt_nodal;

@@ -30,7 +30,7 @@ enum { CTDI_ST_FTX = 0, CTDI_ST_FTY, CTDI_ST_FTZ, CTDI_ST_P0, CTDI_ST_PPREV, CTD
 /* Per-pair scratch of one cycle. */
 enum { CTDI_R_VRX = 0, CTDI_R_VRY, CTDI_R_VRZ, CTDI_R_VN, CTDI_R_FEL, CTDI_R_KTAN, CTDI_R_FN,
        CTDI_R_FX, CTDI_R_FY, CTDI_R_FZ, CTDI_R_MS, CTDI_R_MM, CTDI_R_K, CTDI_R_EN, CTDI_R_DD,
-       CTDI_R_FD, CTDI_R_MU, CTDI_R_PRS, CTDI_R_SPD, CTDI_R_KT, CTDI_R_N };
+       CTDI_R_FD, CTDI_R_MU, CTDI_R_PRS, CTDI_R_SPD, CTDI_R_KT, CTDI_R_KDT, CTDI_R_N };
 
 /* One node-segment pass: secondary nodes against main segments. */
 typedef struct ctdi_pass {
@@ -65,6 +65,7 @@ typedef struct ctdi_pass {
     uint8_t *flag;
     int32_t *iflag;
     ct_real *r[CTDI_R_N];
+    uint8_t *carry; /* 1: the pair carries its node this step (pair_select.c) */
     ct_contact_geo geo;
     ct_assemble_ws ws;
     int ws_ok;
@@ -91,6 +92,9 @@ struct ctd_iface {
     ctdi_pass pass[2];
     ctdi_epass *ep;
     const ct_real *kelem;
+    /* Per node (nnode entries, node-segment types but TYPE6): the contact
+     * stiffness of this step spread onto the nodes for the nodal step. */
+    ct_real *kc;
     ct_real coef[7];
     int fric_law, fric_on;
     int was_on;
@@ -146,6 +150,13 @@ int ctdi_pass_step(ctd_iface *it, ctdi_pass *p, ct_real dt, const ct_real *x,
                    const ct_real *vz, const ct_real *m, ct_real *fx, ct_real *fy,
                    ct_real *fz, ctd_iface_report *rep);
 void ctdi_pass_free(ctdi_pass *p);
+/* The nodal contact step of the interface's node-segment passes (after
+ * every pass has run; iface_pass.c): zero it->kc on the passes' nodes
+ * (ctdi_nodal_begin, before the passes), then the minimum over those nodes
+ * of sqrt(2 m / (kelem + kc)) times the damping factor into rep. */
+void ctdi_nodal_begin(ctd_iface *it);
+void ctdi_nodal_finish(ctd_iface *it, const ct_real *m, ctd_iface_report *rep);
+
 /* One pair per node side carries the contact (pair_select.c): called after
  * the narrow phase; zeroes the other pairs' penetrations, moves the pair
  * states with the contact, and returns the active pairs. */

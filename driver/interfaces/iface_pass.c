@@ -35,6 +35,7 @@ static void free_scratch(ctdi_pass *p)
         ct_free(p->g[i]);
     ct_free(p->flag);
     ct_free(p->iflag);
+    ct_free(p->carry);
     for (int i = 0; i < CTDI_R_N; i++)
         ct_free(p->r[i]);
     memset(p->s, 0, sizeof p->s);
@@ -43,6 +44,7 @@ static void free_scratch(ctdi_pass *p)
     p->o2n = NULL;
     p->flag = NULL;
     p->iflag = NULL;
+    p->carry = NULL;
     p->cap = 0;
 }
 
@@ -61,6 +63,7 @@ static int grow_scratch(ctdi_pass *p, size_t n)
         ok &= (p->g[i] = ct_calloc(c, sizeof(ct_real))) != NULL;
     ok &= (p->flag = ct_calloc(c, 1)) != NULL;
     ok &= (p->iflag = ct_calloc(c, sizeof(int32_t))) != NULL;
+    ok &= (p->carry = ct_calloc(c, 1)) != NULL;
     for (int i = 0; i < CTDI_R_N; i++)
         ok &= (p->r[i] = ct_calloc(c, sizeof(ct_real))) != NULL;
     if (!ok) {
@@ -118,7 +121,7 @@ void ctdi_pass_free(ctdi_pass *p)
 
 size_t ctdi_pass_memory(const ctdi_pass *p, ct_idx nnode)
 {
-    size_t b = p->cap * (5 * sizeof(ct_idx) + (13 + CTDI_R_N) * sizeof(ct_real) + 1 + 4);
+    size_t b = p->cap * (5 * sizeof(ct_idx) + (13 + CTDI_R_N) * sizeof(ct_real) + 2 + 4);
     b += (p->capst[0] + p->capst[1]) * CTDI_ST_N * sizeof(ct_real);
     b += ((size_t)p->pairs[0].cap + (size_t)p->pairs[1].cap) * 2 * sizeof(ct_idx);
     b += ((size_t)p->nsec + (size_t)p->nmain + 4 * (size_t)p->nseg) * sizeof(ct_idx);
@@ -475,7 +478,16 @@ static int normal_force(ctd_iface *it, ctdi_pass *p, ct_idx n, ct_real dt)
                             r[CTDI_R_FX], r[CTDI_R_FY], r[CTDI_R_FZ], r[CTDI_R_DD]);
 }
 
-/* Time-step limits over the pairs. */
+/* Time-step limits over the pairs. The nodal step: each carrying pair's
+ * stiffness (the linear law's K even while the pair is open, so that the
+ * step does not jump back to the element step in a cycle of chatter;
+ * TYPE7's tangent stiffness, K0 when open) is spread onto its nodes with
+ * the weights |w| (1 on the secondary node, h_i on the segment's), summed
+ * per node over the pairs and passes, and ctdi_nodal_finish takes
+ * sqrt(2 m / (kelem + kc)) per node: the Gershgorin bound of the contact
+ * springs on the lumped masses. A node pressed by several pairs, or loaded
+ * both as a secondary node and as a segment's node (surface to surface,
+ * self contact), gets the sum of its springs. */
 static int timestep(ctd_iface *it, ctdi_pass *p, ct_idx n, const ct_real *m,
                     ctd_iface_report *rep)
 {
@@ -488,21 +500,21 @@ static int timestep(ctd_iface *it, ctdi_pass *p, ct_idx n, const ct_real *m,
         if (dmin < rep->dt_curve)
             rep->dt_curve = dmin;
     } else {
-        /* The linear law's stiffness K counts for every candidate pair, in
-         * contact or not: a pair that opens for a step (chatter) or is about
-         * to close keeps the contact step, which must not jump back to the
-         * element step in the cycle before the spring acts again. */
-        const ct_real *kdt =
+        const ct_real *restrict ks =
             p->law == CTDI_LAW_LINEAR ? p->r[CTDI_R_K] : p->r[CTDI_R_KTAN];
-        rc = ct_dt_nodal(n, p->pairs[p->cur].node, m, it->kelem, kdt, NULL, &dmin, &imin);
+        const uint8_t *restrict carry = p->carry;
+        ct_real *restrict kdt = p->r[CTDI_R_KDT];
+#pragma omp parallel for simd schedule(static) if (n > CTDI_PAR_MIN)
+        for (ct_idx k = 0; k < n; k++)
+            kdt[k] = carry[k] ? ks[k] : 0;
+        ct_asm_map map = ct_asm_map_nodeseg(n, p->pairs[p->cur].node, p->s[0], p->s[1],
+                                            p->s[2], p->s[3]);
+        for (int s = 0; s < map.nslot; s++)
+            map.sign[s] = 1;
+        const ct_real *const w[5] = {NULL, p->geo.h1, p->geo.h2, p->geo.h3, p->geo.h4};
+        rc = ct_assemble_scalar(&p->ws, it->cfg.asm_variant, &map, w, kdt, it->nnode, it->kc);
         if (rc != CT_OK)
             return rc;
-        if (dmin < CT_DT_NONE)
-            dmin *= (ct_real)ctdi_damped_dt_factor((double)it->cfg.VisS);
-        if (dmin < rep->dt_nodal) {
-            rep->dt_nodal = dmin;
-            rep->dt_node = imin >= 0 ? p->pairs[p->cur].node[imin] : -1;
-        }
     }
     if (p->law == CTDI_LAW_TYPE7) {
         rc = ct_dt_type7_kinematic(n, p->geo.pen, p->geo.gap, p->r[CTDI_R_VN], NULL, &dmin,
@@ -613,4 +625,62 @@ int ctdi_pass_step(ctd_iface *it, ctdi_pass *p, ct_real dt, const ct_real *x,
     rep->ncand += n;
     rep->nactive += (ct_idx)ns.active;
     return rc;
+}
+
+void ctdi_nodal_begin(ctd_iface *it)
+{
+    if (!it->kc)
+        return;
+    for (int i = 0; i < it->npass; i++) {
+        const ctdi_pass *p = &it->pass[i];
+        ct_real *restrict kc = it->kc;
+        const ct_idx *restrict sec = p->sec, *restrict mn = p->mainn;
+#pragma omp parallel for simd schedule(static) if (p->nsec > CTDI_PAR_MIN)
+        for (ct_idx k = 0; k < p->nsec; k++)
+            kc[sec[k]] = 0;
+#pragma omp parallel for simd schedule(static) if (p->nmain > CTDI_PAR_MIN)
+        for (ct_idx k = 0; k < p->nmain; k++)
+            kc[mn[k]] = 0;
+    }
+}
+
+/* The nodal step of node i (CT_DT_NONE without contact stiffness or mass). */
+static inline double node_dt(const ct_real *kc, const ct_real *kelem, const ct_real *m, ct_idx i)
+{
+    double k = (double)kc[i] + (kelem ? (double)kelem[i] : 0);
+    return kc[i] > 0 && m[i] > 0 ? sqrt(2.0 * (double)m[i] / k) : (double)CT_DT_NONE;
+}
+
+void ctdi_nodal_finish(ctd_iface *it, const ct_real *m, ctd_iface_report *rep)
+{
+    if (!it->kc)
+        return;
+    const ct_real *kc = it->kc, *ke = it->kelem;
+    double dmin = CT_DT_NONE;
+    for (int i = 0; i < it->npass; i++) {
+        const ctdi_pass *p = &it->pass[i];
+        for (int side = 0; side < 2; side++) {
+            const ct_idx n = side ? p->nmain : p->nsec, *restrict l = side ? p->mainn : p->sec;
+            double d = CT_DT_NONE;
+#pragma omp parallel for schedule(static) reduction(min : d) if (n > CTDI_PAR_MIN)
+            for (ct_idx k = 0; k < n; k++) {
+                double v = node_dt(kc, ke, m, l[k]);
+                d = v < d ? v : d;
+            }
+            if (d < dmin) {
+                /* The first node (in this list's order) that reaches it. */
+                dmin = d;
+                for (ct_idx k = 0; k < n; k++)
+                    if (node_dt(kc, ke, m, l[k]) == d) {
+                        rep->dt_node = l[k];
+                        break;
+                    }
+            }
+        }
+    }
+    if (dmin < CT_DT_NONE) {
+        ct_real d = (ct_real)(dmin * ctdi_damped_dt_factor((double)it->cfg.VisS));
+        if (d < rep->dt_nodal)
+            rep->dt_nodal = d;
+    }
 }

@@ -22,7 +22,9 @@
  *  - two-sided (shells, self contact): a second pair may act, the closest
  *    among those whose normal opposes the first one's (n1.n2 < 0): a node
  *    pinched between two layers of a fold is pushed by both;
- *  - every other pair of the node gets penetration 0.
+ *  - every other pair of the node gets penetration 0;
+ *  - the carrying pairs are marked (p->carry), penetrating or not: their
+ *    springs set the nodal time step (iface_pass.c).
  *
  * When a node's contact moves from one segment to the next (its carrying
  * pair changes, on the same side), the pair states move with it: the last
@@ -67,13 +69,15 @@ static void move_states(ct_real *const st[CTDI_ST_N], ct_idx from, ct_idx to)
 }
 
 /* The run of one node: pairs [a, b). Returns the active pairs it keeps. */
-static int select_run(const ctdi_pass *p, ct_idx a, ct_idx b, const ct_real *x,
+static int select_run(ctdi_pass *p, ct_idx a, ct_idx b, const ct_real *x,
                       const ct_real *y, const ct_real *z, ct_real *const st[CTDI_ST_N])
 {
     const ct_contact_geo *g = &p->geo;
     const ct_idx nd = p->pairs[p->cur].node[a];
     const uint8_t skip = CT_NARROW_DEGENERATE | CT_NARROW_NONFINITE;
     ct_idx best = -1, second = -1;
+    for (ct_idx k = a; k < b; k++)
+        p->carry[k] = 0;
     for (ct_idx k = a; k < b; k++)
         if (!(g->flag[k] & skip) && (best < 0 || fabs(g->dist[k]) < fabs(g->dist[best])))
             best = k;
@@ -112,8 +116,11 @@ static int select_run(const ctdi_pass *p, ct_idx a, ct_idx b, const ct_real *x,
     for (ct_idx k = a; k < b; k++)
         g->pen[k] = 0;
     g->pen[best] = pb;
-    if (second >= 0)
+    p->carry[best] = 1;
+    if (second >= 0) {
         g->pen[second] = ps;
+        p->carry[second] = 1;
+    }
     return (pb > 0) + (ps > 0);
 }
 
