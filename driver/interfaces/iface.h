@@ -198,7 +198,11 @@ typedef struct ctd_iface_report {
     double e_contact;      /* elastic energy stored in the contact springs now
                               (TYPE6: the integral of the curve from 0 to
                               p_max) */
-    double e_damp;         /* normal damping dissipation of this step (>= 0) */
+    double e_damp;         /* normal damping dissipation of this step: the
+                              damping force's work over the step by the
+                              trapezoidal rule (node-segment types; may be
+                              negative near the damped stability limit,
+                              where the scheme itself feeds energy in) */
     double e_fric;         /* friction dissipation of this step (>= 0) */
     double force[3];       /* total force on the secondary side (sum over
                               pairs of the force on the secondary node or

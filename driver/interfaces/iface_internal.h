@@ -25,7 +25,7 @@ enum { CTDI_LAW_LINEAR = 0, CTDI_LAW_TYPE7 = 1, CTDI_LAW_TYPE6 = 2 };
 
 /* Per-pair states carried across re-sorts (double-buffered, remapped). */
 enum { CTDI_ST_FTX = 0, CTDI_ST_FTY, CTDI_ST_FTZ, CTDI_ST_P0, CTDI_ST_PPREV, CTDI_ST_FCAP,
-       CTDI_ST_QJUMP, CTDI_ST_ACT, CTDI_ST_N };
+       CTDI_ST_QJUMP, CTDI_ST_ACT, CTDI_ST_FDAMP, CTDI_ST_N };
 
 /* Per-pair scratch of one cycle. */
 enum { CTDI_R_VRX = 0, CTDI_R_VRY, CTDI_R_VRZ, CTDI_R_VN, CTDI_R_FEL, CTDI_R_KTAN, CTDI_R_FN,

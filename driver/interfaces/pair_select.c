@@ -40,8 +40,9 @@
 #include <math.h>
 
 /* States that follow the node's contact from pair to pair. */
-static const int moved_states[] = {CTDI_ST_FTX,  CTDI_ST_FTY,  CTDI_ST_FTZ,  CTDI_ST_P0,
-                                   CTDI_ST_PPREV, CTDI_ST_FCAP, CTDI_ST_QJUMP};
+static const int moved_states[] = {CTDI_ST_FTX,  CTDI_ST_FTY,   CTDI_ST_FTZ,
+                                   CTDI_ST_P0,   CTDI_ST_PPREV, CTDI_ST_FCAP,
+                                   CTDI_ST_QJUMP, CTDI_ST_FDAMP};
 #define NMOVED ((int)(sizeof moved_states / sizeof moved_states[0]))
 
 /* The penetration the carrying pair k gets (one-sided dead zone included). */
