@@ -86,8 +86,6 @@ typedef struct ctd_contact_report {
     double dt_kin;      /* the TYPE7/11 kinematic step (g - p)/(2 (-vn)) among
                            the limits behind dt_limit (0: none), so that an
                            observer can tell which limit controls */
-    double dt_nodal;    /* the nodal step sqrt(2 m/(kelem + k)) among them (0:
-                           none) */
     double force;       /* magnitude of the total contact force on the
                            secondary side (the main side gets the opposite) */
     double fvec[3];     /* that force as a vector */
