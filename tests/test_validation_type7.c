@@ -72,7 +72,7 @@ static int layer_height(const watch *w, const ctd_solver *s, int l, double px, d
         if (det == 0)
             continue;
         double u = (qx * cz - qz * cx) / det, vv = (bx * qz - bz * qx) / det;
-        if (u < -1e-12 || vv < -1e-12 || u + vv > 1 + 1e-12)
+        if (u < -1e-6 || vv < -1e-6 || u + vv > 1 + 1e-6)
             continue;
         *h = s->y[v[0]] + u * (s->y[v[1]] - s->y[v[0]]) + vv * (s->y[v[2]] - s->y[v[0]]);
         return 1;
@@ -193,7 +193,8 @@ static void t7_run(t7run *r, const char *name, double v, double end_time, FILE *
     for (ct_idx i = 0; i < nd->n; i++) {
         double fl = nd->y[i] / w->spacing;
         int l = (int)lround(fl);
-        w->layer[i] = (fabs(fl - l) < 1e-9 && nd->x[i] >= -1e-12 && nd->x[i] <= lf + 1e-12 &&
+        /* Coordinates as stored (single precision: 1e-5 relative). */
+        w->layer[i] = (fabs(fl - l) < 1e-5 && nd->x[i] >= -1e-5 * lf && nd->x[i] <= lf * (1 + 1e-5) &&
                        r->m.node_part[i] == 1)
                           ? (int8_t)l
                           : -1;
@@ -291,7 +292,7 @@ Test(validation_type7, fold_speed_sweep)
                 onset = v;
             /* Our own kinematic step of the top layer: the same number. */
             worst_ratio = fmax(worst_ratio, fabs(w->ratio_kin_est - 1));
-            cr_assert(fabs(w->ratio_kin_est - 1) <= CTT_TOL(1e-9, 1e-4),
+            cr_assert(fabs(w->ratio_kin_est - 1) <= CTT_TOL(1e-9, 1e-3),
                       "%g m/s: dt_kin %g against our %g", v, w->dt_kin_min,
                       w->dt_kin_min / w->ratio_kin_est);
         }
@@ -335,7 +336,7 @@ Test(validation_type7, fold_speed_sweep)
     ctv_result("9. TYPE7 fold", "speed at which the kinematic step controls (m/s)", onset, 0,
                0, "lowest swept speed with dt_kin the smallest limit at some cycle");
     ctv_result("9. TYPE7 fold", "dt_kin vs our D/(2 |v|), worst rel. error", worst_ratio, 0,
-               CTT_TOL(1e-9, 1e-4), note);
+               CTT_TOL(1e-9, 1e-3), note);
     ctv_result("9. TYPE7 fold", "smallest step / step before impact at 300 m/s",
                dt_min300 / dt_first, 0, 0, note);
     ctv_result("9. TYPE7 fold", "largest final energy error over the sweep", worst_err, 0,
