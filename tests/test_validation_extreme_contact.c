@@ -251,7 +251,9 @@ static double fan_run(const fan_case *fc, FILE *f, int col)
         cr_assert(e <= CTT_TOL(1e-9, 1e-4), "%s at r = %g: force %.12g, law(q_true) %.12g",
                   fc->name, r, F, Ft);
         worst = fmax(worst, e);
-        ctv_row(f, 3, r, F / K, (double)col);
+        double c[5] = {NAN, NAN, NAN, NAN, NAN};
+        c[col - 1] = F / K;
+        ctv_row(f, 6, r, c[0], c[1], c[2], c[3], c[4]);
     }
     ctd_iface_destroy(it);
     nodes_free(&p);
@@ -270,7 +272,7 @@ Test(validation_extreme, vertex_shared_by_many_segments)
         {"TYPE7, cone of 8 triangles", 7, 0, 8, 0.2},
     };
     const int nc = (int)(sizeof cases / sizeof cases[0]);
-    FILE *f = ctv_csv("extreme_vertex_fan", "r,F_over_K,case");
+    FILE *f = ctv_csv("extreme_vertex_fan", "r,quads6_24,tri8_24,cone8_24,tri8_7,cone8_7");
     for (int i = 0; i < nc; i++) {
         double e = fan_run(&cases[i], f, i + 1);
         char qn[128];
@@ -284,7 +286,10 @@ Test(validation_extreme, vertex_shared_by_many_segments)
     ctv_plot("extreme_vertex_fan",
              "Force / K of a node moving off a vertex shared by 6-8 segments",
              "distance from the vertex", "force / K",
-             "1,2,points,all five cases (1 pair each; flat fans constant, cones vary)", "");
+             "1,2,points,TYPE24 one-sided 6 quads;1,3,points,TYPE24 two-sided 8 triangles;"
+             "1,4,points,TYPE24 two-sided cone;1,5,points,TYPE7 8 triangles;"
+             "1,6,points,TYPE7 cone",
+             "logy");
 }
 
 /* ---- h. Initial penetrations ----------------------------------------------------- */

@@ -252,7 +252,7 @@ Test(validation_extreme, stiffness_ratio_series)
              "TYPE5 springs in series: stiffness ratio Km/Ks from 1e-6 to 1e6",
              "stiffness ratio Km/Ks", "normalised value",
              "1,2,points,K / Ksoft (interface);1,3,dashed,0.2 Km Ks/(Km+Ks) / Ksoft (seed 000);"
-             "1,4,linespoints,pmax / v sqrt(m/K);1,5,linespoints,dt_nodal / sqrt(2m/K);"
+             "1,4,linespoints,pmax / v sqrt(m/K);1,5,linespoints,nodal step / sqrt(2m/K);"
              "1,6,linespoints,exit / impact speed (constant step);"
              "1,7,linespoints,exit / impact speed (driver's step)",
              "logx");
@@ -326,7 +326,7 @@ Test(validation_extreme, tunnelling_thin_shell)
      * stops at g/2. TYPE7 (K0 = 1e4) stores up to K0 g^2 (r - 1 - ln r)
      * = 5.9 J before its deactivation point. */
     const double K24 = 4e4, K7 = 1e4, v = 1;
-    const double factors[] = {0, 0.5, 0.9, 1.5, 2.5, 4.0, 8.0};
+    const double factors[] = {0.5, 0, 0.9, 1.5, 2.5, 4.0, 8.0}; /* 0: the driver's step */
     const int nf = (int)(sizeof factors / sizeof factors[0]);
     FILE *f = ctv_csv("extreme_tunnelling",
                       "step_over_g_per_v,z_end_type24_over_g,z_end_type7_over_g,"

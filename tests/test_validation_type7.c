@@ -46,7 +46,7 @@ typedef struct watch {
     /* Release (the squeeze): the time the pushing contact stops, the TYPE7
      * energy and separation there, the first time after it with no TYPE7
      * energy. */
-    double t_release, e7_release, sep_release, t_open;
+    double t_release, e7_release, sep_release, t_open, sep_max_after;
     FILE *csv;
     int col; /* the column group of this run in csv (3 runs side by side) */
 } watch;
@@ -138,13 +138,15 @@ static void observe(void *ctx, const ctd_solver *s)
     }
     if (w->t_release > 0 && s->time > w->t_release && w->t_open < 0 && r->energy == 0)
         w->t_open = s->time;
+    if (w->t_release > 0 && s->time > w->t_release && sep[0] < INFINITY)
+        w->sep_max_after = fmax(w->sep_max_after, sep[0]);
     for (int l = 0; l < MAXLAYER; l++)
         w->sep_last[l] = sep[l];
     if (w->csv && w->col < 0) {
         /* A history: time, the separations over the gap, TYPE7's energy. */
         ctv_row(w->csv, 4, s->time * 1e6, fmin(sep[0], 20 * w->gap) / w->gap,
                 w->nlayer > 2 ? fmin(sep[1], 20 * w->gap) / w->gap : NAN, r->energy);
-    } else if (w->csv) {
+    } else if (w->csv && s->time <= 45e-6) { /* the impacts up to 100 m/s */
         /* Time, then per column group the step and the separations. */
         double v[7] = {s->time * 1e6, NAN, NAN, NAN, NAN, NAN, NAN};
         v[1 + w->col] = s->cycle > 0 ? s->dt * 1e9 : NAN;
@@ -269,9 +271,9 @@ Test(validation_type7, fold_speed_sweep)
 {
     const double speeds[] = {5, 10, 20, 50, 100, 110, 120, 130, 140, 150, 200, 250, 300};
     const int ns = (int)(sizeof speeds / sizeof speeds[0]);
-    FILE *f = ctv_csv("type7_fold_sweep", "v,sep_min_over_g,dt_min_over_dt_first,"
+    FILE *f = ctv_csv("extreme_type7_fold_sweep", "v,sep_min_over_g,dt_min_over_dt_first,"
                                           "kinematic_cycles,e7_max,energy_error");
-    FILE *fd = ctv_csv("type7_fold_dt", "t_us,dt_100,dt_200,dt_300,sep_100,sep_200,sep_300");
+    FILE *fd = ctv_csv("extreme_type7_fold_dt", "t_us,dt_100,dt_200,dt_300,sep_100,sep_200,sep_300");
     double onset = -1, dtr_prev = 2, worst_ratio = 0, worst_err = 0;
     double dt_first = 0, dt_min300 = 0, sep300 = 0;
     for (int k = 0; k < ns; k++) {
@@ -319,12 +321,12 @@ Test(validation_type7, fold_speed_sweep)
     cr_assert(onset > 50 && onset <= 200, "kinematic onset at %g m/s", onset);
     cr_assert(dt_min300 < 0.1 * dt_first, "at 300 m/s the step only fell to %g of %g",
               dt_min300, dt_first);
-    ctv_plot("type7_fold_sweep", "TYPE7 fold: closest approach and smallest step against speed",
+    ctv_plot("extreme_type7_fold_sweep", "TYPE7 fold: closest approach and smallest step against speed",
              "impact speed (m/s)", "ratio",
              "1,2,linespoints,smallest separation / gap (> 0: never crossed);"
              "1,3,linespoints,smallest step / step before impact",
              "logy");
-    ctv_plot("type7_fold_dt", "TYPE7 fold: the time step through the impact",
+    ctv_plot("extreme_type7_fold_dt", "TYPE7 fold: the time step through the impact",
              "time (us)", "time step (ns)",
              "1,2,points,100 m/s;1,3,points,200 m/s;1,4,points,300 m/s", "logy");
     const char *note = "2-layer steel fold (8x4 shells of 5 mm, t = 1 mm, 4 mm apart), "
@@ -356,7 +358,7 @@ Test(validation_type7, fold_speed_sweep)
  */
 Test(validation_type7, pinched_both_faces)
 {
-    FILE *f = ctv_csv("type7_pinch", "t_us,sep_mid_bottom,sep_top_mid,e7");
+    FILE *f = ctv_csv("extreme_type7_pinch", "t_us,sep_mid_bottom,sep_top_mid,e7");
     t7run r;
     t7_run(&r, "type7_pinch.yaml", 0, 0, f, -1);
     if (f)
@@ -370,7 +372,7 @@ Test(validation_type7, pinched_both_faces)
               "the layers did not come apart: %g J, %g, %g", w->e7_end, w->sep_last[0],
               w->sep_last[1]);
     cr_assert(fabs(r.s.e.error) <= 0.01, "energy error %g", r.s.e.error);
-    ctv_plot("type7_pinch", "TYPE7: a middle layer pinched between two others",
+    ctv_plot("extreme_type7_pinch", "TYPE7: a middle layer pinched between two others",
              "time (us)", "separation / gap; TYPE7 energy (J)",
              "1,2,lines,middle over bottom;1,3,lines,top over middle;1,4,dashed,TYPE7 energy (J)",
              "");
@@ -393,12 +395,14 @@ Test(validation_type7, pinched_both_faces)
  * (type7_squeeze.yaml) until its contact stops at Tstop = 1.35 ms: the
  * layers are then well inside the gap with TYPE7 energy stored. Once the
  * load is gone the fold must open: TYPE7's stored energy back to exactly
- * 0 and the layers further apart than the gap at the end, and no node may
- * cross at any cycle, squeezed or not.
+ * 0 within 100 us, the layers more than two gaps apart afterwards and
+ * apart at the end, and no node may cross at any cycle, squeezed or not.
+ * (The released top layer vibrates freely and touches the bottom one
+ * again briefly near 2.64 ms: a new, elastic impact, shown in the plot.)
  */
 Test(validation_type7, squeeze_and_release)
 {
-    FILE *f = ctv_csv("type7_squeeze", "t_us,sep,unused,e7");
+    FILE *f = ctv_csv("extreme_type7_squeeze", "t_us,sep,unused,e7");
     t7run r;
     t7_run(&r, "type7_squeeze.yaml", 0, 0, f, -1);
     if (f)
@@ -409,11 +413,14 @@ Test(validation_type7, squeeze_and_release)
     cr_assert(w->e7_release > 0 && w->sep_release < 0.6 * w->gap,
               "not squeezed at the release: %g J, separation %g g", w->e7_release,
               w->sep_release / w->gap);
-    cr_assert(w->t_open > w->t_release, "the fold never opened after the release");
+    cr_assert(w->t_open > w->t_release && w->t_open - w->t_release < 1e-4,
+              "the fold did not open within 100 us of the release (%g)", w->t_open);
+    cr_assert(w->sep_max_after > 2 * w->gap, "the layers came apart by only %g g",
+              w->sep_max_after / w->gap);
     cr_assert(w->e7_end == 0 && w->sep_last[0] > w->gap,
               "closed at the end: %g J, separation %g g", w->e7_end, w->sep_last[0] / w->gap);
     cr_assert(fabs(r.s.e.error) <= 0.02, "energy error %g", r.s.e.error);
-    ctv_plot("type7_squeeze", "TYPE7 fold squeezed by a driven block, released at 1.35 ms",
+    ctv_plot("extreme_type7_squeeze", "TYPE7 fold squeezed by a driven block, released at 1.35 ms",
              "time (us)", "separation / gap; TYPE7 energy (J)",
              "1,2,lines,layer separation / gap;1,4,dashed,TYPE7 stored energy (J)", "");
     const char *note = "2-layer steel fold, block driven at 3 m/s (TYPE24, VisS 0.5) until "
@@ -425,6 +432,8 @@ Test(validation_type7, squeeze_and_release)
     ctv_result("9. TYPE7 squeeze", "time from release to open (us)",
                (w->t_open - w->t_release) * 1e6, 0, 0, note);
     ctv_result("9. TYPE7 squeeze", "TYPE7 energy at the end (J)", w->e7_end, 0, 1e-300, note);
+    ctv_result("9. TYPE7 squeeze", "largest separation / gap after the release",
+               w->sep_max_after / w->gap, 0, 0, note);
     ctv_result("9. TYPE7 squeeze", "separation / gap at the end (> 1)", w->sep_last[0] / w->gap,
                0, 0, note);
     ctv_result("9. TYPE7 squeeze", "final energy error", fabs(r.s.e.error), 0, 0.02, note);
