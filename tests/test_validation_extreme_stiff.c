@@ -212,7 +212,7 @@ static bounce_out bounce(double km, double ks, double const_dt)
 Test(validation_extreme, stiffness_ratio_series)
 {
     const double ksoft = 5e4, m = 1, v = 1, s = 0.2;
-    const double tol_k = CTT_TOL(1e-13, 1e-6), tol_p = CTT_TOL(0.01, 0.01);
+    const double tol_k = CTT_TOL(1e-13, 1e-6), tol_p = 0.02; /* measured 0.95 % */
     const double tol_v = CTT_TOL(1e-3, 2e-3), tol_vdrv = 0.10;
     FILE *f = ctv_csv("extreme_stiffness_ratio",
                       "ratio,K_over_Ksoft,K_ref_over_Ksoft,pmax_over_ref,dt_over_ref,"
