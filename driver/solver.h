@@ -83,6 +83,9 @@ typedef struct ctd_contact_report {
     double friction;    /* energy dissipated by friction in this step (>= 0) */
     double dt_limit;    /* the interface's stable step (no safety factor);
                            0 or CTD_DT_NONE: no limit */
+    double dt_kin;      /* the TYPE7/11 kinematic step (g - p)/(2 (-vn)) among
+                           the limits behind dt_limit (0: none), so that an
+                           observer can tell which limit controls */
     double force;       /* magnitude of the total contact force on the
                            secondary side (the main side gets the opposite) */
     double fvec[3];     /* that force as a vector */

@@ -44,6 +44,7 @@ static int hook_step(void *ctx, const ctd_state *s, ct_real *fx, ct_real *fy, ct
     rep->damping = r.e_damp;
     rep->friction = r.e_fric;
     rep->dt_limit = r.dt < CT_DT_NONE ? (double)r.dt : 0.0;
+    rep->dt_kin = r.dt_kin < CT_DT_NONE ? (double)r.dt_kin : 0.0;
     rep->force = sqrt(r.force[0] * r.force[0] + r.force[1] * r.force[1] +
                       r.force[2] * r.force[2]);
     for (int d = 0; d < 3; d++)

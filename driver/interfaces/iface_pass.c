@@ -461,8 +461,23 @@ static int normal_force(ctd_iface *it, ctdi_pass *p, ct_idx n, ct_real dt)
     } else if (p->law == CTDI_LAW_TYPE6) {
         rc = ctdi_type6_normal(it, p, n);
     } else {
+        /* The blending tells a jump of the penetration from motion by
+         * |v| dt (ct_penalty_linear reads only the magnitude): the relative
+         * speed, not its normal part, bounds how fast a penetration can
+         * grow (the distance to a surface changes at most as fast as the
+         * node moves against it). The normal part alone misses the motion
+         * of a node sliding past a convex vertex or edge, where the normal
+         * turns within a step: it took that motion for a jump and cut the
+         * force (validation case g). The speed goes in the friction
+         * speed scratch, which friction() fills later. */
+        ct_real *restrict spd = r[CTDI_R_SPD];
+        const ct_real *restrict ux = r[CTDI_R_VRX], *restrict uy = r[CTDI_R_VRY],
+                                *restrict uz = r[CTDI_R_VRZ];
+#pragma omp parallel for simd schedule(static) if (n > CTDI_PAR_MIN)
+        for (ct_idx k = 0; k < n; k++)
+            spd[k] = CTI_SQRT(ux[k] * ux[k] + uy[k] * uy[k] + uz[k] * uz[k]);
         ct_real *p0 = it->cfg.Inacti != 0 && it->cfg.Ipen0 == 0 ? st[CTDI_ST_P0] : NULL;
-        rc = ct_penalty_linear(n, g->pen, r[CTDI_R_VN], r[CTDI_R_K], dt, p0, st[CTDI_ST_PPREV],
+        rc = ct_penalty_linear(n, g->pen, spd, r[CTDI_R_K], dt, p0, st[CTDI_ST_PPREV],
                                st[CTDI_ST_FCAP], st[CTDI_ST_QJUMP], r[CTDI_R_FEL],
                                r[CTDI_R_EN]);
         const ct_real *restrict pen = g->pen, *restrict K = r[CTDI_R_K];
