@@ -143,7 +143,8 @@ Test(validation_friction, incline_block_slides)
                  "theta 30 deg, rigid block on rigid slope, TYPE24 Kt = K = 2e4 N/m x 9 nodes; "
                  "settled at t_s = %.3g ms; every cycle to T = 0.2 s",
                  1e3 * ts);
-        snprintf(q, sizeof q, "mu %.2f: max |x - x_a| / x_a after settling", mus[k]);
+        snprintf(q, sizeof q, "mu %.2f: largest relative deviation of x from x_a after settling",
+                 mus[k]);
         if (a > 0) {
             double e = ctv_result("5a incline", q, dev, 0, CTT_TOL(0.01, 0.01), note);
             cr_expect(e <= CTT_TOL(0.01, 0.01),
@@ -234,8 +235,8 @@ Test(validation_friction, incline_block_holds)
                   mu, umax, ucone);
         snprintf(q, sizeof q, "mu %.1f: held deflection (m)", mu);
         double e = ctv_result("5a incline (held)", q, umean, us, CTT_TOL(0.03, 0.03), note);
-        cr_expect(e <= CTT_TOL(0.03, 0.03), "mu %.1f: deflection %.4g, expected m g sin / Kt = %.4g",
-                  mu, umean, us);
+        cr_expect(e <= CTT_TOL(0.03, 0.03),
+                  "mu %.1f: deflection %.4g, expected m g sin / Kt = %.4g", mu, umean, us);
         vf_rec_free(&o.rec);
     }
     if (f)

@@ -72,6 +72,7 @@ Test(validation_friction, slope_push_onset)
 {
     const double alphas[] = {0.0, 8.0, 16.0};
     const int na = (int)(sizeof alphas / sizeof alphas[0]);
+    double sim[sizeof alphas / sizeof alphas[0]];
     FILE *fo = ctv_csv("friction_slope_onset", "alpha (deg),F/G simulated,F/G analytic");
     FILE *fc = ctv_csv("friction_slope_u",
                        "F/G,u simulated,stick (F cos - G sin) / Kt,cone mu N / Kt");
@@ -126,7 +127,7 @@ Test(validation_friction, slope_push_onset)
             cr_expect(eu <= CTT_TOL(0.03, 0.03), "alpha %g: held at %.4g, expected %.4g",
                       alphas[k], umin, ud);
         }
-        ctv_row(fo, 3, alphas[k], fg_on, ratio);
+        sim[k] = fg_on;
         if (k == na - 1)
             for (size_t i = 0; i < o.rec.n; i += 25) {
                 const double *w = vf_rec_row(&o.rec, i);
@@ -140,6 +141,14 @@ Test(validation_friction, slope_push_onset)
                         SL_MU * N / SL_KT);
             }
         vf_rec_free(&o.rec);
+    }
+    /* The formula every degree, the simulated onsets at their angles. */
+    for (int deg = 0; deg <= 16; deg++) {
+        double ta = tan(deg * VF_PI / 180), fs = NAN;
+        for (int k = 0; k < na; k++)
+            if (alphas[k] == deg)
+                fs = sim[k];
+        ctv_row(fo, 3, (double)deg, fs, (ta + SL_MU) / (1 - SL_MU * ta));
     }
     if (fo)
         fclose(fo);

@@ -158,14 +158,15 @@ Test(validation_hertz, press_force_indentation)
 {
     /* 5 uniform cells of 0.02 (x: 0.0141 R) under the contact, 9 in all. */
     const hz_mesh h = {9, 5, 0.02, 8, 5, 0.014, 0.3, 0, HZ_R};
-    const int lay[4] = {0, 2, 3, 4}; /* the pole and three depths */
+    /* The pole, three depths and the axis node of the flat face. */
+    const int lay[5] = {0, 2, 3, 4, h.nc};
     const hz_mat mat = {HZ_E, HZ_NU, HZ_R};
     const double hx = h.ha * HZ_R / sqrt(2), v = 1.0;
     const double amin = 3 * hx, amax = 5 * hx, dmax = 1.05 * amax * amax / HZ_R;
     hz_obs o;
     double vz;
     int64_t cyc;
-    hz_run(&h, v, (dmax + HZ_C0) / v, 1, lay, 4, &o, &vz, &cyc);
+    hz_run(&h, v, (dmax + HZ_C0) / v, 1, lay, 5, &o, &vz, &cyc);
     const double *w0 = vf_rec_row(&o.rec, 0);
     double z[4], err[4] = {0, 0, 0, 0}, eface = 0, eend = 0;
     for (int k = 1; k < 4; k++)
@@ -181,7 +182,10 @@ Test(validation_hertz, press_force_indentation)
         double dl[4];
         for (int k = 1; k < 4; k++)
             dl[k] = (w0[2 + k] - w[2 + k]) - dpole + hz_uz(&mat, P, z[k]);
-        double dface = v * w[0] - HZ_C0;
+        /* The flat face's travel, from its node (not v t: in single
+         * precision the rounding of x + v dt, v dt a few ulps of x, is
+         * biased, and the face lags v t by a percent or two). */
+        double dface = (w0[6] - w[6]) - HZ_C0;
         if (i % 10 == 0)
             ctv_row(f, 4, dl[2], P, hz_force(&mat, dl[2]), dface);
         double a = hz_radius(&mat, P);
@@ -201,15 +205,15 @@ Test(validation_hertz, press_force_indentation)
              "quarter hemisphere, 9x9x8 bricks, cells 0.0141 R under the contact; v 1 m/s; "
              "a from 3 to 5 cells (delta/R 0.0018..0.005); %lld cycles",
              (long long)cyc);
-    double e = ctv_result("2 Hertz press", "max |P / P_Hertz(delta) - 1|, delta at depth 3 cells",
+    double e = ctv_result("2 Hertz press", "largest relative force error, delta at depth 3 cells",
                           err[2], 0, CTT_TOL(0.05, 0.05), note);
     cr_expect(e <= CTT_TOL(0.05, 0.05), "force off Hertz by %.3g %% (depth 3 cells)", 100 * e);
     ctv_result("2 Hertz press", "P / P_Hertz - 1 at a = 5 cells", eend, 0, 0, "reported");
     for (int k = 1; k < 4; k += 2) {
-        snprintf(q, sizeof q, "max |P / P_Hertz - 1|, delta at depth %d cells", lay[k]);
+        snprintf(q, sizeof q, "largest relative force error, delta at depth %d cells", lay[k]);
         ctv_result("2 Hertz press", q, err[k], 0, 0, "reported: the same at another depth");
     }
-    ctv_result("2 Hertz press", "max |P / P_Hertz - 1|, delta = approach of the flat face",
+    ctv_result("2 Hertz press", "largest relative force error, delta = the flat face's approach",
                eface, 0, 0, "reported: includes the hemisphere's own compression");
     ctv_plot("hertz_press", "2a: Hertz, quarter hemisphere pressed on a rigid plane",
              "indentation delta (m)", "contact force P (N)",
