@@ -73,6 +73,7 @@ void ctd_solver_destroy(ctd_solver *s)
         free(w->bc_node);
         free(w->part_sum);
         free(w->vc_old);
+        free(w->L_old);
         ctd_loads_destroy(&w->loads);
         free(w->if_force);
         free(w->if_active);
@@ -130,6 +131,7 @@ int ctd_solver_init(ctd_solver *s, ctd_model *m, const ctd_solver_opts *opts,
     w->nchunk = (int)((nn + CTI_CHUNK - 1) / CTI_CHUNK);
     w->part_sum = calloc((size_t)w->nchunk + 1, sizeof(double));
     w->vc_old = calloc((size_t)m->nbody + 1, sizeof *w->vc_old);
+    w->L_old = calloc((size_t)m->nbody + 1, sizeof *w->L_old);
     int nh = s->nhook;
     s->rep = calloc((size_t)nh + 1, sizeof *s->rep);
     s->if_force_max = calloc((size_t)nh + 1, sizeof(double));
@@ -138,7 +140,8 @@ int ctd_solver_init(ctd_solver *s, ctd_model *m, const ctd_solver_opts *opts,
     w->if_active = calloc((size_t)nh + 1, sizeof(int64_t));
     w->if_resorts = calloc((size_t)nh + 1, sizeof(int64_t));
     w->if_names = calloc((size_t)nh + 1, sizeof(char *));
-    if (!w->nact || !w->free_node || !w->bc_node || !w->part_sum || !w->vc_old || !s->rep ||
+    if (!w->nact || !w->free_node || !w->bc_node || !w->part_sum || !w->vc_old || !w->L_old ||
+        !s->rep ||
         !s->if_force_max || !s->if_active_max || !w->if_force || !w->if_active ||
         !w->if_resorts || !w->if_names)
         return err_out(err, errlen, CT_ERR_NOMEM, "out of memory");
@@ -439,6 +442,7 @@ static void rigid_kick(ctd_solver *s, double dtk, double dt_new)
         ctd_rigid_accumulate(r, s->x, s->y, s->z, w->fx, w->fy, w->fz);
         for (int d = 0; d < 3; d++) {
             w->vc_old[b][d] = r->vc[d];
+            w->L_old[b][d] = r->L[d];
             r->vc[d] += dtk * r->F[d] / r->mass;
             r->L[d] += dtk * r->tau[d];
         }

@@ -21,7 +21,8 @@
  *
  * Energy balance, evaluated at output steps and every 100 cycles:
  *   kinetic   K(n) = sum m v(n-1/2) . v(n+1/2) / 2 (rigid bodies: M v_c- .
- *             v_c+ / 2 plus the rotational energy): the product of the two
+ *             v_c+ / 2 plus pi- . I^-1 pi+ / 2, pi = R^T L the angular
+ *             momentum in the body frame at x(n)): the product of the two
  *             half-step velocities, the kinetic energy the central difference
  *             conserves exactly with the internal energy of a linear system
  *             (it differs from m |(v- + v+)/2|^2 / 2 by m |v+ - v-|^2 / 8);

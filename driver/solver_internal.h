@@ -29,6 +29,7 @@ typedef struct cti_solver_work {
     double *part_sum;             /* chunk partial sums */
     int nchunk;
     double (*vc_old)[3];          /* rigid bodies' centre velocity before the kick */
+    double (*L_old)[3];           /* and their angular momentum before the kick */
     /* Energy accumulators. */
     double w_bc;                  /* imposed-velocity work up to the last step (both halves) */
     double w_bc_back;             /* this step's backward half */

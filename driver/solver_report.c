@@ -57,13 +57,27 @@ double cti_solver_kinetic(ctd_solver *s)
     const ctd_model *m = s->model;
     for (int b = 0; b < m->nbody; b++) {
         const ctd_rigid *r = &m->body[b].rigid;
-        double vo[3], v2 = 0, dot = 0;
+        double vo[3], dot = 0;
         for (int d = 0; d < 3; d++) {
             vo[d] = first ? 2 * w->vc_old[b][d] - r->vc[d] : w->vc_old[b][d];
-            v2 += r->vc[d] * r->vc[d];
             dot += vo[d] * r->vc[d];
         }
-        k += 0.5 * r->mass * dot + (ctd_rigid_kinetic(r) - 0.5 * r->mass * v2);
+        /* Rotation in the same product form, pi- . I^-1 pi+ / 2 with pi =
+         * R^T L in the body frame at x(n): the energy of the kick's torque
+         * enters with the work of the step that follows it, as for the
+         * translation (a body spun up from rest by a load raised from zero
+         * then shows no kinetic energy before the load has done work). */
+        double R[9], Lo[3];
+        ctd_rigid_rotation(r, R);
+        for (int d = 0; d < 3; d++)
+            Lo[d] = first ? 2 * w->L_old[b][d] - r->L[d] : w->L_old[b][d];
+        double rot = 0;
+        for (int i = 0; i < 3; i++) {
+            double po = R[i] * Lo[0] + R[3 + i] * Lo[1] + R[6 + i] * Lo[2];
+            double pn = R[i] * r->L[0] + R[3 + i] * r->L[1] + R[6 + i] * r->L[2];
+            rot += po * pn * r->Iinv[i];
+        }
+        k += 0.5 * r->mass * dot + 0.5 * rot;
     }
     return k;
 }
