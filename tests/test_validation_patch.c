@@ -173,13 +173,14 @@ static const variant var[] = {
     {"TYPE5 one pass, Stfac 1", "TYPE5_Stfac1", 5, 1, 1.0, {0.092, 0.54, 0.044, 0.23}},
     {"TYPE24 nodes to surface", "TYPE24_nts", 24, 1, 1.0, {0.053, 0.45, 0.017, 0.19}},
     {"TYPE3 two passes, Stfac 0.2", "TYPE3", 3, 0, 0.2, {0.30, 0.39, 0.12, 0.165}},
-    {"TYPE3 two passes, Stfac 1", "TYPE3_Stfac1", 3, 0, 1.0, {0.092, 0.114, 0.041, 0.048}},
-    /* TYPE24 surface to surface does not settle as the others do (the
-     * largest dynamic spread of the six): its figures move with the step,
-     * e.g. the lower face 0.057 .. 0.092 over dt_scale 0.8 .. 0.95 where
-     * every other variant holds its three digits. The bounds are the top
-     * of that band plus 25 %. */
-    {"TYPE24 surface to surface", "TYPE24_s2s", 24, 0, 1.0, {0.071, 0.115, 0.016, 0.029}},
+    /* The two-pass bounds were re-measured when the stiffness blending
+     * began to judge a penetration jump against |v_rel| dt instead of
+     * |v_n| dt: a quasi-static contact then no longer blends on noise, and
+     * TYPE24 surface to surface stopped moving with the step (0.057 to
+     * 0.092 on the lower face over dt_scale 0.8 .. 0.95 before, three
+     * digits steady now). */
+    {"TYPE3 two passes, Stfac 1", "TYPE3_Stfac1", 3, 0, 1.0, {0.106, 0.136, 0.045, 0.055}},
+    {"TYPE24 surface to surface", "TYPE24_s2s", 24, 0, 1.0, {0.084, 0.078, 0.029, 0.028}},
 };
 #define V_N ((int)(sizeof var / sizeof var[0]))
 
