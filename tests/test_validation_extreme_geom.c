@@ -17,72 +17,7 @@
 #include <stdint.h>
 #include <string.h>
 
-#include "interfaces/build.h"
-#include "interfaces/iface.h"
-
-/* Node arrays (unit masses), forces and the interface's per-node fields. */
-typedef struct nodes {
-    ct_idx n;
-    ct_real *x, *y, *z, *vx, *vy, *vz, *m, *fx, *fy, *fz, *pen;
-    int32_t *nact;
-} nodes;
-
-static void nodes_init(nodes *p, ct_idx n)
-{
-    memset(p, 0, sizeof *p);
-    p->n = n;
-    ct_real **a[11] = {&p->x,  &p->y,  &p->z,  &p->vx, &p->vy, &p->vz,
-                       &p->m,  &p->fx, &p->fy, &p->fz, &p->pen};
-    for (int i = 0; i < 11; i++)
-        cr_assert((*a[i] = ct_calloc((size_t)n, sizeof(ct_real))) != NULL);
-    cr_assert((p->nact = ct_calloc((size_t)n, sizeof(int32_t))) != NULL);
-    for (ct_idx i = 0; i < n; i++)
-        p->m[i] = 1;
-}
-
-static void nodes_free(nodes *p)
-{
-    ct_real *a[11] = {p->x, p->y, p->z, p->vx, p->vy, p->vz, p->m, p->fx, p->fy, p->fz, p->pen};
-    for (int i = 0; i < 11; i++)
-        ct_free(a[i]);
-    ct_free(p->nact);
-}
-
-static void nodes_set(nodes *p, ct_idx i, double x, double y, double z)
-{
-    p->x[i] = (ct_real)x;
-    p->y[i] = (ct_real)y;
-    p->z[i] = (ct_real)z;
-}
-
-/* One step (forces zeroed first), fields, everything checked finite. */
-static void nodes_step(ctd_iface *it, nodes *p, ctd_iface_report *rep)
-{
-    size_t b = sizeof(ct_real) * (size_t)p->n;
-    memset(p->fx, 0, b);
-    memset(p->fy, 0, b);
-    memset(p->fz, 0, b);
-    memset(p->pen, 0, b);
-    memset(p->nact, 0, sizeof(int32_t) * (size_t)p->n);
-    int rc = ctd_iface_step(it, 0, (ct_real)1e-6, p->x, p->y, p->z, p->vx, p->vy, p->vz, p->m,
-                            p->fx, p->fy, p->fz, rep);
-    cr_assert_eq(rc, CT_OK, "step: %s", ct_strerror(rc));
-    ctd_iface_fields(it, p->pen, p->nact);
-    for (ct_idx i = 0; i < p->n; i++)
-        cr_assert(isfinite(p->fx[i]) && isfinite(p->fy[i]) && isfinite(p->fz[i]) &&
-                      isfinite(p->pen[i]),
-                  "node %d: a non-finite force or penetration", (int)i);
-    cr_assert(isfinite(rep->e_contact));
-}
-
-static ctd_iface *make(const ctd_iface_cfg *c, const ctd_iface_data *d)
-{
-    ctd_iface *it = NULL;
-    ct_diag dg = {0, -1, ""};
-    int rc = ctd_iface_init(&it, c, d, &dg);
-    cr_assert_eq(rc, CT_OK, "init: %s: %s", ct_strerror(rc), dg.msg);
-    return it;
-}
+#include "test_validation_extreme.h"
 
 static uint64_t rng = 0x9e3779b97f4a7c15ULL;
 static double urand(void)
@@ -234,7 +169,7 @@ static void quad_errors(const double X[4][3], double w, int npt, int ns, int nt,
             c.quad = meth[k];
             ctd_iface *it = make(&c, &d);
             ctd_iface_report rep;
-            nodes_step(it, &p, &rep);
+            nodes_step(it, &p, 0, 1e-6, &rep);
             ctd_iface_destroy(it);
             double F = sqrt((double)p.fx[4] * p.fx[4] + (double)p.fy[4] * p.fy[4] +
                             (double)p.fz[4] * p.fz[4]);
