@@ -203,12 +203,23 @@ int ctd_scene_check_main(const char *path)
         else
             known = 0;
     }
+    /* Rigid bodies as the model builds them: the listed ones, and each
+     * rigid part listed in none (a body of its own). */
+    unsigned nbody = sc->rigid_bodies_count;
+    for (unsigned i = 0; i < sc->parts_count; i++) {
+        if (sc->parts[i].element != CTD_ELEM_RIGID)
+            continue;
+        int listed = 0;
+        for (unsigned b = 0; b < sc->rigid_bodies_count; b++)
+            listed |= sc->rigid_bodies[b].part == sc->parts[i].id;
+        nbody += !listed;
+    }
     printf("%s: ok: \"%s\", end_time %g, %u mesh%s (%s%lld nodes), %u part%s, %u rigid "
            "bod%s, %u boundary condition%s, %u interface%s, output to %s\n",
            path, sc->title ? sc->title : "", sc->end_time, sc->mesh_count,
            sc->mesh_count == 1 ? "" : "es", known ? "" : ">= ", (long long)nnode,
-           sc->parts_count, sc->parts_count == 1 ? "" : "s", sc->rigid_bodies_count,
-           sc->rigid_bodies_count == 1 ? "y" : "ies", sc->boundary_count,
+           sc->parts_count, sc->parts_count == 1 ? "" : "s", nbody, nbody == 1 ? "y" : "ies",
+           sc->boundary_count,
            sc->boundary_count == 1 ? "" : "s", sc->interfaces_count,
            sc->interfaces_count == 1 ? "" : "s", sc->out_dir);
     for (unsigned i = 0; i < sc->mesh_count; i++) {

@@ -252,6 +252,20 @@ Test(scene, check_main_valid, .init = cr_redirect_stdout)
     cr_assert_stdout_eq_str(want);
 }
 
+/* A rigid part listed in no rigid_bodies entry is a body of its own, and
+ * the check counts it as the model will (the knee-bolster scene has two
+ * such parts and no list). */
+Test(scene, check_main_counts_unlisted_rigid_parts, .init = cr_redirect_stdout)
+{
+    char p[1024];
+    scene_path(p, sizeof p, "../../../data/scenes/knee-bolster.yaml");
+    cr_assert_eq(ctd_scene_check_main(p), CTD_EXIT_OK);
+    fflush(stdout);
+    char want[1200];
+    snprintf(want, sizeof want, "%s: ok: \"knee bolster\", end_time 0.045, 2 meshes (467 nodes), 2 parts, 2 rigid bodies, 2 boundary conditions, 1 interface, output to out/knee-bolster\n", p);
+    cr_assert_stdout_eq_str(want);
+}
+
 Test(scene, names)
 {
     cr_assert_str_eq(ctd_element_name(CTD_ELEM_SPRING), "spring");
