@@ -93,6 +93,13 @@ ct_real cti_dist2_point_triangle(const ct_real p[3], const ct_real a[3],
     return dot3(r, r);
 }
 
+/* (u x v) . w */
+static inline ct_real triple(const ct_real u[3], const ct_real v[3], const ct_real w[3])
+{
+    return w[0] * (u[1] * v[2] - u[2] * v[1]) + w[1] * (u[2] * v[0] - u[0] * v[2]) +
+           w[2] * (u[0] * v[1] - u[1] * v[0]);
+}
+
 /* 6 x signed volume of tetrahedron (a, b, c, p). */
 static inline ct_real orient3(const ct_real a[3], const ct_real b[3], const ct_real c[3],
                               const ct_real p[3])
@@ -101,8 +108,7 @@ static inline ct_real orient3(const ct_real a[3], const ct_real b[3], const ct_r
     sub3(ab, b, a);
     sub3(ac, c, a);
     sub3(ap, p, a);
-    return ap[0] * (ab[1] * ac[2] - ab[2] * ac[1]) + ap[1] * (ab[2] * ac[0] - ab[0] * ac[2]) +
-           ap[2] * (ab[0] * ac[1] - ab[1] * ac[0]);
+    return triple(ab, ac, ap);
 }
 
 /* Squared Euclidean distance from p to the corners' axis-aligned box, or -1
@@ -127,13 +133,6 @@ int ct_pair_box_near(const ct_real p[3], const ct_real a[3], const ct_real b[3],
 {
     ct_real box2 = box_dist2(p, a, b, c, e, d);
     return box2 >= 0 && box2 <= d * d;
-}
-
-/* (u x v) . w */
-static inline ct_real triple(const ct_real u[3], const ct_real v[3], const ct_real w[3])
-{
-    return w[0] * (u[1] * v[2] - u[2] * v[1]) + w[1] * (u[2] * v[0] - u[0] * v[2]) +
-           w[2] * (u[0] * v[1] - u[1] * v[0]);
 }
 
 /*
