@@ -25,10 +25,11 @@
  *     input by sampling whether consecutive secondaries lie in neighbouring
  *     cells
  *     (cti_bucket_local):
- *     - secondary order (ordered numberings): static blocks of consecutive
- *       positions; block 0 writes straight into the output and the other
- *       blocks into buffers of their own, copied after it in parallel: the
- *       output is canonical as written, with no collector and no sort;
+ *     - secondary order (ordered numberings): blocks of consecutive
+ *       positions (BK_QUERY_BLOCKS per thread, handed out dynamically);
+ *       block 0 writes straight into the output and the other blocks into
+ *       buffers of their own, copied after it in parallel: the output is
+ *       canonical as written, with no collector and no sort;
  *     - cell order (scattered numberings, where a node's cell, its list and
  *       its segments' records would all be random accesses): the
  *       secondaries counting-sorted by cell, visited with prefetching, and
@@ -279,6 +280,11 @@ static void bk_place(bk_state *st, const ct_search_input *in, const bk_grid *g, 
  * search_bucket_v0.c, chosen by ct_search_params.variant. */
 int cti_search_bucket_v0(ct_search *s, const ct_search_input *in, ct_pairs *out);
 
+/* Query blocks per thread (secondary order). */
+#ifndef BK_QUERY_BLOCKS
+#define BK_QUERY_BLOCKS 8
+#endif
+
 /* Query order: 0 chooses per input (cti_bucket_local), 1 secondary order,
  * 2 cell order. */
 #ifndef BK_ORDER
@@ -290,7 +296,12 @@ int cti_search_bucket(ct_search *s, const ct_search_input *in, ct_pairs *out)
     if (s->p.variant == 0)
         return cti_search_bucket_v0(s, in, out);
     const int nb = cti_num_threads();
-    bk_state *st = bk_get(s, nb);
+    /* Query blocks: BK_QUERY_BLOCKS per thread, handed out dynamically, so
+     * a region dense in candidates (a graded mesh's fine corner) does not
+     * hold one thread while the others wait. One thread: one block, which
+     * writes the output directly. */
+    const int nq = nb > 1 ? BK_QUERY_BLOCKS * nb : 1;
+    bk_state *st = bk_get(s, nq);
     if (!st)
         return CT_ERR_NOMEM;
     out->n = 0;
@@ -372,7 +383,7 @@ int cti_search_bucket(ct_search *s, const ct_search_input *in, ct_pairs *out)
         rc = cti_collect_begin(col, in->nsec);
         if (rc)
             return rc;
-        int qerr = cti_bucket_query_cells(st, in, nb, nbinned, col);
+        int qerr = cti_bucket_query_cells(st, in, nq, nbinned, col);
         if (qerr)
             return CT_ERR_NOMEM;
         rc = cti_collect_finish(col, in->sec, out);
@@ -383,7 +394,7 @@ int cti_search_bucket(ct_search *s, const ct_search_input *in, ct_pairs *out)
     o[0].seg = out->seg;
     o[0].cap = (size_t)out->cap;
     o[0].n = 0;
-    int qerr = cti_bucket_query_direct(st, in, &g, nb, o);
+    int qerr = cti_bucket_query_direct(st, in, &g, nq, o);
     out->node = o[0].node;
     out->seg = o[0].seg;
     out->cap = (ct_idx)o[0].cap;
@@ -398,7 +409,7 @@ int cti_search_bucket(ct_search *s, const ct_search_input *in, ct_pairs *out)
     }
     /* Concatenate the other blocks after block 0, in parallel. */
     size_t total = out->n;
-    for (int b = 1; b < nb; b++)
+    for (int b = 1; b < nq; b++)
         total += o[b].n;
     if (total > (size_t)INT32_MAX)
         return CT_ERR_TOOBIG;
@@ -407,7 +418,7 @@ int cti_search_bucket(ct_search *s, const ct_search_input *in, ct_pairs *out)
         return rc;
     size_t off = out->n;
     ct_idx *restrict on = out->node, *restrict os = out->seg;
-    for (int b = 1; b < nb; b++) {
+    for (int b = 1; b < nq; b++) {
         const ct_idx *restrict bn = o[b].node, *restrict bs = o[b].seg;
         const int64_t n = (int64_t)o[b].n;
 #pragma omp parallel for schedule(static)

@@ -128,7 +128,7 @@ int cti_bucket_query_direct(const bk_state *st, const ct_search_input *in, const
     bk_ctx k;
     bk_ctx_init(&k, st, in);
     int err = 0;
-#pragma omp parallel for schedule(static) reduction(| : err)
+#pragma omp parallel for schedule(dynamic, 1) reduction(| : err)
     for (int b = 0; b < nb; b++) {
         bk_out w = o[b];
         w.n = 0;
@@ -188,7 +188,7 @@ int cti_bucket_query_cells(const bk_state *st, const ct_search_input *in, int nb
     bk_ctx k;
     bk_ctx_init(&k, st, in);
     int err = 0;
-#pragma omp parallel for schedule(static) reduction(| : err)
+#pragma omp parallel for schedule(dynamic, 1) reduction(| : err)
     for (int b = 0; b < nb; b++) {
         const int t = cti_thread_id();
         ct_idx lo = (ct_idx)((int64_t)nbinned * b / nb);
