@@ -153,20 +153,12 @@ static ct_idx bsp_split_nodes(bsp_state *st, ct_idx n0, ct_idx n1, int ax, bsp_f
     bsp_f *restrict nx = st->nx, *restrict ny = st->ny, *restrict nz = st->nz;
     ct_idx *restrict nid = st->nid;
     const bsp_f *a = ax == 0 ? nx : (ax == 1 ? ny : nz);
-    /* The children's boxes in locals (registers), not through pointers. */
-    bsp_box L, R;
-    box_empty(&L);
-    box_empty(&R);
     ct_idx i = n0, j = n1 - 1;
     for (;;) {
-        while (i <= j && a[i] < mid) {
-            box_add(&L, nx[i], ny[i], nz[i]);
+        while (i <= j && a[i] < mid)
             i++;
-        }
-        while (i <= j && !(a[j] < mid)) {
-            box_add(&R, nx[j], ny[j], nz[j]);
+        while (i <= j && !(a[j] < mid))
             j--;
-        }
         if (i >= j)
             break;
         bsp_f tx = nx[i], ty = ny[i], tz = nz[i];
@@ -174,8 +166,10 @@ static ct_idx bsp_split_nodes(bsp_state *st, ct_idx n0, ct_idx n1, int ax, bsp_f
         nx[i] = nx[j]; ny[i] = ny[j]; nz[i] = nz[j]; nid[i] = nid[j];
         nx[j] = tx; ny[j] = ty; nz[j] = tz; nid[j] = ti;
     }
-    *bl = L;
-    *br = R;
+    /* The children's tight boxes in loops of their own, which vectorise
+     * (the partition's loops above cannot). */
+    bsp_box_of(nx, ny, nz, n0, i, bl);
+    bsp_box_of(nx, ny, nz, i, n1, br);
     return i;
 }
 

@@ -94,6 +94,26 @@ static inline void box_empty(bsp_box *b)
     }
 }
 
+/* The tight box of the tree coordinates [i0, i1) (NaN compares false and
+ * is left out, as in box_add). */
+static inline void bsp_box_of(const bsp_f *restrict x, const bsp_f *restrict y,
+                              const bsp_f *restrict z, ct_idx i0, ct_idx i1, bsp_box *b)
+{
+    bsp_f l0 = (bsp_f)INFINITY, l1 = (bsp_f)INFINITY, l2 = (bsp_f)INFINITY;
+    bsp_f h0 = -(bsp_f)INFINITY, h1 = -(bsp_f)INFINITY, h2 = -(bsp_f)INFINITY;
+#pragma omp simd reduction(min : l0, l1, l2) reduction(max : h0, h1, h2)
+    for (ct_idx i = i0; i < i1; i++) {
+        l0 = x[i] < l0 ? x[i] : l0;
+        h0 = x[i] > h0 ? x[i] : h0;
+        l1 = y[i] < l1 ? y[i] : l1;
+        h1 = y[i] > h1 ? y[i] : h1;
+        l2 = z[i] < l2 ? z[i] : l2;
+        h2 = z[i] > h2 ? z[i] : h2;
+    }
+    b->lo[0] = l0, b->lo[1] = l1, b->lo[2] = l2;
+    b->hi[0] = h0, b->hi[1] = h1, b->hi[2] = h2;
+}
+
 static inline void box_add(bsp_box *b, bsp_f x, bsp_f y, bsp_f z)
 {
     /* NaN compares false and leaves the box alone. */
