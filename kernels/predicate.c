@@ -9,11 +9,14 @@
  *  3. the node lies over the segment, within d of every corner's height
  *     (the prism test below)                                -> yes;
  *  4. a point of an edge the node is outside of is within d -> yes;
+ *  4b. a lower bound of the hull distance, from the slab of the corners'
+ *     heights and the planes through the edges, exceeds d    -> no;
  *  5. otherwise the exact distance to the convex hull of the corners.
  * Steps 3 and 4 only accept, and only when a point of the hull is truly
- * within d (up to rounding): they are shortcuts, not approximations. On a
- * smooth surface they decide almost every accepted pair without branches,
- * where step 5 costs up to four point-triangle distances.
+ * within d (up to rounding); step 4b only rejects, and only when every
+ * point of the hull is farther than d: they are shortcuts, not
+ * approximations. On a smooth surface they decide almost every pair
+ * without step 5, which costs up to four point-triangle distances.
  * The box test (CT_FILTER_BOX) stops after step 2: looser (a superset of
  * the hull set) and several times cheaper.
  * Every step is a true bound of the distance to the hull, so the answer is
@@ -135,6 +138,14 @@ int ct_pair_box_near(const ct_real p[3], const ct_real a[3], const ct_real b[3],
     return box2 >= 0 && box2 <= d * d;
 }
 
+/* What the prism test leaves for the reject step: n (the diagonals'
+ * normal), |n|^2, and h = how far p lies outside the slab of the corners'
+ * heights along n, times |n|; ok = 0 when n was not usable. */
+typedef struct cti_prism {
+    ct_real n[3], nn, h;
+    int ok;
+} cti_prism;
+
 /*
  * Step 3, the prism test. n = (c - a) x (e - b), the diagonals' normal, is
  * the quad's vector area times 2 (for a triangle, e == c, it is the
@@ -151,7 +162,7 @@ int ct_pair_box_near(const ct_real p[3], const ct_real a[3], const ct_real b[3],
  */
 static inline int prism_accept(const ct_real p[3], const ct_real a[3], const ct_real b[3],
                                const ct_real c[3], const ct_real e[3], ct_real d2,
-                               ct_real s[4])
+                               ct_real s[4], cti_prism *q)
 {
     ct_real ac[3], be[3], n[3];
     sub3(ac, c, a);
@@ -160,6 +171,7 @@ static inline int prism_accept(const ct_real p[3], const ct_real a[3], const ct_
     n[1] = ac[2] * be[0] - ac[0] * be[2];
     n[2] = ac[0] * be[1] - ac[1] * be[0];
     ct_real nn = dot3(n, n);
+    q->ok = 0;
     if (!(nn > (ct_real)1e-2 * dot3(ac, ac) * dot3(be, be))) {
         s[0] = s[1] = s[2] = s[3] = -1;
         return 0;
@@ -179,7 +191,60 @@ static inline int prism_accept(const ct_real p[3], const ct_real a[3], const ct_
     s[3] = triple(ea, pe, n);
     ct_real h1 = dot3(pa, n), h2 = dot3(pb, n), h3 = dot3(pc, n), h4 = dot3(pe, n);
     ct_real hmax = CTI_MAX(CTI_MAX(h1 * h1, h2 * h2), CTI_MAX(h3 * h3, h4 * h4));
+    /* For the reject step: how far p is outside the slab of the corners'
+     * heights (times |n|), and n. */
+    ct_real lo = CTI_MIN(CTI_MIN(h1, h2), CTI_MIN(h3, h4));
+    ct_real hi = CTI_MAX(CTI_MAX(h1, h2), CTI_MAX(h3, h4));
+    q->h = lo > 0 ? lo : (hi < 0 ? -hi : 0);
+    q->nn = nn;
+    q->n[0] = n[0], q->n[1] = n[1], q->n[2] = n[2];
+    q->ok = 1;
     return (s[0] >= 0) & (s[1] >= 0) & (s[2] >= 0) & (s[3] >= 0) & (hmax <= d2 * nn);
+}
+
+/*
+ * Step 4b, a reject: a lower bound of the distance to the hull, from the
+ * slab of the corners' heights along n and the planes through the edges
+ * along n. The hull lies in the slab, so its distance is at least q->h /
+ * |n|. Edge k's plane has the normal m = n x (P_k+1 - P_k), which points
+ * inward when the corners wind positively about n (as n, twice the vector
+ * area, makes them do); s[k] = m . (p - P_k), so p is -s[k] / |m| outside
+ * it. When the two other corners are on the inner side too (a convex
+ * outline, checked), the whole hull is, and since m is orthogonal to n
+ * the distance to the slab cut by that half-space is the root of the sum
+ * of the squares. Reject when the bound exceeds d by more than rounding
+ * (the factor 1 + 64 eps): only pairs truly farther than d are rejected,
+ * where step 5 would have cost up to four point-triangle distances.
+ */
+static inline int hull_far(const ct_real p[3], const ct_real *const corner[4],
+                           const ct_real s[4], const cti_prism *q, ct_real d2)
+{
+    (void)p;
+    if (!q->ok)
+        return 0;
+    const ct_real lim = d2 * (1 + 64 * CTI_EPS);
+    const ct_real hh = q->h * q->h / q->nn;
+    if (hh > lim)
+        return 1;
+    ct_real lat = 0;
+    for (int k = 0; k < 4; k++) {
+        if (!(s[k] < 0))
+            continue;
+        const ct_real *P = corner[k], *R = corner[(k + 1) & 3];
+        ct_real ek[3], m[3], u[3], v[3];
+        sub3(ek, R, P);
+        m[0] = q->n[1] * ek[2] - q->n[2] * ek[1];
+        m[1] = q->n[2] * ek[0] - q->n[0] * ek[2];
+        m[2] = q->n[0] * ek[1] - q->n[1] * ek[0];
+        ct_real mm = dot3(m, m);
+        sub3(u, corner[(k + 2) & 3], P);
+        sub3(v, corner[(k + 3) & 3], P);
+        if (!(mm > 0) || dot3(m, u) < 0 || dot3(m, v) < 0)
+            continue; /* a reflex outline: this plane bounds nothing */
+        ct_real l2 = s[k] * s[k] / mm;
+        lat = l2 > lat ? l2 : lat;
+    }
+    return lat + hh > lim;
 }
 
 int ct_pair_may_touch(const ct_real p[3], const ct_real a[3], const ct_real b[3],
@@ -189,7 +254,8 @@ int ct_pair_may_touch(const ct_real p[3], const ct_real a[3], const ct_real b[3]
     if (box2 < 0 || box2 > d2)
         return 0;
     ct_real s[4];
-    if (prism_accept(p, a, b, c, e, d2, s))
+    cti_prism q = {{0, 0, 0}, 0, 0, 0};
+    if (prism_accept(p, a, b, c, e, d2, s, &q))
         return 1;
     /* Step 4: the edges lie in the hull. On a flat convex quad the nearest
      * hull point of an outside p is on an edge p is outside of; the other
@@ -198,6 +264,8 @@ int ct_pair_may_touch(const ct_real p[3], const ct_real a[3], const ct_real b[3]
     for (int k = 0; k < 4; k++)
         if (s[k] < 0 && cti_dist2_point_edge(p, corner[k], corner[(k + 1) & 3]) <= d2)
             return 1;
+    if (hull_far(p, corner, s, &q, d2))
+        return 0;
     int tri = (c[0] == e[0] && c[1] == e[1] && c[2] == e[2]);
     if (tri)
         return cti_dist2_point_triangle(p, a, b, c) <= d2;

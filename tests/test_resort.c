@@ -1,6 +1,7 @@
 /*
- * test_resort.c -- the shared pair predicate against a sampled convex hull,
- * and the re-sort criterion against the direct search.
+ * test_resort.c -- the shared pair predicate against a sampled convex hull
+ * and an exact hull distance of the test's own, and the re-sort criterion
+ * against the direct search.
  */
 #include "test_util.h"
 
@@ -150,6 +151,153 @@ Test(resort, predicate_triangle_and_degenerate)
     ct_real e[3] = {2, 0, 0}, p3[3] = {1.5, 0.4, 0};
     cr_assert(ct_pair_may_touch(p3, a, b, e, e, (ct_real)0.41));
     cr_assert(!ct_pair_may_touch(p3, a, b, e, e, (ct_real)0.39));
+}
+
+/* An exact hull distance written independently of predicate.c: the point's
+ * projection onto a face's plane when it falls inside the face (signed
+ * areas), else the nearest of the face's edges (clamped parameter); zero
+ * inside the tetrahedron (four orientations of one sign). */
+static double seg_dist(const double p[3], const double a[3], const double b[3])
+{
+    double ab[3], ap[3], l2 = 0, t = 0;
+    for (int k = 0; k < 3; k++) {
+        ab[k] = b[k] - a[k];
+        ap[k] = p[k] - a[k];
+        l2 += ab[k] * ab[k];
+        t += ap[k] * ab[k];
+    }
+    t = l2 > 0 ? t / l2 : 0;
+    t = t < 0 ? 0 : (t > 1 ? 1 : t);
+    double r2 = 0;
+    for (int k = 0; k < 3; k++)
+        r2 += (ap[k] - t * ab[k]) * (ap[k] - t * ab[k]);
+    return sqrt(r2);
+}
+
+static void cross(const double u[3], const double v[3], double w[3])
+{
+    w[0] = u[1] * v[2] - u[2] * v[1];
+    w[1] = u[2] * v[0] - u[0] * v[2];
+    w[2] = u[0] * v[1] - u[1] * v[0];
+}
+
+static double tri_dist(const double p[3], const double a[3], const double b[3],
+                       const double c[3])
+{
+    double ab[3], ac[3], n[3], nn = 0, h = 0;
+    for (int k = 0; k < 3; k++) {
+        ab[k] = b[k] - a[k];
+        ac[k] = c[k] - a[k];
+    }
+    cross(ab, ac, n);
+    for (int k = 0; k < 3; k++) {
+        nn += n[k] * n[k];
+        h += (p[k] - a[k]) * n[k];
+    }
+    double best = fmin(seg_dist(p, a, b), fmin(seg_dist(p, b, c), seg_dist(p, c, a)));
+    if (nn > 0) {
+        double q[3];
+        for (int k = 0; k < 3; k++)
+            q[k] = p[k] - h / nn * n[k];
+        const double *v[3] = {a, b, c};
+        int inside = 1;
+        for (int e = 0; e < 3; e++) {
+            double u[3], w[3], x[3], s = 0;
+            for (int k = 0; k < 3; k++) {
+                u[k] = v[(e + 1) % 3][k] - v[e][k];
+                w[k] = q[k] - v[e][k];
+            }
+            cross(u, w, x);
+            for (int k = 0; k < 3; k++)
+                s += x[k] * n[k];
+            inside &= s >= 0;
+        }
+        if (inside)
+            best = fmin(best, fabs(h) / sqrt(nn));
+    }
+    return best;
+}
+
+static double orient(const double a[3], const double b[3], const double c[3], const double p[3])
+{
+    double u[3], v[3], w[3], x[3];
+    for (int k = 0; k < 3; k++) {
+        u[k] = b[k] - a[k];
+        v[k] = c[k] - a[k];
+        w[k] = p[k] - a[k];
+    }
+    cross(u, v, x);
+    return x[0] * w[0] + x[1] * w[1] + x[2] * w[2];
+}
+
+static double hull_dist(const double p[3], double c[4][3])
+{
+    double s1 = orient(c[0], c[1], c[2], p), s2 = orient(c[0], c[2], c[3], p);
+    double s3 = orient(c[0], c[3], c[1], p), s4 = orient(c[1], c[3], c[2], p);
+    if ((s1 > 0 && s2 > 0 && s3 > 0 && s4 > 0) || (s1 < 0 && s2 < 0 && s3 < 0 && s4 < 0))
+        return 0;
+    return fmin(fmin(tri_dist(p, c[0], c[1], c[2]), tri_dist(p, c[0], c[2], c[3])),
+                fmin(tri_dist(p, c[0], c[1], c[3]), tri_dist(p, c[1], c[2], c[3])));
+}
+
+/* Warped quads in random planes, as on a curved or crumpled surface
+ * (convex, and one in three a dart), and points all around them at distances near d: the cases
+ * where the predicate's slab-and-edge-plane reject (after the prism and
+ * edge accepts) decides. Every pair whose exact hull distance is more
+ * than 1e-9 away from d must be decided as that distance says. */
+Test(resort, predicate_matches_exact_hull_on_warped_quads)
+{
+    int ntrial = ctt_checking() ? 2000 : 20000, near = 0, far = 0;
+    for (int t = 0; t < ntrial; t++) {
+        double o[3], u[3], v[3], w[3];
+        for (int a = 0; a < 3; a++) {
+            o[a] = 10 * urand();
+            u[a] = urand() - 0.5;
+            v[a] = urand() - 0.5;
+        }
+        cross(u, v, w);
+        double wl = sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+        if (!(wl > 0.05))
+            continue;
+        double sq[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}}, warp = (t % 4) ? 0.3 * urand() : 0;
+        /* One trial in three a dart: corner 3 pushed in past the diagonal
+         * (a reflex outline, whose edge planes do not all bound the hull). */
+        if (t % 3 == 1)
+            sq[2][0] = sq[2][1] = 0.35;
+        double c[4][3];
+        for (int k = 0; k < 4; k++) {
+            double s0 = sq[k][0] + 0.2 * (urand() - 0.5), s1 = sq[k][1] + 0.2 * (urand() - 0.5);
+            double hgt = warp * (urand() - 0.5);
+            for (int a = 0; a < 3; a++)
+                c[k][a] = o[a] + s0 * u[a] + s1 * v[a] + hgt * w[a] / wl;
+        }
+        double q0 = 3 * urand() - 1, q1 = 3 * urand() - 1, q2 = 1.6 * urand() - 0.8, p[3];
+        for (int a = 0; a < 3; a++)
+            p[a] = o[a] + q0 * u[a] + q1 * v[a] + q2 * w[a] / wl;
+        double dt = hull_dist(p, c), d = 0.05 + 0.6 * urand();
+        if (fabs(dt - d) <= 1e-9 * (1 + d))
+            continue;
+        ct_real P[3], A[4][3];
+        for (int a = 0; a < 3; a++) {
+            P[a] = (ct_real)p[a];
+            for (int k = 0; k < 4; k++)
+                A[k][a] = (ct_real)c[k][a];
+        }
+        int got = ct_pair_may_touch(P, A[0], A[1], A[2], A[3], (ct_real)d);
+#ifdef CT_SINGLE
+        /* Single precision: the corners and the point are rounded to float,
+         * which moves the distance by about 1e-6 of the coordinates. */
+        if (fabs(dt - d) <= 1e-5 * (1 + o[0] + o[1] + o[2]))
+            continue;
+#endif
+        cr_assert_eq(got, dt <= d, "trial %d: exact hull distance %.17g, d = %.17g, predicate %d",
+                     t, dt, d, got);
+        near += dt <= d;
+        far += dt > d;
+    }
+    /* Both outcomes are exercised in numbers. */
+    cr_assert_gt(near, ntrial / 10);
+    cr_assert_gt(far, ntrial / 10);
 }
 
 /* A plate of nq x nq unit quads at z = 0 (main) and a cloud of nodes above
