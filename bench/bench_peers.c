@@ -1,6 +1,7 @@
 /*
  * bench_peers.c -- the peers in the same run (bench/peers/peers.h):
- * nanoflann, CGAL box_intersection_d and Bullet's btDbvt on the meshes and
+ * nanoflann, CGAL box_intersection_d and Bullet's btDbvt (and the textbook
+ * grid of grid_peer.cc, as a reference) on the meshes and
  * the query of the search benchmarks, checked against our search.
  *
  * Names: peer/<family>/<peer>/t<threads>/<target nodes> with the tuned
@@ -54,7 +55,7 @@
 
 /* ---- The peers' C side (peers.h) ----------------------------------------- */
 
-static const char *const peer_names[CTP_NPEERS] = {"nanoflann", "cgal", "bullet"};
+static const char *const peer_names[CTP_NPEERS] = {"nanoflann", "cgal", "bullet", "grid"};
 
 const char *ctp_peer_name(ctp_peer p)
 {
@@ -131,6 +132,7 @@ const char *ctp_setting_name(ctp_peer p, const ctp_setting *s, char *buf, size_t
     case CTP_BULLET:
         snprintf(buf, len, "%s", tree_names[s->tree >= 0 && s->tree < 3 ? s->tree : 0]);
         break;
+    case CTP_GRID: snprintf(buf, len, "textbook"); break;
     default: snprintf(buf, len, "?"); break;
     }
     return buf;
@@ -143,6 +145,7 @@ int ctp_run(ctp_peer p, const ct_search_input *in, const ctp_setting *s, ct_pair
     case CTP_NANOFLANN: return ctp_nanoflann_run(in, s, out, t);
     case CTP_CGAL: return ctp_cgal_run(in, s, out, t);
     case CTP_BULLET: return ctp_bullet_run(in, s, out, t);
+    case CTP_GRID: return ctp_grid_run(in, s, out, t);
     default: return CT_ERR_ARG;
     }
 }
@@ -534,7 +537,7 @@ static int verify_settings(ctp_peer p, int threads, ctp_setting *s)
                 s[n].cutoff = cutoffs[k];
                 s[n++].axis_order = a;
             }
-    } else {
+    } else if (p == CTP_BULLET) {
         for (int k = 0; k < 3; k++) {
             s[n] = ctp_default_setting(p, threads);
             s[n++].tree = k;

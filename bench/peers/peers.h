@@ -21,6 +21,11 @@
  *  - bullet: btDbvt (Bullet's dynamic AABB tree) of the segments' boxes
  *    inflated by d, queried by each node's point box (collideTV); queries
  *    on `threads` OpenMP threads (the tree is not modified while queried).
+ *  - grid: not a library but the textbook reference (grid_peer.cc): a
+ *    straightforward single-pass uniform grid of the nodes, each segment's
+ *    inflated box scanning its cells, unordered output; queries on
+ *    `threads` OpenMP threads. It is what "a straightforward grid" costs
+ *    on this machine, measured, not a peer to beat by a factor.
  *
  * The runs are not reentrant: each peer keeps per-thread candidate buffers
  * between calls (like our workspace), so only one run at a time.
@@ -41,6 +46,7 @@ typedef enum ctp_peer {
     CTP_NANOFLANN = 0,
     CTP_CGAL,
     CTP_BULLET,
+    CTP_GRID, /* the textbook reference, not a library */
     CTP_NPEERS
 } ctp_peer;
 
@@ -72,7 +78,7 @@ typedef struct ctp_times {
     int64_t candidates; /* box-level candidates before the exact filter */
 } ctp_times;
 
-/* "nanoflann", "cgal", "bullet"; and the inverse (-1 when unknown). */
+/* "nanoflann", "cgal", "bullet", "grid"; and the inverse (-1 when unknown). */
 const char *ctp_peer_name(ctp_peer p);
 int ctp_peer_from_name(const char *name);
 
@@ -100,8 +106,10 @@ int ctp_cgal_run(const ct_search_input *in, const ctp_setting *s, ct_pairs *out,
                  ctp_times *t);
 int ctp_bullet_run(const ct_search_input *in, const ctp_setting *s, ct_pairs *out,
                    ctp_times *t);
+int ctp_grid_run(const ct_search_input *in, const ctp_setting *s, ct_pairs *out,
+                 ctp_times *t);
 
-/* The one of the three that p names. */
+/* The one that p names. */
 int ctp_run(ctp_peer p, const ct_search_input *in, const ctp_setting *s, ct_pairs *out,
             ctp_times *t);
 
