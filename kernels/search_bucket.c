@@ -26,7 +26,8 @@
  *     cells
  *     (cti_bucket_local):
  *     - secondary order (ordered numberings): blocks of consecutive
- *       positions (BK_QUERY_BLOCKS per thread, handed out dynamically);
+ *       positions (up to BK_QUERY_BLOCKS per thread, handed out
+ *       dynamically);
  *       block 0 writes straight into the output and the other blocks into
  *       buffers of their own, copied after it in parallel: the output is
  *       canonical as written, with no collector and no sort;
@@ -280,10 +281,12 @@ static void bk_place(bk_state *st, const ct_search_input *in, const bk_grid *g, 
  * search_bucket_v0.c, chosen by ct_search_params.variant. */
 int cti_search_bucket_v0(ct_search *s, const ct_search_input *in, ct_pairs *out);
 
-/* Query blocks per thread (secondary order). */
+/* Query blocks per thread at most, and secondaries per block at least
+ * (secondary order). */
 #ifndef BK_QUERY_BLOCKS
 #define BK_QUERY_BLOCKS 8
 #endif
+#define BK_QUERY_MIN 4096
 
 /* Query order: 0 chooses per input (cti_bucket_local), 1 secondary order,
  * 2 cell order. */
@@ -296,11 +299,14 @@ int cti_search_bucket(ct_search *s, const ct_search_input *in, ct_pairs *out)
     if (s->p.variant == 0)
         return cti_search_bucket_v0(s, in, out);
     const int nb = cti_num_threads();
-    /* Query blocks: BK_QUERY_BLOCKS per thread, handed out dynamically, so
-     * a region dense in candidates (a graded mesh's fine corner) does not
-     * hold one thread while the others wait. One thread: one block, which
-     * writes the output directly. */
-    const int nq = nb > 1 ? BK_QUERY_BLOCKS * nb : 1;
+    /* Query blocks: up to BK_QUERY_BLOCKS per thread, handed out
+     * dynamically, so a region dense in candidates (a graded mesh's fine
+     * corner) does not hold one thread while the others wait; at least
+     * BK_QUERY_MIN secondaries each (a small mesh: one block per thread).
+     * One thread: one block, which writes the output directly. */
+    int64_t nqw = in->nsec / BK_QUERY_MIN;
+    nqw = nqw < nb ? nb : (nqw > (int64_t)BK_QUERY_BLOCKS * nb ? (int64_t)BK_QUERY_BLOCKS * nb : nqw);
+    const int nq = nb > 1 ? (int)nqw : 1;
     bk_state *st = bk_get(s, nq);
     if (!st)
         return CT_ERR_NOMEM;
@@ -417,16 +423,23 @@ int cti_search_bucket(ct_search *s, const ct_search_input *in, ct_pairs *out)
     if (rc)
         return rc;
     size_t off = out->n;
+    for (int b = 1; b < nq; b++) {
+        o[b].off = off;
+        off += o[b].n;
+    }
     ct_idx *restrict on = out->node, *restrict os = out->seg;
+    /* One team for all the copies; the blocks' ranges are disjoint, so
+     * their loops need no barrier between them. */
+#pragma omp parallel
     for (int b = 1; b < nq; b++) {
         const ct_idx *restrict bn = o[b].node, *restrict bs = o[b].seg;
         const int64_t n = (int64_t)o[b].n;
-#pragma omp parallel for schedule(static)
+        const size_t ob = o[b].off;
+#pragma omp for schedule(static) nowait
         for (int64_t k = 0; k < n; k++) {
-            on[off + (size_t)k] = bn[k];
-            os[off + (size_t)k] = bs[k];
+            on[ob + (size_t)k] = bn[k];
+            os[ob + (size_t)k] = bs[k];
         }
-        off += (size_t)n;
     }
     out->n = (ct_idx)total;
     return CT_OK;

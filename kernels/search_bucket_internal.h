@@ -28,7 +28,8 @@ void cti_bucket_size(const ct_real lo[3], const ct_real hi[3], ct_idx nseg, doub
 typedef struct bk_out {
     ct_idx *node, *seg;
     size_t n, cap;
-    char pad[64 - 2 * sizeof(ct_idx *) - 2 * sizeof(size_t)];
+    size_t off; /* where the block's pairs go in the output */
+    char pad[64 - 2 * sizeof(ct_idx *) - 3 * sizeof(size_t)];
 } bk_out;
 
 typedef struct bk_state {
