@@ -106,7 +106,7 @@ extern "C" int ctp_bullet_run(const ct_search_input *in, const ctp_setting *s, c
     const ct_real d = in->gap + in->margin;
     const double pad = ctp_pad((double)d, ctp_coord_scale(in));
     int rc = CT_OK;
-    try {
+    ctp::guarded(out, rc, [&] {
         double t0 = seconds();
         btDbvt tree;
         /* Insertion order: natural, or a fixed pseudo-random permutation
@@ -173,13 +173,7 @@ extern "C" int ctp_bullet_run(const ct_search_input *in, const ctp_setting *s, c
         t->candidates = cand;
         t->query_s = seconds() - t1;
         /* The tree's destructor (not timed as either) frees its nodes. */
-    } catch (const std::bad_alloc &) {
-        rc = CT_ERR_NOMEM;
-    } catch (...) {
-        rc = CT_ERR_NOMEM;
-    }
-    if (rc != CT_OK)
-        out->n = 0;
+    });
     return rc;
 }
 

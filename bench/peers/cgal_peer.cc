@@ -67,7 +67,7 @@ extern "C" int ctp_cgal_run(const ct_search_input *in, const ctp_setting *s, ct_
     const ct_real d = in->gap + in->margin;
     const double pad = ctp_pad((double)d, ctp_coord_scale(in));
     int rc = CT_OK;
-    try {
+    ctp::guarded(out, rc, [&] {
         double t0 = seconds();
         const int *ax = ctp_axis_order(s->axis_order >= 0 ? s->axis_order
                                                           : ctp_auto_axis_order(in));
@@ -117,12 +117,6 @@ extern "C" int ctp_cgal_run(const ct_search_input *in, const ctp_setting *s, ct_
         ctp::gather(buffers, out, 0, 1, &rc);
         t->candidates = cand;
         t->query_s = seconds() - t1;
-    } catch (const std::bad_alloc &) {
-        rc = CT_ERR_NOMEM;
-    } catch (...) {
-        rc = CT_ERR_NOMEM;
-    }
-    if (rc != CT_OK)
-        out->n = 0;
+    });
     return rc;
 }

@@ -53,7 +53,7 @@ extern "C" int ctp_grid_run(const ct_search_input *in, const ctp_setting *s, ct_
     const ct_real d = in->gap + in->margin;
     const double pad = ctp_pad((double)d, ctp_coord_scale(in));
     int rc = CT_OK;
-    try {
+    ctp::guarded(out, rc, [&] {
         double t0 = seconds();
         const ct_real *xyz[3] = {in->x, in->y, in->z};
         double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
@@ -162,12 +162,6 @@ extern "C" int ctp_grid_run(const ct_search_input *in, const ctp_setting *s, ct_
         }
         t->candidates = cand;
         t->query_s = seconds() - t1;
-    } catch (const std::bad_alloc &) {
-        rc = CT_ERR_NOMEM;
-    } catch (...) {
-        rc = CT_ERR_NOMEM;
-    }
-    if (rc != CT_OK)
-        out->n = 0;
+    });
     return rc;
 }

@@ -84,7 +84,7 @@ extern "C" int ctp_nanoflann_run(const ct_search_input *in, const ctp_setting *s
     const ct_real d = in->gap + in->margin;
     const double pad = ctp_pad((double)d, ctp_coord_scale(in));
     int rc = CT_OK;
-    try {
+    ctp::guarded(out, rc, [&] {
         /* Build: the points, then the index. */
         double t0 = seconds();
         Cloud cloud;
@@ -154,12 +154,6 @@ extern "C" int ctp_nanoflann_run(const ct_search_input *in, const ctp_setting *s
         }
         t->candidates = cand;
         t->query_s = seconds() - t1;
-    } catch (const std::bad_alloc &) {
-        rc = CT_ERR_NOMEM;
-    } catch (...) {
-        rc = CT_ERR_NOMEM;
-    }
-    if (rc != CT_OK)
-        out->n = 0;
+    });
     return rc;
 }

@@ -167,6 +167,7 @@ double ctp_coord_scale(const ct_search_input *in);
 #endif
 
 #ifdef __cplusplus
+#include <new>
 #include <vector>
 
 namespace ctp {
@@ -183,6 +184,22 @@ struct Buffers {
         count.assign((size_t)nt, 0);
     }
 };
+
+/* Runs a peer's body: an exception (an allocation failure inside the
+ * library) becomes CT_ERR_NOMEM in rc, and on any error the output is
+ * left empty. */
+template <class F> inline void guarded(ct_pairs *out, int &rc, F &&body)
+{
+    try {
+        body();
+    } catch (const std::bad_alloc &) {
+        rc = CT_ERR_NOMEM;
+    } catch (...) {
+        rc = CT_ERR_NOMEM;
+    }
+    if (rc != CT_OK)
+        out->n = 0;
+}
 
 /* Called by every thread t of a team of nt (or by the one thread of a
  * serial run) once its buffer is complete: sizes out, then each thread
