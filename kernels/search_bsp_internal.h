@@ -94,6 +94,18 @@ static inline void box_empty(bsp_box *b)
     }
 }
 
+/* The min/max reductions of bsp_box_of as a simd loop: gcc vectorises them
+ * only when told (they are not fast-math min/max); clang 14 cannot
+ * vectorise this select form at all and, asked to, fails the build
+ * (-Wpass-failed), so it gets the plain loop. The result is the same
+ * either way: min and max do not depend on the order. */
+#if defined(__clang__)
+#define BSP_SIMD_MINMAX
+#else
+#define BSP_SIMD_MINMAX                                                                    \
+    _Pragma("omp simd reduction(min : l0, l1, l2) reduction(max : h0, h1, h2)")
+#endif
+
 /* The tight box of the tree coordinates [i0, i1) (NaN compares false and
  * is left out, as in box_add). */
 static inline void bsp_box_of(const bsp_f *restrict x, const bsp_f *restrict y,
@@ -101,7 +113,7 @@ static inline void bsp_box_of(const bsp_f *restrict x, const bsp_f *restrict y,
 {
     bsp_f l0 = (bsp_f)INFINITY, l1 = (bsp_f)INFINITY, l2 = (bsp_f)INFINITY;
     bsp_f h0 = -(bsp_f)INFINITY, h1 = -(bsp_f)INFINITY, h2 = -(bsp_f)INFINITY;
-#pragma omp simd reduction(min : l0, l1, l2) reduction(max : h0, h1, h2)
+    BSP_SIMD_MINMAX
     for (ct_idx i = i0; i < i1; i++) {
         l0 = x[i] < l0 ? x[i] : l0;
         h0 = x[i] > h0 ? x[i] : h0;
