@@ -76,6 +76,12 @@ STD_KEYS = {"name", "family_index", "per_family_instance_index", "run_name", "ru
 ERROR_HINTS = ["accuracy", "error", "err", "miss", "penetration", "diff", "drift"]
 SIZE = (1200, 750)
 
+
+def peer_title(peer):
+    """A peer's name in a legend; the textbook grid is a reference, not a
+    library (bench/peers/grid_peer.cc)."""
+    return "reference: textbook grid" if peer == "grid" else "peer " + peer
+
 SEARCH_RE = re.compile(
     r"^search/(?P<family>[^/]+)/(?P<algo>[^/]+)/(?P<numbering>[^/]+)/t(?P<threads>\d+)/"
     r"(?P<n>\d+)$")
@@ -312,8 +318,8 @@ def plot_cost(f, out, folder, suffix):
             plots.append("%s using 1:2 with linespoints lc rgb '%s' dt %d pt %d ps 1.2 "
                          "title %s" % (q(name), colour, 1 if t == pt_max else 2,
                                        9 if t == pt_max else 8,
-                                       q("peer %s, %d thread%s"
-                                         % (peer, t, "s" if t > 1 else ""))))
+                                       q("%s, %d thread%s"
+                                         % (peer_title(peer), t, "s" if t > 1 else ""))))
     xmin, xmax = min(xs) / 1.5, max(xs) * 1.5
     floors = [r for r in f["floor"] if r["family"] == family and not r["error"] and
               r["counters"].get("floor_bytes_per_node")]
@@ -394,7 +400,7 @@ def plot_speedup(f, out, folder, suffix):
         name = write_dat(folder, "speedup%s_peer_%s.dat" % (suffix, peer), pts)
         plots.append("%s using 1:2 with linespoints lc rgb '%s' dt 2 pt 9 ps 1.5 title %s"
                      % (q(name), PEER_COLOURS[i % len(PEER_COLOURS)],
-                        q("peer %s (N = %d)" % (peer, n))))
+                        q("%s (N = %d)" % (peer_title(peer), n))))
     lines = ["set title %s noenhanced" % q(
                  "Speed-up from 1 to %d threads, plates, natural numbering, largest N with "
                  "every thread count (%s precision)" % (tmax, f["precision"])),
