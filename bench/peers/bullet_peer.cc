@@ -140,37 +140,25 @@ extern "C" int ctp_bullet_run(const ct_search_input *in, const ctp_setting *s, c
         double t1 = seconds();
         t->build_s = t1 - t0;
 
-        buffers.prepare(nt);
-        int64_t cand = 0;
-#pragma omp parallel num_threads(nt) reduction(+ : cand)
-        {
-            int tid = omp_get_thread_num();
-            std::vector<ct_idx> &buf = buffers.buf[(size_t)tid];
-            buf.clear();
+        auto query = [&](int, std::vector<ct_idx> &buf) {
             Collect col;
             col.in = in;
             col.d = d;
             col.node = 0;
             col.cand = 0;
             col.buf = &buf;
-            try {
 #pragma omp for schedule(dynamic, 1024) nowait
-                for (ct_idx i = 0; i < in->nsec; i++) {
-                    ct_idx k = in->sec[i];
-                    double p[3] = {(double)in->x[k], (double)in->y[k], (double)in->z[k]};
-                    btVector3 mi(down(p[0]), down(p[1]), down(p[2]));
-                    btVector3 mx(up(p[0]), up(p[1]), up(p[2]));
-                    col.node = k;
-                    tree.collideTV(tree.m_root, btDbvtVolume::FromMM(mi, mx), col);
-                }
-            } catch (const std::bad_alloc &) {
-#pragma omp atomic write
-                rc = CT_ERR_NOMEM;
+            for (ct_idx i = 0; i < in->nsec; i++) {
+                ct_idx k = in->sec[i];
+                double p[3] = {(double)in->x[k], (double)in->y[k], (double)in->z[k]};
+                btVector3 mi(down(p[0]), down(p[1]), down(p[2]));
+                btVector3 mx(up(p[0]), up(p[1]), up(p[2]));
+                col.node = k;
+                tree.collideTV(tree.m_root, btDbvtVolume::FromMM(mi, mx), col);
             }
-            cand += col.cand;
-            ctp::gather(buffers, out, tid, nt, &rc);
-        }
-        t->candidates = cand;
+            return col.cand;
+        };
+        t->candidates = ctp::parallel_query(buffers, nt, out, rc, query);
         t->query_s = seconds() - t1;
         /* The tree's destructor (not timed as either) frees its nodes. */
     });

@@ -108,59 +108,49 @@ extern "C" int ctp_grid_run(const ct_search_input *in, const ctp_setting *s, ct_
         double t1 = seconds();
         t->build_s = t1 - t0;
 
-        buffers.prepare(nt);
-        int64_t cand = 0;
-#pragma omp parallel num_threads(nt) reduction(+ : cand)
-        {
-            int tid = omp_get_thread_num();
-            std::vector<ct_idx> &buf = buffers.buf[(size_t)tid];
-            buf.clear();
-            try {
+        auto query = [&](int, std::vector<ct_idx> &buf) {
+            int64_t cand = 0;
 #pragma omp for schedule(dynamic, 1024) nowait
-                for (ct_idx j = 0; j < in->nseg; j++) {
-                    if (in->nsec == 0)
-                        continue;
-                    double a[3], b[3];
-                    ctp_seg_box(in, j, a, b);
-                    int64_t c0[3], c1[3];
-                    bool miss = false;
-                    for (int k = 0; k < 3; k++) {
-                        a[k] -= pad;
-                        b[k] += pad;
-                        miss |= b[k] < lo[k] || a[k] > hi[k];
-                        c0[k] = (int64_t)std::max(0.0, (a[k] - lo[k]) * inv[k]);
-                        c1[k] = std::min<int64_t>(
-                            n[k] - 1, (int64_t)std::max(0.0, (b[k] - lo[k]) * inv[k]));
-                    }
-                    if (miss)
-                        continue;
-                    for (int64_t iz = c0[2]; iz <= c1[2]; iz++)
-                        for (int64_t iy = c0[1]; iy <= c1[1]; iy++)
-                            for (int64_t ix = c0[0]; ix <= c1[0]; ix++) {
-                                int64_t cc = (iz * n[1] + iy) * n[0] + ix;
-                                for (int64_t e = start[(size_t)cc]; e < start[(size_t)cc + 1];
-                                     e++) {
-                                    ct_idx node = in->sec[order[(size_t)e]];
-                                    double p[3] = {(double)in->x[node], (double)in->y[node],
-                                                   (double)in->z[node]};
-                                    if (p[0] < a[0] || p[0] > b[0] || p[1] < a[1] ||
-                                        p[1] > b[1] || p[2] < a[2] || p[2] > b[2])
-                                        continue;
-                                    cand++;
-                                    if (ctp_pair_accept(in, node, j, d)) {
-                                        buf.push_back(node);
-                                        buf.push_back(j);
-                                    }
+            for (ct_idx j = 0; j < in->nseg; j++) {
+                if (in->nsec == 0)
+                    continue;
+                double a[3], b[3];
+                ctp_seg_box(in, j, a, b);
+                int64_t c0[3], c1[3];
+                bool miss = false;
+                for (int k = 0; k < 3; k++) {
+                    a[k] -= pad;
+                    b[k] += pad;
+                    miss |= b[k] < lo[k] || a[k] > hi[k];
+                    c0[k] = (int64_t)std::max(0.0, (a[k] - lo[k]) * inv[k]);
+                    c1[k] = std::min<int64_t>(
+                        n[k] - 1, (int64_t)std::max(0.0, (b[k] - lo[k]) * inv[k]));
+                }
+                if (miss)
+                    continue;
+                for (int64_t iz = c0[2]; iz <= c1[2]; iz++)
+                    for (int64_t iy = c0[1]; iy <= c1[1]; iy++)
+                        for (int64_t ix = c0[0]; ix <= c1[0]; ix++) {
+                            int64_t cc = (iz * n[1] + iy) * n[0] + ix;
+                            for (int64_t e = start[(size_t)cc]; e < start[(size_t)cc + 1];
+                                 e++) {
+                                ct_idx node = in->sec[order[(size_t)e]];
+                                double p[3] = {(double)in->x[node], (double)in->y[node],
+                                               (double)in->z[node]};
+                                if (p[0] < a[0] || p[0] > b[0] || p[1] < a[1] ||
+                                    p[1] > b[1] || p[2] < a[2] || p[2] > b[2])
+                                    continue;
+                                cand++;
+                                if (ctp_pair_accept(in, node, j, d)) {
+                                    buf.push_back(node);
+                                    buf.push_back(j);
                                 }
                             }
-                }
-            } catch (const std::bad_alloc &) {
-#pragma omp atomic write
-                rc = CT_ERR_NOMEM;
+                        }
             }
-            ctp::gather(buffers, out, tid, nt, &rc);
-        }
-        t->candidates = cand;
+            return cand;
+        };
+        t->candidates = ctp::parallel_query(buffers, nt, out, rc, query);
         t->query_s = seconds() - t1;
     });
     return rc;

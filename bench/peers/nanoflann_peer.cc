@@ -105,54 +105,44 @@ extern "C" int ctp_nanoflann_run(const ct_search_input *in, const ctp_setting *s
 
         /* Query: one radius search per segment, the exact filter on each
          * hit, per-thread buffers gathered into out. */
-        buffers.prepare(nt);
         if ((int)hit_lists.size() < nt)
             hit_lists.resize((size_t)nt);
-        int64_t cand = 0;
         const nanoflann::SearchParams sp(32, 0.0f, false);
-#pragma omp parallel num_threads(nt) reduction(+ : cand)
-        {
-            int tid = omp_get_thread_num();
-            std::vector<ct_idx> &buf = buffers.buf[(size_t)tid];
+        auto query = [&](int tid, std::vector<ct_idx> &buf) {
             std::vector<uint32_t> &hits = hit_lists[(size_t)tid];
-            buf.clear();
-            try {
+            int64_t cand = 0;
 #pragma omp for schedule(dynamic, 1024) nowait
-                for (ct_idx j = 0; j < in->nseg; j++) {
-                    if (in->nsec == 0)
-                        continue;
-                    double lo[3], hi[3];
-                    ctp_seg_box(in, j, lo, hi);
-                    ct_real q[3];
-                    double h2 = 0;
-                    for (int k = 0; k < 3; k++) {
-                        q[k] = (ct_real)(0.5 * (lo[k] + hi[k]));
-                        /* Half the extent, measured from the rounded centre. */
-                        double e = std::fmax(hi[k] - (double)q[k], (double)q[k] - lo[k]);
-                        h2 += e * e;
-                    }
-                    double r = std::sqrt(h2) + pad;
-                    /* Squared radius, rounded up by a relative margin so the
-                     * search cannot lose a point on its boundary. */
-                    Hits res{(ct_real)(r * r * (1.0 + 1e-5)), &hits};
-                    hits.clear();
-                    tree.findNeighbors(res, q, sp);
-                    cand += (int64_t)hits.size();
-                    for (uint32_t k : hits) {
-                        ct_idx node = in->sec[k];
-                        if (ctp_pair_accept(in, node, j, d)) {
-                            buf.push_back(node);
-                            buf.push_back(j);
-                        }
+            for (ct_idx j = 0; j < in->nseg; j++) {
+                if (in->nsec == 0)
+                    continue;
+                double lo[3], hi[3];
+                ctp_seg_box(in, j, lo, hi);
+                ct_real q[3];
+                double h2 = 0;
+                for (int k = 0; k < 3; k++) {
+                    q[k] = (ct_real)(0.5 * (lo[k] + hi[k]));
+                    /* Half the extent, measured from the rounded centre. */
+                    double e = std::fmax(hi[k] - (double)q[k], (double)q[k] - lo[k]);
+                    h2 += e * e;
+                }
+                double r = std::sqrt(h2) + pad;
+                /* Squared radius, rounded up by a relative margin so the
+                 * search cannot lose a point on its boundary. */
+                Hits res{(ct_real)(r * r * (1.0 + 1e-5)), &hits};
+                hits.clear();
+                tree.findNeighbors(res, q, sp);
+                cand += (int64_t)hits.size();
+                for (uint32_t k : hits) {
+                    ct_idx node = in->sec[k];
+                    if (ctp_pair_accept(in, node, j, d)) {
+                        buf.push_back(node);
+                        buf.push_back(j);
                     }
                 }
-            } catch (const std::bad_alloc &) {
-#pragma omp atomic write
-                rc = CT_ERR_NOMEM;
             }
-            ctp::gather(buffers, out, tid, nt, &rc);
-        }
-        t->candidates = cand;
+            return cand;
+        };
+        t->candidates = ctp::parallel_query(buffers, nt, out, rc, query);
         t->query_s = seconds() - t1;
     });
     return rc;

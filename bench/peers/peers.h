@@ -167,6 +167,8 @@ double ctp_coord_scale(const ct_search_input *in);
 #endif
 
 #ifdef __cplusplus
+#include <omp.h>
+
 #include <new>
 #include <vector>
 
@@ -237,6 +239,32 @@ inline void gather(Buffers &B, ct_pairs *out, int t, int nt, int *rc)
         out->node[off + k] = src[2 * k];
         out->seg[off + k] = src[2 * k + 1];
     }
+}
+
+/* The parallel query every threaded peer runs: a team of nt threads, each
+ * with its own cleared buffer; body(tid, buf) holds the peer's worksharing
+ * loop (an orphaned `omp for ... nowait`) and returns the box-level
+ * candidates it saw; an allocation failure sets rc; then the buffers are
+ * gathered into out. Returns the candidates of all threads. */
+template <class F>
+inline int64_t parallel_query(Buffers &B, int nt, ct_pairs *out, int &rc, F &&body)
+{
+    B.prepare(nt);
+    int64_t cand = 0;
+#pragma omp parallel num_threads(nt) reduction(+ : cand)
+    {
+        int tid = omp_get_thread_num();
+        std::vector<ct_idx> &buf = B.buf[(size_t)tid];
+        buf.clear();
+        try {
+            cand += body(tid, buf);
+        } catch (const std::bad_alloc &) {
+#pragma omp atomic write
+            rc = CT_ERR_NOMEM;
+        }
+        gather(B, out, tid, nt, &rc);
+    }
+    return cand;
 }
 
 } // namespace ctp
