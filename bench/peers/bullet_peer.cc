@@ -84,10 +84,7 @@ struct Collect : btDbvt::ICollide {
     {
         ct_idx j = (ct_idx)(intptr_t)leaf->data;
         cand++;
-        if (ctp_pair_accept(in, node, j, d)) {
-            buf->push_back(node);
-            buf->push_back(j);
-        }
+        ctp::keep_if_accepted(*buf, in, node, j, d);
     }
 };
 

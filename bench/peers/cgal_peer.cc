@@ -106,10 +106,7 @@ extern "C" int ctp_cgal_run(const ct_search_input *in, const ctp_setting *s, ct_
             cand++;
             ct_idx node = in->sec[nb.ident];
             ct_idx j = (ct_idx)(sb.ident - nsec);
-            if (ctp_pair_accept(in, node, j, d)) {
-                buf.push_back(node);
-                buf.push_back(j);
-            }
+            ctp::keep_if_accepted(buf, in, node, j, d);
         };
         CGAL::box_intersection_d(nodes.begin(), nodes.end(), segs.begin(), segs.end(), callback,
                                  (std::ptrdiff_t)s->cutoff, CGAL::Box_intersection_d::CLOSED,

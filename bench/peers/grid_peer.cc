@@ -141,10 +141,7 @@ extern "C" int ctp_grid_run(const ct_search_input *in, const ctp_setting *s, ct_
                                     p[1] > b[1] || p[2] < a[2] || p[2] > b[2])
                                     continue;
                                 cand++;
-                                if (ctp_pair_accept(in, node, j, d)) {
-                                    buf.push_back(node);
-                                    buf.push_back(j);
-                                }
+                                ctp::keep_if_accepted(buf, in, node, j, d);
                             }
                         }
             }

@@ -134,10 +134,7 @@ extern "C" int ctp_nanoflann_run(const ct_search_input *in, const ctp_setting *s
                 cand += (int64_t)hits.size();
                 for (uint32_t k : hits) {
                     ct_idx node = in->sec[k];
-                    if (ctp_pair_accept(in, node, j, d)) {
-                        buf.push_back(node);
-                        buf.push_back(j);
-                    }
+                    ctp::keep_if_accepted(buf, in, node, j, d);
                 }
             }
             return cand;

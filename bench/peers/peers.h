@@ -203,6 +203,17 @@ template <class F> inline void guarded(ct_pairs *out, int &rc, F &&body)
         out->n = 0;
 }
 
+/* The project's exact filter on pair (node, j), and the pair appended to a
+ * thread's buffer when it passes. */
+inline void keep_if_accepted(std::vector<ct_idx> &buf, const ct_search_input *in, ct_idx node,
+                             ct_idx j, ct_real d)
+{
+    if (ctp_pair_accept(in, node, j, d)) {
+        buf.push_back(node);
+        buf.push_back(j);
+    }
+}
+
 /* Called by every thread t of a team of nt (or by the one thread of a
  * serial run) once its buffer is complete: sizes out, then each thread
  * copies its pairs to its offset. *rc (shared) carries the first error;
