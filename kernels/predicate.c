@@ -216,10 +216,9 @@ static inline int prism_accept(const ct_real p[3], const ct_real a[3], const ct_
  * (the factor 1 + 64 eps): only pairs truly farther than d are rejected,
  * where step 5 would have cost up to four point-triangle distances.
  */
-static inline int hull_far(const ct_real p[3], const ct_real *const corner[4],
-                           const ct_real s[4], const cti_prism *q, ct_real d2)
+static inline int hull_far(const ct_real *const corner[4], const ct_real s[4],
+                           const cti_prism *q, ct_real d2)
 {
-    (void)p;
     if (!q->ok)
         return 0;
     const ct_real lim = d2 * (1 + 64 * CTI_EPS);
@@ -264,7 +263,7 @@ int ct_pair_may_touch(const ct_real p[3], const ct_real a[3], const ct_real b[3]
     for (int k = 0; k < 4; k++)
         if (s[k] < 0 && cti_dist2_point_edge(p, corner[k], corner[(k + 1) & 3]) <= d2)
             return 1;
-    if (hull_far(p, corner, s, &q, d2))
+    if (hull_far(corner, s, &q, d2))
         return 0;
     int tri = (c[0] == e[0] && c[1] == e[1] && c[2] == e[2]);
     if (tri)

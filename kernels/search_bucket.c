@@ -27,10 +27,10 @@
  *     (cti_bucket_local):
  *     - secondary order (ordered numberings): blocks of consecutive
  *       positions (up to BK_QUERY_BLOCKS per thread, handed out
- *       dynamically);
- *       block 0 writes straight into the output and the other blocks into
- *       buffers of their own, copied after it in parallel: the output is
- *       canonical as written, with no collector and no sort;
+ *       dynamically); block 0 writes straight into the output and the
+ *       other blocks into buffers of their own, copied after it in
+ *       parallel: the output is canonical as written, with no collector
+ *       and no sort;
  *     - cell order (scattered numberings, where a node's cell, its list and
  *       its segments' records would all be random accesses): the
  *       secondaries counting-sorted by cell, visited with prefetching, and
@@ -304,8 +304,8 @@ int cti_search_bucket(ct_search *s, const ct_search_input *in, ct_pairs *out)
      * corner) does not hold one thread while the others wait; at least
      * BK_QUERY_MIN secondaries each (a small mesh: one block per thread).
      * One thread: one block, which writes the output directly. */
-    int64_t nqw = in->nsec / BK_QUERY_MIN;
-    nqw = nqw < nb ? nb : (nqw > (int64_t)BK_QUERY_BLOCKS * nb ? (int64_t)BK_QUERY_BLOCKS * nb : nqw);
+    const int64_t nqw =
+        CTI_MAX((int64_t)nb, CTI_MIN((int64_t)BK_QUERY_BLOCKS * nb, in->nsec / BK_QUERY_MIN));
     const int nq = nb > 1 ? (int)nqw : 1;
     bk_state *st = bk_get(s, nq);
     if (!st)
@@ -430,7 +430,7 @@ int cti_search_bucket(ct_search *s, const ct_search_input *in, ct_pairs *out)
     ct_idx *restrict on = out->node, *restrict os = out->seg;
     /* One team for all the copies; the blocks' ranges are disjoint, so
      * their loops need no barrier between them. */
-#pragma omp parallel
+#pragma omp parallel if (nq > 1)
     for (int b = 1; b < nq; b++) {
         const ct_idx *restrict bn = o[b].node, *restrict bs = o[b].seg;
         const int64_t n = (int64_t)o[b].n;
