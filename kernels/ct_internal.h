@@ -104,6 +104,51 @@ static inline int cti_pair_test_f(const ct_real *restrict x, const ct_real *rest
                                    : ct_pair_may_touch(p, a, b, c, e, d);
 }
 
+/* ---- The hull predicate over a batch of pairs (predicate_batch.c) ------ */
+
+/* An integer as wide as ct_real: truth values computed in vector lanes
+ * next to ct_real values (a narrower type would need conversions that
+ * the compiler does not vectorise). */
+#ifdef CT_SINGLE
+typedef int32_t cti_lane;
+#else
+typedef int64_t cti_lane;
+#endif
+
+/* Pairs per batch: the batch's coordinates (15 arrays) stay in L1. */
+#define CTI_PAIR_BATCH 128
+
+/* A batch of candidate pairs and, once loaded, their coordinates. A caller
+ * fills node[], seg[] and n, loads, tests, and reads ok[] (0 or 1). Lives on
+ * the caller's stack or in its workspace: no allocation. */
+typedef struct cti_pair_batch {
+    _Alignas(64) ct_real px[CTI_PAIR_BATCH];
+    ct_real py[CTI_PAIR_BATCH], pz[CTI_PAIR_BATCH];
+    ct_real ax[CTI_PAIR_BATCH], ay[CTI_PAIR_BATCH], az[CTI_PAIR_BATCH];
+    ct_real bx[CTI_PAIR_BATCH], by[CTI_PAIR_BATCH], bz[CTI_PAIR_BATCH];
+    ct_real cx[CTI_PAIR_BATCH], cy[CTI_PAIR_BATCH], cz[CTI_PAIR_BATCH];
+    ct_real ex[CTI_PAIR_BATCH], ey[CTI_PAIR_BATCH], ez[CTI_PAIR_BATCH];
+    ct_idx node[CTI_PAIR_BATCH], seg[CTI_PAIR_BATCH];
+    cti_lane ok[CTI_PAIR_BATCH];
+    int n;
+    int64_t nscalar; /* pairs left to the one-pair predicate, summed */
+} cti_pair_batch;
+
+/* Load the coordinates of the batch's pairs: the corners by the segments'
+ * node indices, or (_rec) from 12-value corner records per segment. The
+ * indices must be valid (the caller checked them). */
+void cti_pair_batch_load(cti_pair_batch *restrict b, const ct_real *restrict x,
+                         const ct_real *restrict y, const ct_real *restrict z,
+                         const ct_idx *restrict n1, const ct_idx *restrict n2,
+                         const ct_idx *restrict n3, const ct_idx *restrict n4);
+void cti_pair_batch_load_rec(cti_pair_batch *restrict b, const ct_real *restrict x,
+                             const ct_real *restrict y, const ct_real *restrict z,
+                             const ct_real *restrict rec);
+
+/* ok[k] = ct_pair_may_touch of pair k at distance d, for k < n: the same
+ * answer, bit for bit, decided mostly in vector lanes. */
+void cti_pair_batch_test(cti_pair_batch *restrict b, ct_real d);
+
 /* The hull predicate (kept for callers that do not choose a filter). */
 static inline int cti_pair_test(const ct_real *restrict x, const ct_real *restrict y,
                                 const ct_real *restrict z, ct_idx node, ct_idx i1,

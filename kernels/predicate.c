@@ -24,6 +24,7 @@
  * search, which is what makes their pair sets identical.
  */
 #include "ct_internal.h"
+#include "predicate_steps.h"
 
 static inline ct_real dot3(const ct_real a[3], const ct_real b[3])
 {
@@ -39,16 +40,8 @@ static inline void sub3(ct_real r[3], const ct_real a[3], const ct_real b[3])
 
 ct_real cti_dist2_point_edge(const ct_real p[3], const ct_real a[3], const ct_real b[3])
 {
-    ct_real ab[3], ap[3];
-    sub3(ab, b, a);
-    sub3(ap, p, a);
-    ct_real l2 = dot3(ab, ab), t = 0;
-    if (l2 > 0) {
-        t = dot3(ap, ab) / l2;
-        t = t < 0 ? 0 : (t > 1 ? 1 : t);
-    }
-    ct_real r[3] = {ap[0] - t * ab[0], ap[1] - t * ab[1], ap[2] - t * ab[2]};
-    return dot3(r, r);
+    const cti_pv P = {p[0], p[1], p[2]}, A = {a[0], a[1], a[2]}, B = {b[0], b[1], b[2]};
+    return cti_step_edge2(P, A, B);
 }
 
 /* Closest point of a triangle by its Voronoi regions (vertex, edge, face),
@@ -114,93 +107,34 @@ static inline ct_real orient3(const ct_real a[3], const ct_real b[3], const ct_r
     return triple(ab, ac, ap);
 }
 
-/* Squared Euclidean distance from p to the corners' axis-aligned box, or -1
- * when p is outside the box inflated by d (then it is surely farther). */
-static inline ct_real box_dist2(const ct_real p[3], const ct_real a[3], const ct_real b[3],
-                                const ct_real c[3], const ct_real e[3], ct_real d)
+static inline cti_pv pv_of(const ct_real v[3])
 {
-    ct_real box2 = 0;
-    for (int k = 0; k < 3; k++) {
-        ct_real lo = CTI_MIN(CTI_MIN(a[k], b[k]), CTI_MIN(c[k], e[k]));
-        ct_real hi = CTI_MAX(CTI_MAX(a[k], b[k]), CTI_MAX(c[k], e[k]));
-        if (p[k] < lo - d || p[k] > hi + d)
-            return -1;
-        ct_real ex = p[k] < lo ? lo - p[k] : (p[k] > hi ? p[k] - hi : 0);
-        box2 += ex * ex;
-    }
-    return box2;
+    cti_pv r = {v[0], v[1], v[2]};
+    return r;
 }
 
 int ct_pair_box_near(const ct_real p[3], const ct_real a[3], const ct_real b[3],
                      const ct_real c[3], const ct_real e[3], ct_real d)
 {
-    ct_real box2 = box_dist2(p, a, b, c, e, d);
+    ct_real box2 = cti_step_box(pv_of(p), pv_of(a), pv_of(b), pv_of(c), pv_of(e), d);
     return box2 >= 0 && box2 <= d * d;
 }
 
-/* What the prism test leaves for the reject step: n (the diagonals'
- * normal), |n|^2, and h = how far p lies outside the slab of the corners'
- * heights along n, times |n|; ok = 0 when n was not usable. */
-typedef struct cti_prism {
-    ct_real n[3], nn, h;
-    int ok;
-} cti_prism;
-
 /*
- * Step 3, the prism test. n = (c - a) x (e - b), the diagonals' normal, is
- * the quad's vector area times 2 (for a triangle, e == c, it is the
- * triangle's normal), so the corners projected along n form a polygon of
- * positive area about n. When p is on the inner side (about n) of all four
- * edges, the angle each edge subtends from p is in [0, pi] and they add up
- * to 2 pi times the winding number, which is then at least 1: p projects
- * into the polygon, hence into the projected hull, and the hull point q
- * straight along n from p has a height between the corners' heights, so
- * |p - q| <= max_k |(p - P_k) . n| / |n|. Accept when that is <= d. A
- * triangle's zero edge e - c gives 0, which the test allows. When the
- * diagonals are within about 6 degrees of parallel (a collapsed or needle
- * quad) the rounding of n would tilt it: not decided here.
+ * Step 3, the prism test (cti_step_prism). n = (c - a) x (e - b), the
+ * diagonals' normal, is the quad's vector area times 2 (for a triangle,
+ * e == c, it is the triangle's normal), so the corners projected along n
+ * form a polygon of positive area about n. When p is on the inner side
+ * (about n) of all four edges, the angle each edge subtends from p is in
+ * [0, pi] and they add up to 2 pi times the winding number, which is then
+ * at least 1: p projects into the polygon, hence into the projected hull,
+ * and the hull point q straight along n from p has a height between the
+ * corners' heights, so |p - q| <= max_k |(p - P_k) . n| / |n|. Accept when
+ * that is <= d. A triangle's zero edge e - c gives 0, which the test
+ * allows. When the diagonals are within about 6 degrees of parallel (a
+ * collapsed or needle quad) the rounding of n would tilt it: not decided
+ * there.
  */
-static inline int prism_accept(const ct_real p[3], const ct_real a[3], const ct_real b[3],
-                               const ct_real c[3], const ct_real e[3], ct_real d2,
-                               ct_real s[4], cti_prism *q)
-{
-    ct_real ac[3], be[3], n[3];
-    sub3(ac, c, a);
-    sub3(be, e, b);
-    n[0] = ac[1] * be[2] - ac[2] * be[1];
-    n[1] = ac[2] * be[0] - ac[0] * be[2];
-    n[2] = ac[0] * be[1] - ac[1] * be[0];
-    ct_real nn = dot3(n, n);
-    q->ok = 0;
-    if (!(nn > (ct_real)1e-2 * dot3(ac, ac) * dot3(be, be))) {
-        s[0] = s[1] = s[2] = s[3] = -1;
-        return 0;
-    }
-    ct_real pa[3], pb[3], pc[3], pe[3], ab[3], bc[3], ce[3], ea[3];
-    sub3(pa, p, a);
-    sub3(pb, p, b);
-    sub3(pc, p, c);
-    sub3(pe, p, e);
-    sub3(ab, b, a);
-    sub3(bc, c, b);
-    sub3(ce, e, c);
-    sub3(ea, a, e);
-    s[0] = triple(ab, pa, n);
-    s[1] = triple(bc, pb, n);
-    s[2] = triple(ce, pc, n);
-    s[3] = triple(ea, pe, n);
-    ct_real h1 = dot3(pa, n), h2 = dot3(pb, n), h3 = dot3(pc, n), h4 = dot3(pe, n);
-    ct_real hmax = CTI_MAX(CTI_MAX(h1 * h1, h2 * h2), CTI_MAX(h3 * h3, h4 * h4));
-    /* For the reject step: how far p is outside the slab of the corners'
-     * heights (times |n|), and n. */
-    ct_real lo = CTI_MIN(CTI_MIN(h1, h2), CTI_MIN(h3, h4));
-    ct_real hi = CTI_MAX(CTI_MAX(h1, h2), CTI_MAX(h3, h4));
-    q->h = lo > 0 ? lo : (hi < 0 ? -hi : 0);
-    q->nn = nn;
-    q->n[0] = n[0], q->n[1] = n[1], q->n[2] = n[2];
-    q->ok = 1;
-    return (s[0] >= 0) & (s[1] >= 0) & (s[2] >= 0) & (s[3] >= 0) & (hmax <= d2 * nn);
-}
 
 /*
  * Step 4b, a reject: a lower bound of the distance to the hull, from the
@@ -232,9 +166,9 @@ static inline int hull_far(const ct_real *const corner[4], const ct_real s[4],
         const ct_real *P = corner[k], *R = corner[(k + 1) & 3];
         ct_real ek[3], m[3], u[3], v[3];
         sub3(ek, R, P);
-        m[0] = q->n[1] * ek[2] - q->n[2] * ek[1];
-        m[1] = q->n[2] * ek[0] - q->n[0] * ek[2];
-        m[2] = q->n[0] * ek[1] - q->n[1] * ek[0];
+        m[0] = q->n.y * ek[2] - q->n.z * ek[1];
+        m[1] = q->n.z * ek[0] - q->n.x * ek[2];
+        m[2] = q->n.x * ek[1] - q->n.y * ek[0];
         ct_real mm = dot3(m, m);
         sub3(u, corner[(k + 2) & 3], P);
         sub3(v, corner[(k + 3) & 3], P);
@@ -249,20 +183,18 @@ static inline int hull_far(const ct_real *const corner[4], const ct_real s[4],
 int ct_pair_may_touch(const ct_real p[3], const ct_real a[3], const ct_real b[3],
                       const ct_real c[3], const ct_real e[3], ct_real d)
 {
-    ct_real d2 = d * d, box2 = box_dist2(p, a, b, c, e, d);
+    const cti_pv P = pv_of(p), A = pv_of(a), B = pv_of(b), C = pv_of(c), E = pv_of(e);
+    ct_real d2 = d * d, box2 = cti_step_box(P, A, B, C, E, d);
     if (box2 < 0 || box2 > d2)
         return 0;
-    ct_real s[4];
-    cti_prism q = {{0, 0, 0}, 0, 0, 0};
-    if (prism_accept(p, a, b, c, e, d2, s, &q))
+    /* Step 3, then step 4: the edges lie in the hull. On a flat convex quad
+     * the nearest hull point of an outside p is on an edge p is outside of;
+     * the other edges belong to the faces step 5 tests. */
+    const cti_prism q = cti_step_prism(P, A, B, C, E, d2);
+    if (q.accept || cti_step_edges(P, A, B, C, E, d2, q))
         return 1;
-    /* Step 4: the edges lie in the hull. On a flat convex quad the nearest
-     * hull point of an outside p is on an edge p is outside of; the other
-     * edges belong to the faces step 5 tests. */
     const ct_real *corner[4] = {a, b, c, e};
-    for (int k = 0; k < 4; k++)
-        if (s[k] < 0 && cti_dist2_point_edge(p, corner[k], corner[(k + 1) & 3]) <= d2)
-            return 1;
+    const ct_real s[4] = {q.s0, q.s1, q.s2, q.s3}; /* used when q.ok */
     if (hull_far(corner, s, &q, d2))
         return 0;
     int tri = (c[0] == e[0] && c[1] == e[1] && c[2] == e[2]);

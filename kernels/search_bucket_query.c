@@ -113,6 +113,68 @@ static inline ct_idx bk_cands(const bk_ctx *restrict k, ct_idx node, ct_real X, 
     return n;
 }
 
+/* The hull filter in batches: decide the pending candidates of pb
+ * (cti_pair_batch_test) and append the accepted ones, in their order, to
+ * w, which has room for all of them. */
+static void bk_flush(const bk_ctx *restrict k, cti_pair_batch *restrict pb, bk_out *restrict w)
+{
+    if (k->srec)
+        cti_pair_batch_load_rec(pb, k->x, k->y, k->z, k->srec);
+    else
+        cti_pair_batch_load(pb, k->x, k->y, k->z, k->n1, k->n2, k->n3, k->n4);
+    cti_pair_batch_test(pb, k->d);
+    size_t n = w->n;
+    ct_idx *restrict on = w->node, *restrict os = w->seg;
+    const cti_lane *restrict ok = pb->ok;
+    for (int q = 0; q < pb->n; q++) {
+        on[n] = pb->node[q];
+        os[n] = pb->seg[q];
+        n += (size_t)ok[q];
+    }
+    w->n = n;
+    pb->n = 0;
+}
+
+/* As bk_cands for the hull filter, in batches: node `node`'s candidates of
+ * entries e0 to e1 - 1 that pass the float pre-test join the batch pb,
+ * which is decided whenever it fills; w has room for pb's pending pairs
+ * and e1 - e0 more. */
+static inline void bk_cands_batch(const bk_ctx *restrict k, ct_idx node, ct_real X, ct_real Y,
+                                  ct_real Z, ct_idx e0, ct_idx e1, cti_pair_batch *restrict pb,
+                                  bk_out *restrict w)
+{
+    const ct_idx *restrict ent = k->ent;
+    const float *restrict fbox = k->fbox;
+    const float fx = (float)X, fy = (float)Y, fz = (float)Z;
+#if defined(__AVX__)
+    const __m256 pv = _mm256_setr_ps(fx, fy, fz, 0, -fx, -fy, -fz, 0);
+#endif
+    int m = pb->n;
+    for (ct_idx e = e0; e < e1; e++) {
+        const ct_idx j = ent[e];
+#if defined(__AVX__)
+        const __m256 fb = _mm256_loadu_ps(fbox + (size_t)8 * j);
+        int pass = !_mm256_movemask_ps(_mm256_cmp_ps(pv, fb, _CMP_LT_OQ));
+#else
+        const float *restrict f = fbox + (size_t)8 * j;
+        int pass = !(fx < f[0] || fy < f[1] || fz < f[2] || -fx < f[4] || -fy < f[5] ||
+                     -fz < f[6]);
+#endif
+        if (k->self)
+            pass &= !(node == k->n1[j] || node == k->n2[j] || node == k->n3[j] ||
+                      node == k->n4[j]);
+        pb->node[m] = node;
+        pb->seg[m] = j;
+        m += pass;
+        if (m == CTI_PAIR_BATCH) {
+            pb->n = m;
+            bk_flush(k, pb, w);
+            m = 0;
+        }
+    }
+    pb->n = m;
+}
+
 /* Pass 6, secondary order: blocks of consecutive positions; block 0 writes
  * into o[0] (the output's arrays), block b > 0 into o[b]. Also checks the
  * secondaries' indices and coordinates. Returns BK_E* bits. */
@@ -127,11 +189,15 @@ int cti_bucket_query_direct(const bk_state *st, const ct_search_input *in, const
     const uint32_t nnode = (uint32_t)in->nnode;
     bk_ctx k;
     bk_ctx_init(&k, st, in);
+    const int batch = !k.boxf;
     int err = 0;
 #pragma omp parallel for schedule(dynamic, 1) reduction(| : err)
     for (int b = 0; b < nb; b++) {
         bk_out w = o[b];
         w.n = 0;
+        cti_pair_batch pb;
+        pb.n = 0;
+        pb.nscalar = 0;
         ct_idx lo = (ct_idx)((int64_t)nsec * b / nb);
         ct_idx hi = (ct_idx)((int64_t)nsec * (b + 1) / nb);
         for (ct_idx i = lo; i < hi; i++) {
@@ -153,17 +219,23 @@ int cti_bucket_query_direct(const bk_state *st, const ct_search_input *in, const
             ct_idx iz = bk_cell1(Z, g->lo[2], g->inv[2], nz - 1);
             size_t c = ((size_t)iz * ny + iy) * nx + ix;
             ct_idx e0 = start[c], e1 = start[c + 1];
-            /* Room for every candidate of this cell. */
-            if (w.n + (size_t)(e1 - e0) > w.cap &&
-                cti_bucket_out_grow(&w, w.n + (size_t)(e1 - e0))) {
+            /* Room for every candidate of this cell and the batch's. */
+            const size_t need = w.n + (size_t)pb.n + (size_t)(e1 - e0);
+            if (need > w.cap && cti_bucket_out_grow(&w, need)) {
                 err |= BK_ENOMEM;
                 break;
+            }
+            if (batch) {
+                bk_cands_batch(&k, node, X, Y, Z, e0, e1, &pb, &w);
+                continue;
             }
             ct_idx m = bk_cands(&k, node, X, Y, Z, e0, e1, w.seg + w.n);
             for (ct_idx q = 0; q < m; q++)
                 w.node[w.n + q] = node;
             w.n += (size_t)m;
         }
+        if (pb.n > 0 && !(err & BK_ENOMEM))
+            bk_flush(&k, &pb, &w);
         o[b] = w;
     }
     return err;

@@ -1,0 +1,130 @@
+/*
+ * predicate_steps.h -- the steps of the hull predicate (predicate.c) as
+ * branch-free inline functions on scalars, shared by the one-pair predicate
+ * (ct_pair_may_touch) and the batch predicate (predicate_batch.c), which
+ * runs them in SIMD lanes. Both compile the very same expressions, so a
+ * step decides a pair identically in either; that is what lets a search
+ * use the batch and still return the pair set of the direct search bit for
+ * bit. Not part of any API.
+ */
+#ifndef CT_PREDICATE_STEPS_H
+#define CT_PREDICATE_STEPS_H
+
+#include "ct_internal.h"
+
+/* A point or vector, passed by value (the compiler splits it into
+ * scalars, in a vector loop into lanes). */
+typedef struct cti_pv {
+    ct_real x, y, z;
+} cti_pv;
+
+static inline cti_pv cti_pv_sub(cti_pv a, cti_pv b)
+{
+    cti_pv r = {a.x - b.x, a.y - b.y, a.z - b.z};
+    return r;
+}
+
+static inline ct_real cti_pv_dot(cti_pv a, cti_pv b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+
+/* (u x v) . w */
+static inline ct_real cti_pv_triple(cti_pv u, cti_pv v, cti_pv w)
+{
+    return w.x * (u.y * v.z - u.z * v.y) + w.y * (u.z * v.x - u.x * v.z) +
+           w.z * (u.x * v.y - u.y * v.x);
+}
+
+/* Squared distance from p to the segment a b. */
+static inline ct_real cti_step_edge2(cti_pv p, cti_pv a, cti_pv b)
+{
+    cti_pv ab = cti_pv_sub(b, a), ap = cti_pv_sub(p, a);
+    ct_real l2 = cti_pv_dot(ab, ab);
+    ct_real t = cti_pv_dot(ap, ab) / l2;
+    t = t < 0 ? 0 : (t > 1 ? 1 : t);
+    t = l2 > 0 ? t : 0;
+    cti_pv r = {ap.x - t * ab.x, ap.y - t * ab.y, ap.z - t * ab.z};
+    return cti_pv_dot(r, r);
+}
+
+/* One axis of steps 1 and 2: the box [lo, hi] of the four corners'
+ * coordinates; *out set when v is outside it inflated by d; returns the
+ * squared distance from v to it. */
+static inline ct_real cti_step_axis(ct_real v, ct_real a, ct_real b, ct_real c, ct_real e,
+                                    ct_real d, cti_lane *out)
+{
+    ct_real lo = CTI_MIN(CTI_MIN(a, b), CTI_MIN(c, e));
+    ct_real hi = CTI_MAX(CTI_MAX(a, b), CTI_MAX(c, e));
+    *out |= (v < lo - d) | (v > hi + d);
+    ct_real ex = v < lo ? lo - v : (v > hi ? v - hi : 0);
+    return ex * ex;
+}
+
+/* Steps 1 and 2: the squared Euclidean distance from p to the corners' box,
+ * or -1 when p is outside the box inflated by d (then surely farther). */
+static inline ct_real cti_step_box(cti_pv p, cti_pv a, cti_pv b, cti_pv c, cti_pv e, ct_real d)
+{
+    cti_lane out = 0;
+    ct_real bx = cti_step_axis(p.x, a.x, b.x, c.x, e.x, d, &out);
+    ct_real by = cti_step_axis(p.y, a.y, b.y, c.y, e.y, d, &out);
+    ct_real bz = cti_step_axis(p.z, a.z, b.z, c.z, e.z, d, &out);
+    ct_real box2 = (bx + by) + bz;
+    return out ? -1 : box2;
+}
+
+/* What the prism test finds: accept (1 when p lies over the segment within
+ * d of every corner's height); the four edge sides s0..s3 (which count only
+ * when ok: otherwise p is taken to be outside every edge); and, for the reject step, n (the
+ * diagonals' normal), |n|^2 and h = how far p lies outside the slab of the
+ * corners' heights along n, times |n|; ok = 0 when n was not usable.
+ * Returned by value, so that the compiler keeps it in registers (in a
+ * vector loop, in lanes). */
+typedef struct cti_prism {
+    ct_real s0, s1, s2, s3;
+    cti_pv n;
+    ct_real nn, h;
+    cti_lane ok, accept;
+} cti_prism;
+
+/* Step 3, the prism test (the argument is at its use in predicate.c). */
+static inline cti_prism cti_step_prism(cti_pv p, cti_pv a, cti_pv b, cti_pv c, cti_pv e,
+                                       ct_real d2)
+{
+    cti_prism q;
+    cti_pv ac = cti_pv_sub(c, a), be = cti_pv_sub(e, b);
+    cti_pv n = {ac.y * be.z - ac.z * be.y, ac.z * be.x - ac.x * be.z, ac.x * be.y - ac.y * be.x};
+    ct_real nn = cti_pv_dot(n, n);
+    cti_lane ok = nn > (ct_real)1e-2 * cti_pv_dot(ac, ac) * cti_pv_dot(be, be);
+    cti_pv pa = cti_pv_sub(p, a), pb = cti_pv_sub(p, b), pc = cti_pv_sub(p, c),
+           pe = cti_pv_sub(p, e);
+    cti_pv ab = cti_pv_sub(b, a), bc = cti_pv_sub(c, b), ce = cti_pv_sub(e, c),
+           ea = cti_pv_sub(a, e);
+    ct_real s0 = cti_pv_triple(ab, pa, n), s1 = cti_pv_triple(bc, pb, n);
+    ct_real s2 = cti_pv_triple(ce, pc, n), s3 = cti_pv_triple(ea, pe, n);
+    ct_real h1 = cti_pv_dot(pa, n), h2 = cti_pv_dot(pb, n), h3 = cti_pv_dot(pc, n),
+            h4 = cti_pv_dot(pe, n);
+    ct_real hmax = CTI_MAX(CTI_MAX(h1 * h1, h2 * h2), CTI_MAX(h3 * h3, h4 * h4));
+    ct_real lo = CTI_MIN(CTI_MIN(h1, h2), CTI_MIN(h3, h4));
+    ct_real hi = CTI_MAX(CTI_MAX(h1, h2), CTI_MAX(h3, h4));
+    q.h = lo > 0 ? lo : (hi < 0 ? -hi : 0);
+    q.nn = nn;
+    q.n = n;
+    q.ok = ok;
+    q.s0 = s0, q.s1 = s1, q.s2 = s2, q.s3 = s3;
+    q.accept = ok & (s0 >= 0) & (s1 >= 0) & (s2 >= 0) & (s3 >= 0) & (hmax <= d2 * nn);
+    return q;
+}
+
+/* Step 4: 1 when a point of an edge that p is outside of (side < 0) is
+ * within d. All four edges are measured (no early exit, so that the step
+ * runs in vector lanes); the answer is the same. */
+static inline cti_lane cti_step_edges(cti_pv p, cti_pv a, cti_pv b, cti_pv c, cti_pv e, ct_real d2,
+                                 const cti_prism q)
+{
+    const cti_lane all = q.ok - 1; /* all ones when n is not usable */
+    cti_lane e0 = ((q.s0 < 0) | all) & (cti_step_edge2(p, a, b) <= d2);
+    cti_lane e1 = ((q.s1 < 0) | all) & (cti_step_edge2(p, b, c) <= d2);
+    cti_lane e2 = ((q.s2 < 0) | all) & (cti_step_edge2(p, c, e) <= d2);
+    cti_lane e3 = ((q.s3 < 0) | all) & (cti_step_edge2(p, e, a) <= d2);
+    return (e0 | e1 | e2 | e3) & 1;
+}
+
+#endif
