@@ -120,3 +120,28 @@ void cti_pair_batch_test(cti_pair_batch *restrict b, ct_real d)
         ok[k] = ct_pair_may_touch(p, a, bb, c, e, d);
     }
 }
+
+void cti_pair_batch_collect(cti_pair_batch *restrict pb, const ct_idx *restrict pos,
+                            const ct_search_input *in, ct_real d, cti_collect *col, int t,
+                            size_t *len, ct_idx *last)
+{
+    cti_pair_batch_load(pb, in->x, in->y, in->z, in->n1, in->n2, in->n3, in->n4);
+    cti_pair_batch_test(pb, d);
+    ct_idx *restrict buf = col->buf[t];
+    size_t l = *len;
+    for (int q = 0; q < pb->n; q++) {
+        if (!pb->ok[q])
+            continue;
+        const ct_idx p = pos[q];
+        if (p != *last) {
+            col->owner[p] = t;
+            col->start[p] = (int64_t)l;
+            col->count[p] = 0;
+            *last = p;
+        }
+        buf[l++] = pb->seg[q];
+        col->count[p]++;
+    }
+    *len = l;
+    pb->n = 0;
+}

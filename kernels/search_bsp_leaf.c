@@ -180,10 +180,17 @@ void cti_bsp_leaf(bsp_ctx *c, ct_idx n0, ct_idx n1, const ct_idx *restrict segs,
         hit[q] = 0;
     const ct_real *restrict x = in->x, *restrict y = in->y, *restrict z = in->z;
     size_t len = col->len[t];
+    /* Hull filter: the candidates that pass the box test go through the
+     * batch predicate; the box filter decides them here, one by one. */
+    const int batch = in->filter != CT_FILTER_BOX;
+    cti_pair_batch pb;
+    ct_idx bpos[CTI_PAIR_BATCH], last = -1;
+    pb.n = 0;
+    pb.nscalar = 0;
     for (ct_idx k = n0; k < n1; k++) {
-        if (len + (size_t)ns > col->cap[t]) {
+        if (len + (size_t)pb.n + (size_t)ns > col->cap[t]) {
             col->len[t] = len;
-            if (cti_collect_room(col, t, (size_t)ns) != CT_OK)
+            if (cti_collect_room(col, t, (size_t)pb.n + (size_t)ns) != CT_OK)
                 return;
         }
         ct_idx *restrict buf = col->buf[t];
@@ -201,17 +208,29 @@ void cti_bsp_leaf(bsp_ctx *c, ct_idx n0, ct_idx n1, const ct_idx *restrict segs,
                 ct_idx q = q0 + (ct_idx)(__builtin_ctzll(m) >> 3);
                 m &= m - 1;
                 ct_idx j = segs[q];
+                if (batch) {
+                    if (in->self && (node == in->n1[j] || node == in->n2[j] ||
+                                     node == in->n3[j] || node == in->n4[j]))
+                        continue;
+                    pb.node[pb.n] = node;
+                    pb.seg[pb.n] = j;
+                    bpos[pb.n++] = pos;
+                    if (pb.n == CTI_PAIR_BATCH)
+                        cti_pair_batch_collect(&pb, bpos, in, c->d, col, t, &len, &last);
+                    continue;
+                }
                 if (cti_pair_test_f(x, y, z, node, in->n1[j], in->n2[j], in->n3[j], in->n4[j],
                                     c->d, in->self, in->filter))
                     buf[len++] = j;
             }
         }
-        if (len > start) {
+        if (!batch && len > start) {
             col->owner[pos] = t;
             col->start[pos] = (int64_t)start;
             col->count[pos] = (ct_idx)(len - start);
         }
     }
+    if (pb.n > 0)
+        cti_pair_batch_collect(&pb, bpos, in, c->d, col, t, &len, &last);
     col->len[t] = len;
 }
-

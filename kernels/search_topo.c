@@ -309,10 +309,16 @@ int cti_search_topo(ct_search *s, const ct_search_input *in, ct_pairs *out)
     const ct_real *restrict x = in->x, *restrict y = in->y, *restrict z = in->z;
     const ct_idx *restrict off = st->off, *restrict adj = st->adj;
     const ct_real d = in->gap + in->margin;
+    /* Hull filter: a node's candidates go through the batch predicate. */
+    const int batch = in->filter != CT_FILTER_BOX;
 #pragma omp parallel
     {
         const int t = cti_thread_id();
         size_t len = col->len[t];
+        cti_pair_batch pb;
+        ct_idx bpos[CTI_PAIR_BATCH], last = -1;
+        pb.n = 0;
+        pb.nscalar = 0;
 #pragma omp for schedule(static)
         for (ct_idx i = 0; i < in->nsec; i++) {
             ct_idx m = st->closest[i];
@@ -340,10 +346,24 @@ int cti_search_topo(ct_search *s, const ct_search_input *in, ct_pairs *out)
                 st->closest[i] = m;
             }
             const ct_idx deg = off[m + 1] - off[m];
-            if (len + (size_t)deg > col->cap[t]) {
+            if (len + (size_t)pb.n + (size_t)deg > col->cap[t]) {
                 col->len[t] = len;
-                if (cti_collect_room(col, t, (size_t)deg) != CT_OK)
+                if (cti_collect_room(col, t, (size_t)pb.n + (size_t)deg) != CT_OK)
                     continue; /* col->err is set */
+            }
+            if (batch) {
+                for (ct_idx q = off[m]; q < off[m + 1]; q++) {
+                    const ct_idx j = adj[q];
+                    if (in->self && (node == in->n1[j] || node == in->n2[j] ||
+                                     node == in->n3[j] || node == in->n4[j]))
+                        continue;
+                    pb.node[pb.n] = node;
+                    pb.seg[pb.n] = j;
+                    bpos[pb.n++] = i;
+                    if (pb.n == CTI_PAIR_BATCH)
+                        cti_pair_batch_collect(&pb, bpos, in, d, col, t, &len, &last);
+                }
+                continue;
             }
             ct_idx *restrict buf = col->buf[t];
             size_t start = len;
@@ -359,6 +379,8 @@ int cti_search_topo(ct_search *s, const ct_search_input *in, ct_pairs *out)
                 col->count[i] = (ct_idx)(len - start);
             }
         }
+        if (pb.n > 0)
+            cti_pair_batch_collect(&pb, bpos, in, d, col, t, &len, &last);
         col->len[t] = len;
     }
     if (col->err) {
