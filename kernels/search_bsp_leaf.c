@@ -216,7 +216,7 @@ void cti_bsp_leaf(bsp_ctx *c, ct_idx n0, ct_idx n1, const ct_idx *restrict segs,
                     pb.seg[pb.n] = j;
                     bpos[pb.n++] = pos;
                     if (pb.n == CTI_PAIR_BATCH)
-                        cti_pair_batch_collect(&pb, bpos, in, c->d, col, t, &len, &last);
+                        cti_pair_batch_collect(&pb, bpos, in, NULL, c->d, col, t, &len, &last);
                     continue;
                 }
                 if (cti_pair_test_f(x, y, z, node, in->n1[j], in->n2[j], in->n3[j], in->n4[j],
@@ -231,6 +231,6 @@ void cti_bsp_leaf(bsp_ctx *c, ct_idx n0, ct_idx n1, const ct_idx *restrict segs,
         }
     }
     if (pb.n > 0)
-        cti_pair_batch_collect(&pb, bpos, in, c->d, col, t, &len, &last);
+        cti_pair_batch_collect(&pb, bpos, in, NULL, c->d, col, t, &len, &last);
     col->len[t] = len;
 }

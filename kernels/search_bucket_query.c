@@ -46,67 +46,73 @@ static void bk_ctx_init(bk_ctx *k, const bk_state *st, const ct_search_input *in
     k->boxf = in->filter == CT_FILTER_BOX;
 }
 
-/* Node `node` at (X, Y, Z) against the segments of its cell, entries e0 to
- * e1 - 1: writes the accepted ones, in increasing order, to out and returns
- * their number. */
-static inline ct_idx bk_cands(const bk_ctx *restrict k, ct_idx node, ct_real X, ct_real Y,
-                              ct_real Z, ct_idx e0, ct_idx e1, ct_idx *restrict out)
+/* The float pre-test, branch-free: 1 when node `node` at the float point
+ * pv (x y z 0 -x -y -z 0) may pair with segment j (and, for self contact,
+ * j is not one of the node's own segments). Rounding is monotone and the
+ * float box is rounded outward, so a node that passes the predicate's
+ * first step passes it; with AVX, one compare of 8 lanes. */
+#if defined(__AVX__)
+typedef __m256 bk_fpoint;
+static inline bk_fpoint bk_fpoint_of(ct_real X, ct_real Y, ct_real Z)
+{
+    const float fx = (float)X, fy = (float)Y, fz = (float)Z;
+    return _mm256_setr_ps(fx, fy, fz, 0, -fx, -fy, -fz, 0);
+}
+#else
+typedef struct bk_fpoint {
+    float x, y, z;
+} bk_fpoint;
+static inline bk_fpoint bk_fpoint_of(ct_real X, ct_real Y, ct_real Z)
+{
+    bk_fpoint p = {(float)X, (float)Y, (float)Z};
+    return p;
+}
+#endif
+
+static inline int bk_pretest(const bk_ctx *restrict k, bk_fpoint pv, ct_idx node, ct_idx j)
+{
+#if defined(__AVX__)
+    const __m256 fb = _mm256_loadu_ps(k->fbox + (size_t)8 * j);
+    int pass = !_mm256_movemask_ps(_mm256_cmp_ps(pv, fb, _CMP_LT_OQ));
+#else
+    const float *restrict f = k->fbox + (size_t)8 * j;
+    int pass = !(pv.x < f[0] || pv.y < f[1] || pv.z < f[2] || -pv.x < f[4] || -pv.y < f[5] ||
+                 -pv.z < f[6]);
+#endif
+    if (k->self)
+        pass &= !(node == k->n1[j] || node == k->n2[j] || node == k->n3[j] || node == k->n4[j]);
+    return pass;
+}
+
+/* The box filter (CT_FILTER_BOX): node `node` at (X, Y, Z) against the
+ * segments of its cell, entries e0 to e1 - 1: writes the accepted ones, in
+ * increasing order, to out and returns their number. */
+static inline ct_idx bk_cands_box(const bk_ctx *restrict k, ct_idx node, ct_real X, ct_real Y,
+                                  ct_real Z, ct_idx e0, ct_idx e1, ct_idx *restrict out)
 {
     const ct_idx *restrict ent = k->ent;
-    const float *restrict fbox = k->fbox;
     const ct_real d = k->d;
-    const float fx = (float)X, fy = (float)Y, fz = (float)Z;
-#if defined(__AVX__)
-    const __m256 pv = _mm256_setr_ps(fx, fy, fz, 0, -fx, -fy, -fz, 0);
-#endif
+    const bk_fpoint pv = bk_fpoint_of(X, Y, Z);
     ct_idx n = 0;
     for (ct_idx e = e0; e < e1; e++) {
         const ct_idx j = ent[e];
-        /* Float pre-test: rounding is monotone and the float box is rounded
-         * outward, so a node that passes the predicate's first step passes
-         * it. */
-#if defined(__AVX__)
-        /* One compare of the 8 lanes (lo x y z 0, -hi x y z 0). */
-        const __m256 fb = _mm256_loadu_ps(fbox + (size_t)8 * j);
-        if (_mm256_movemask_ps(_mm256_cmp_ps(pv, fb, _CMP_LT_OQ)))
+        if (!bk_pretest(k, pv, node, j))
             continue;
-#else
-        const float *restrict f = fbox + (size_t)8 * j;
-        if (fx < f[0] || fy < f[1] || fz < f[2] || -fx < f[4] || -fy < f[5] || -fz < f[6])
+        const ct_real *restrict r = k->box + (size_t)6 * j;
+        /* The predicate's first step, exactly, then its sum. */
+        if (X < r[0] - d || X > r[3] + d || Y < r[1] - d || Y > r[4] + d || Z < r[2] - d ||
+            Z > r[5] + d)
             continue;
-#endif
-        int ok;
-        if (k->boxf) {
-            const ct_real *restrict r = k->box + (size_t)6 * j;
-            /* The predicate's first step, exactly, then its sum. */
-            if (X < r[0] - d || X > r[3] + d || Y < r[1] - d || Y > r[4] + d ||
-                Z < r[2] - d || Z > r[5] + d)
-                continue;
-            ct_real ex = X < r[0] ? r[0] - X : (X > r[3] ? X - r[3] : 0);
-            ct_real ey = Y < r[1] ? r[1] - Y : (Y > r[4] ? Y - r[4] : 0);
-            ct_real ez = Z < r[2] ? r[2] - Z : (Z > r[5] ? Z - r[5] : 0);
-            ct_real e2 = ex * ex + ey * ey + ez * ez;
-            if (e2 > k->d2hi)
-                continue;
-            if (k->self &&
-                (node == k->n1[j] || node == k->n2[j] || node == k->n3[j] || node == k->n4[j]))
-                continue;
-            const ct_real p[3] = {X, Y, Z};
-            /* The box's minima and maxima are the corners': the predicate
-             * on (lo, hi, lo, hi) is the predicate. */
-            ok = e2 <= k->d2lo || ct_pair_box_near(p, r, r + 3, r, r + 3, d);
-        } else if (k->srec) {
-            /* cti_pair_test_f with the corners from their record. */
-            if (k->self &&
-                (node == k->n1[j] || node == k->n2[j] || node == k->n3[j] || node == k->n4[j]))
-                continue;
-            const ct_real *restrict r = k->srec + (size_t)12 * j;
-            const ct_real p[3] = {X, Y, Z};
-            ok = ct_pair_may_touch(p, r, r + 3, r + 6, r + 9, d);
-        } else {
-            ok = cti_pair_test_f(k->x, k->y, k->z, node, k->n1[j], k->n2[j], k->n3[j],
-                                 k->n4[j], d, k->self, CT_FILTER_HULL);
-        }
+        ct_real ex = X < r[0] ? r[0] - X : (X > r[3] ? X - r[3] : 0);
+        ct_real ey = Y < r[1] ? r[1] - Y : (Y > r[4] ? Y - r[4] : 0);
+        ct_real ez = Z < r[2] ? r[2] - Z : (Z > r[5] ? Z - r[5] : 0);
+        ct_real e2 = ex * ex + ey * ey + ez * ez;
+        if (e2 > k->d2hi)
+            continue;
+        const ct_real p[3] = {X, Y, Z};
+        /* The box's minima and maxima are the corners': the predicate on
+         * (lo, hi, lo, hi) is the predicate. */
+        const int ok = e2 <= k->d2lo || ct_pair_box_near(p, r, r + 3, r, r + 3, d);
         out[n] = j;
         n += ok != 0;
     }
@@ -136,39 +142,53 @@ static void bk_flush(const bk_ctx *restrict k, cti_pair_batch *restrict pb, bk_o
 }
 
 /* As bk_cands for the hull filter, in batches: node `node`'s candidates of
- * entries e0 to e1 - 1 that pass the float pre-test join the batch pb,
- * which is decided whenever it fills; w has room for pb's pending pairs
- * and e1 - e0 more. */
+ * entries e0 to e1 - 1 that pass the pre-test join the batch pb, which is
+ * decided whenever it fills; w has room for pb's pending pairs and e1 - e0
+ * more. */
 static inline void bk_cands_batch(const bk_ctx *restrict k, ct_idx node, ct_real X, ct_real Y,
                                   ct_real Z, ct_idx e0, ct_idx e1, cti_pair_batch *restrict pb,
                                   bk_out *restrict w)
 {
     const ct_idx *restrict ent = k->ent;
-    const float *restrict fbox = k->fbox;
-    const float fx = (float)X, fy = (float)Y, fz = (float)Z;
-#if defined(__AVX__)
-    const __m256 pv = _mm256_setr_ps(fx, fy, fz, 0, -fx, -fy, -fz, 0);
-#endif
+    const bk_fpoint pv = bk_fpoint_of(X, Y, Z);
     int m = pb->n;
     for (ct_idx e = e0; e < e1; e++) {
         const ct_idx j = ent[e];
-#if defined(__AVX__)
-        const __m256 fb = _mm256_loadu_ps(fbox + (size_t)8 * j);
-        int pass = !_mm256_movemask_ps(_mm256_cmp_ps(pv, fb, _CMP_LT_OQ));
-#else
-        const float *restrict f = fbox + (size_t)8 * j;
-        int pass = !(fx < f[0] || fy < f[1] || fz < f[2] || -fx < f[4] || -fy < f[5] ||
-                     -fz < f[6]);
-#endif
-        if (k->self)
-            pass &= !(node == k->n1[j] || node == k->n2[j] || node == k->n3[j] ||
-                      node == k->n4[j]);
         pb->node[m] = node;
         pb->seg[m] = j;
-        m += pass;
+        m += bk_pretest(k, pv, node, j);
         if (m == CTI_PAIR_BATCH) {
             pb->n = m;
             bk_flush(k, pb, w);
+            m = 0;
+        }
+    }
+    pb->n = m;
+}
+
+/* The same for the cell order: the pairs carry their secondary position
+ * (bpos) and go to thread t's collector, which has room for pb's pending
+ * pairs and e1 - e0 more. */
+static inline void bk_cands_batch_pos(const bk_ctx *restrict k, ct_idx node, ct_idx pos,
+                                      ct_real X, ct_real Y, ct_real Z, ct_idx e0, ct_idx e1,
+                                      cti_pair_batch *restrict pb, ct_idx *restrict bpos,
+                                      const ct_search_input *in, cti_collect *col, int t,
+                                      ct_idx *last)
+{
+    const ct_idx *restrict ent = k->ent;
+    const bk_fpoint pv = bk_fpoint_of(X, Y, Z);
+    int m = pb->n;
+    for (ct_idx e = e0; e < e1; e++) {
+        const ct_idx j = ent[e];
+        pb->node[m] = node;
+        pb->seg[m] = j;
+        bpos[m] = pos;
+        m += bk_pretest(k, pv, node, j);
+        if (m == CTI_PAIR_BATCH) {
+            pb->n = m;
+            size_t len = col->len[t];
+            cti_pair_batch_collect(pb, bpos, in, k->srec, k->d, col, t, &len, last);
+            col->len[t] = len;
             m = 0;
         }
     }
@@ -229,7 +249,7 @@ int cti_bucket_query_direct(const bk_state *st, const ct_search_input *in, const
                 bk_cands_batch(&k, node, X, Y, Z, e0, e1, &pb, &w);
                 continue;
             }
-            ct_idx m = bk_cands(&k, node, X, Y, Z, e0, e1, w.seg + w.n);
+            ct_idx m = bk_cands_box(&k, node, X, Y, Z, e0, e1, w.seg + w.n);
             for (ct_idx q = 0; q < m; q++)
                 w.node[w.n + q] = node;
             w.n += (size_t)m;
@@ -256,7 +276,7 @@ int cti_bucket_query_cells(const bk_state *st, const ct_search_input *in, int nb
     const ct_real *restrict srec = st->srec_on ? st->srec : NULL;
     const ct_idx *restrict n1 = in->n1, *restrict n2 = in->n2, *restrict n3 = in->n3,
                  *restrict n4 = in->n4;
-    const int boxf = in->filter == CT_FILTER_BOX;
+    const int boxf = in->filter == CT_FILTER_BOX, batch = !boxf;
     bk_ctx k;
     bk_ctx_init(&k, st, in);
     int err = 0;
@@ -266,6 +286,10 @@ int cti_bucket_query_cells(const bk_state *st, const ct_search_input *in, int nb
         ct_idx lo = (ct_idx)((int64_t)nbinned * b / nb);
         ct_idx hi = (ct_idx)((int64_t)nbinned * (b + 1) / nb);
         ct_idx pfc = -1;
+        cti_pair_batch pb;
+        ct_idx bpos[CTI_PAIR_BATCH], last = -1;
+        pb.n = 0;
+        pb.nscalar = 0;
         (void)ent, (void)fbox, (void)box, (void)srec, (void)n1, (void)n2, (void)n3, (void)n4;
         (void)boxf, (void)pfc;
         for (ct_idx q = lo; q < hi; q++) {
@@ -304,16 +328,26 @@ int cti_bucket_query_cells(const bk_state *st, const ct_search_input *in, int nb
             const size_t c = (size_t)ordc[q];
             const ct_idx e0 = start[c], e1 = start[c + 1];
             const size_t s0 = col->len[t];
-            if (col->cap[t] - s0 < (size_t)(e1 - e0) &&
-                cti_collect_room(col, t, (size_t)(e1 - e0)) != CT_OK) {
+            const size_t need = (size_t)pb.n + (size_t)(e1 - e0);
+            if (col->cap[t] - s0 < need && cti_collect_room(col, t, need) != CT_OK) {
                 err |= BK_ENOMEM;
                 break;
             }
-            ct_idx m = bk_cands(&k, node, x[node], y[node], z[node], e0, e1, col->buf[t] + s0);
+            if (batch) {
+                bk_cands_batch_pos(&k, node, i, x[node], y[node], z[node], e0, e1, &pb, bpos,
+                                   in, col, t, &last);
+                continue;
+            }
+            ct_idx m = bk_cands_box(&k, node, x[node], y[node], z[node], e0, e1, col->buf[t] + s0);
             if (m > 0) { /* a count of 0 is the collector's default */
                 col->len[t] = s0 + (size_t)m;
                 cti_collect_mark(col, t, i, s0);
             }
+        }
+        if (pb.n > 0 && !(err & BK_ENOMEM)) {
+            size_t len = col->len[t];
+            cti_pair_batch_collect(&pb, bpos, in, k.srec, k.d, col, t, &len, &last);
+            col->len[t] = len;
         }
     }
     return err;

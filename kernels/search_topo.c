@@ -361,7 +361,7 @@ int cti_search_topo(ct_search *s, const ct_search_input *in, ct_pairs *out)
                     pb.seg[pb.n] = j;
                     bpos[pb.n++] = i;
                     if (pb.n == CTI_PAIR_BATCH)
-                        cti_pair_batch_collect(&pb, bpos, in, d, col, t, &len, &last);
+                        cti_pair_batch_collect(&pb, bpos, in, NULL, d, col, t, &len, &last);
                 }
                 continue;
             }
@@ -380,7 +380,7 @@ int cti_search_topo(ct_search *s, const ct_search_input *in, ct_pairs *out)
             }
         }
         if (pb.n > 0)
-            cti_pair_batch_collect(&pb, bpos, in, d, col, t, &len, &last);
+            cti_pair_batch_collect(&pb, bpos, in, NULL, d, col, t, &len, &last);
         col->len[t] = len;
     }
     if (col->err) {
