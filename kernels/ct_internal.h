@@ -217,6 +217,22 @@ void cti_pair_batch_collect(cti_pair_batch *restrict pb, const ct_idx *restrict 
                             const ct_search_input *in, const ct_real *rec, ct_real d,
                             cti_collect *col, int t, size_t *len, ct_idx *last);
 
+/* Append the candidate (node, segment j), of secondary position p, to the
+ * batch pb (positions in pos[]), unless self contact excludes it (j is one
+ * of the node's own segments); 1 when the batch is then full. */
+static inline int cti_pair_batch_push(cti_pair_batch *restrict pb, ct_idx *restrict pos,
+                                      const ct_search_input *in, ct_idx node, ct_idx p,
+                                      ct_idx j)
+{
+    if (in->self && (node == in->n1[j] || node == in->n2[j] || node == in->n3[j] ||
+                     node == in->n4[j]))
+        return 0;
+    pb->node[pb->n] = node;
+    pb->seg[pb->n] = j;
+    pos[pb->n++] = p;
+    return pb->n == CTI_PAIR_BATCH;
+}
+
 /* Write the canonical pairs. */
 int cti_collect_finish(cti_collect *c, const ct_idx *sec, ct_pairs *out);
 

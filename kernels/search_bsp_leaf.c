@@ -209,13 +209,7 @@ void cti_bsp_leaf(bsp_ctx *c, ct_idx n0, ct_idx n1, const ct_idx *restrict segs,
                 m &= m - 1;
                 ct_idx j = segs[q];
                 if (batch) {
-                    if (in->self && (node == in->n1[j] || node == in->n2[j] ||
-                                     node == in->n3[j] || node == in->n4[j]))
-                        continue;
-                    pb.node[pb.n] = node;
-                    pb.seg[pb.n] = j;
-                    bpos[pb.n++] = pos;
-                    if (pb.n == CTI_PAIR_BATCH)
+                    if (cti_pair_batch_push(&pb, bpos, in, node, pos, j))
                         cti_pair_batch_collect(&pb, bpos, in, NULL, c->d, col, t, &len, &last);
                     continue;
                 }

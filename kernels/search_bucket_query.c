@@ -141,39 +141,36 @@ static void bk_flush(const bk_ctx *restrict k, cti_pair_batch *restrict pb, bk_o
     pb->n = 0;
 }
 
-/* As bk_cands for the hull filter, in batches: node `node`'s candidates of
- * entries e0 to e1 - 1 that pass the pre-test join the batch pb, which is
- * decided whenever it fills; w has room for pb's pending pairs and e1 - e0
- * more. */
-static inline void bk_cands_batch(const bk_ctx *restrict k, ct_idx node, ct_real X, ct_real Y,
-                                  ct_real Z, ct_idx e0, ct_idx e1, cti_pair_batch *restrict pb,
-                                  bk_out *restrict w)
+/* Where a batch's accepted pairs go: the block output w (secondary order),
+ * or, when w is NULL, thread t's collector (cell order; the pairs' secondary
+ * positions in bpos, *last the open record). */
+typedef struct bk_sink {
+    bk_out *w;
+    ct_idx *bpos;
+    const ct_search_input *in;
+    cti_collect *col;
+    int t;
+    ct_idx last;
+} bk_sink;
+
+static void bk_sink_flush(const bk_ctx *restrict k, cti_pair_batch *restrict pb, bk_sink *o)
 {
-    const ct_idx *restrict ent = k->ent;
-    const bk_fpoint pv = bk_fpoint_of(X, Y, Z);
-    int m = pb->n;
-    for (ct_idx e = e0; e < e1; e++) {
-        const ct_idx j = ent[e];
-        pb->node[m] = node;
-        pb->seg[m] = j;
-        m += bk_pretest(k, pv, node, j);
-        if (m == CTI_PAIR_BATCH) {
-            pb->n = m;
-            bk_flush(k, pb, w);
-            m = 0;
-        }
+    if (o->w) {
+        bk_flush(k, pb, o->w);
+        return;
     }
-    pb->n = m;
+    size_t len = o->col->len[o->t];
+    cti_pair_batch_collect(pb, o->bpos, o->in, k->srec, k->d, o->col, o->t, &len, &o->last);
+    o->col->len[o->t] = len;
 }
 
-/* The same for the cell order: the pairs carry their secondary position
- * (bpos) and go to thread t's collector, which has room for pb's pending
- * pairs and e1 - e0 more. */
-static inline void bk_cands_batch_pos(const bk_ctx *restrict k, ct_idx node, ct_idx pos,
-                                      ct_real X, ct_real Y, ct_real Z, ct_idx e0, ct_idx e1,
-                                      cti_pair_batch *restrict pb, ct_idx *restrict bpos,
-                                      const ct_search_input *in, cti_collect *col, int t,
-                                      ct_idx *last)
+/* As bk_cands_box for the hull filter, in batches: node `node`'s (at
+ * secondary position pos) candidates of entries e0 to e1 - 1 that pass the
+ * pre-test join the batch pb, which is decided whenever it fills; the sink
+ * has room for pb's pending pairs and e1 - e0 more. */
+static inline void bk_cands_batch(const bk_ctx *restrict k, ct_idx node, ct_idx pos, ct_real X,
+                                  ct_real Y, ct_real Z, ct_idx e0, ct_idx e1,
+                                  cti_pair_batch *restrict pb, bk_sink *o)
 {
     const ct_idx *restrict ent = k->ent;
     const bk_fpoint pv = bk_fpoint_of(X, Y, Z);
@@ -182,13 +179,11 @@ static inline void bk_cands_batch_pos(const bk_ctx *restrict k, ct_idx node, ct_
         const ct_idx j = ent[e];
         pb->node[m] = node;
         pb->seg[m] = j;
-        bpos[m] = pos;
+        o->bpos[m] = pos;
         m += bk_pretest(k, pv, node, j);
         if (m == CTI_PAIR_BATCH) {
             pb->n = m;
-            size_t len = col->len[t];
-            cti_pair_batch_collect(pb, bpos, in, k->srec, k->d, col, t, &len, last);
-            col->len[t] = len;
+            bk_sink_flush(k, pb, o);
             m = 0;
         }
     }
@@ -216,6 +211,8 @@ int cti_bucket_query_direct(const bk_state *st, const ct_search_input *in, const
         bk_out w = o[b];
         w.n = 0;
         cti_pair_batch pb;
+        ct_idx bpos[CTI_PAIR_BATCH];
+        bk_sink sink = {&w, bpos, in, NULL, 0, -1};
         pb.n = 0;
         pb.nscalar = 0;
         ct_idx lo = (ct_idx)((int64_t)nsec * b / nb);
@@ -246,7 +243,8 @@ int cti_bucket_query_direct(const bk_state *st, const ct_search_input *in, const
                 break;
             }
             if (batch) {
-                bk_cands_batch(&k, node, X, Y, Z, e0, e1, &pb, &w);
+                sink.w = &w;
+                bk_cands_batch(&k, node, i, X, Y, Z, e0, e1, &pb, &sink);
                 continue;
             }
             ct_idx m = bk_cands_box(&k, node, X, Y, Z, e0, e1, w.seg + w.n);
@@ -287,7 +285,8 @@ int cti_bucket_query_cells(const bk_state *st, const ct_search_input *in, int nb
         ct_idx hi = (ct_idx)((int64_t)nbinned * (b + 1) / nb);
         ct_idx pfc = -1;
         cti_pair_batch pb;
-        ct_idx bpos[CTI_PAIR_BATCH], last = -1;
+        ct_idx bpos[CTI_PAIR_BATCH];
+        bk_sink sink = {NULL, bpos, in, col, t, -1};
         pb.n = 0;
         pb.nscalar = 0;
         (void)ent, (void)fbox, (void)box, (void)srec, (void)n1, (void)n2, (void)n3, (void)n4;
@@ -334,8 +333,7 @@ int cti_bucket_query_cells(const bk_state *st, const ct_search_input *in, int nb
                 break;
             }
             if (batch) {
-                bk_cands_batch_pos(&k, node, i, x[node], y[node], z[node], e0, e1, &pb, bpos,
-                                   in, col, t, &last);
+                bk_cands_batch(&k, node, i, x[node], y[node], z[node], e0, e1, &pb, &sink);
                 continue;
             }
             ct_idx m = bk_cands_box(&k, node, x[node], y[node], z[node], e0, e1, col->buf[t] + s0);
@@ -344,11 +342,8 @@ int cti_bucket_query_cells(const bk_state *st, const ct_search_input *in, int nb
                 cti_collect_mark(col, t, i, s0);
             }
         }
-        if (pb.n > 0 && !(err & BK_ENOMEM)) {
-            size_t len = col->len[t];
-            cti_pair_batch_collect(&pb, bpos, in, k.srec, k.d, col, t, &len, &last);
-            col->len[t] = len;
-        }
+        if (pb.n > 0 && !(err & BK_ENOMEM))
+            bk_sink_flush(&k, &pb, &sink);
     }
     return err;
 }

@@ -352,17 +352,9 @@ int cti_search_topo(ct_search *s, const ct_search_input *in, ct_pairs *out)
                     continue; /* col->err is set */
             }
             if (batch) {
-                for (ct_idx q = off[m]; q < off[m + 1]; q++) {
-                    const ct_idx j = adj[q];
-                    if (in->self && (node == in->n1[j] || node == in->n2[j] ||
-                                     node == in->n3[j] || node == in->n4[j]))
-                        continue;
-                    pb.node[pb.n] = node;
-                    pb.seg[pb.n] = j;
-                    bpos[pb.n++] = i;
-                    if (pb.n == CTI_PAIR_BATCH)
+                for (ct_idx q = off[m]; q < off[m + 1]; q++)
+                    if (cti_pair_batch_push(&pb, bpos, in, node, i, adj[q]))
                         cti_pair_batch_collect(&pb, bpos, in, NULL, d, col, t, &len, &last);
-                }
                 continue;
             }
             ct_idx *restrict buf = col->buf[t];
