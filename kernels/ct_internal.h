@@ -116,7 +116,9 @@ typedef int64_t cti_lane;
 #endif
 
 /* Pairs per batch: the batch's coordinates (15 arrays) stay in L1. */
+#ifndef CTI_PAIR_BATCH
 #define CTI_PAIR_BATCH 128
+#endif
 
 /* A batch of candidate pairs and, once loaded, their coordinates. A caller
  * fills node[], seg[] and n, loads, tests, and reads ok[] (0 or 1). Lives on
