@@ -191,11 +191,18 @@ int ct_pair_may_touch(const ct_real p[3], const ct_real a[3], const ct_real b[3]
      * the nearest hull point of an outside p is on an edge p is outside of;
      * the other edges belong to the faces step 5 tests. */
     const cti_prism q = cti_step_prism(P, A, B, C, E, d2);
-    if (q.accept || cti_step_edges(P, A, B, C, E, d2, q))
+    if (q.accept)
         return 1;
+    /* Step 4 as cti_step_edges computes it, edge by edge with an early
+     * exit (the same terms, so the same answer; one pair at a time the
+     * branches are cheaper than measuring all four edges). */
+    const cti_pv cv[4] = {A, B, C, E};
+    const ct_real sv[4] = {q.s0, q.s1, q.s2, q.s3};
+    for (int k = 0; k < 4; k++)
+        if ((!q.ok || sv[k] < 0) && cti_step_edge2(P, cv[k], cv[(k + 1) & 3]) <= d2)
+            return 1;
     const ct_real *corner[4] = {a, b, c, e};
-    const ct_real s[4] = {q.s0, q.s1, q.s2, q.s3}; /* used when q.ok */
-    if (hull_far(corner, s, &q, d2))
+    if (hull_far(corner, sv, &q, d2)) /* sv counts only when q.ok */
         return 0;
     int tri = (c[0] == e[0] && c[1] == e[1] && c[2] == e[2]);
     if (tri)
