@@ -113,10 +113,27 @@ static inline cti_pv pv_of(const ct_real v[3])
     return r;
 }
 
+/* Steps 1 and 2 as cti_step_box computes them, axis by axis with an early
+ * exit: the same values, so the same answer; one pair at a time (the
+ * direct search rejects almost every pair at its first axis) the branches
+ * are cheaper than all three axes. */
+static inline ct_real box_early(cti_pv p, cti_pv a, cti_pv b, cti_pv c, cti_pv e, ct_real d)
+{
+    cti_lane out = 0;
+    const ct_real bx = cti_step_axis(p.x, a.x, b.x, c.x, e.x, d, &out);
+    if (out)
+        return -1;
+    const ct_real by = cti_step_axis(p.y, a.y, b.y, c.y, e.y, d, &out);
+    if (out)
+        return -1;
+    const ct_real bz = cti_step_axis(p.z, a.z, b.z, c.z, e.z, d, &out);
+    return out ? -1 : (bx + by) + bz;
+}
+
 int ct_pair_box_near(const ct_real p[3], const ct_real a[3], const ct_real b[3],
                      const ct_real c[3], const ct_real e[3], ct_real d)
 {
-    ct_real box2 = cti_step_box(pv_of(p), pv_of(a), pv_of(b), pv_of(c), pv_of(e), d);
+    ct_real box2 = box_early(pv_of(p), pv_of(a), pv_of(b), pv_of(c), pv_of(e), d);
     return box2 >= 0 && box2 <= d * d;
 }
 
@@ -180,13 +197,35 @@ static inline int hull_far(const ct_real *const corner[4], const ct_real s[4],
     return lat + hh > lim;
 }
 
+#if defined(__GNUC__)
+#define PRED_NOINLINE __attribute__((noinline))
+#else
+#define PRED_NOINLINE
+#endif
+
+PRED_NOINLINE static int may_touch_past_box(const ct_real p[3], const ct_real a[3],
+                                            const ct_real b[3], const ct_real c[3],
+                                            const ct_real e[3], ct_real d2);
+
 int ct_pair_may_touch(const ct_real p[3], const ct_real a[3], const ct_real b[3],
                       const ct_real c[3], const ct_real e[3], ct_real d)
 {
-    const cti_pv P = pv_of(p), A = pv_of(a), B = pv_of(b), C = pv_of(c), E = pv_of(e);
-    ct_real d2 = d * d, box2 = cti_step_box(P, A, B, C, E, d);
+    /* Steps 1 and 2 here, the rest in a function of its own: the direct
+     * search rejects almost every pair here, and this function's frame
+     * stays small. */
+    ct_real d2 = d * d, box2 = box_early(pv_of(p), pv_of(a), pv_of(b), pv_of(c), pv_of(e), d);
     if (box2 < 0 || box2 > d2)
         return 0;
+    return may_touch_past_box(p, a, b, c, e, d2);
+}
+
+/* Steps 3 to 5 of ct_pair_may_touch, for a pair that steps 1 and 2 kept
+ * (not inlined, so that the first steps' frame stays small). */
+PRED_NOINLINE static int may_touch_past_box(const ct_real p[3], const ct_real a[3],
+                                            const ct_real b[3], const ct_real c[3],
+                                            const ct_real e[3], ct_real d2)
+{
+    const cti_pv P = pv_of(p), A = pv_of(a), B = pv_of(b), C = pv_of(c), E = pv_of(e);
     /* Step 3, then step 4: the edges lie in the hull. On a flat convex quad
      * the nearest hull point of an outside p is on an edge p is outside of;
      * the other edges belong to the faces step 5 tests. */
