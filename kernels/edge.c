@@ -137,7 +137,7 @@ int ct_narrow_edge_edge(ct_idx npair, const ct_idx *restrict ea, const ct_idx *r
             t = bt;
             ct_real lm = a > c ? a : c, ls = a < c ? a : c;
             cti_nr_int degen = !(ls > CTI_NR_EDGE_TOL * CTI_NR_EDGE_TOL * lm);
-            cti_nr_int bad = nonfin ? CT_NARROW_NONFINITE : (degen ? CT_NARROW_DEGENERATE : 0);
+            cti_nr_int bad = nonfin ? CTI_NR_F(NONFINITE) : (degen ? CTI_NR_F(DEGENERATE) : 0);
             ct_real pax = s * ux, pay = s * uy, paz = s * uz;
             ct_real pbx = b1x + t * vx, pby = b1y + t * vy, pbz = b1z + t * vz;
             ct_real rx = pax - pbx, ry = pay - pby, rz = paz - pbz;
@@ -186,7 +186,7 @@ int ct_narrow_edge_edge(ct_idx npair, const ct_idx *restrict ea, const ct_idx *r
             opbz[k] = bad ? 0 : pbz + oz;
             ogap[k] = nonfin ? 0 : g;
             F[j] = bad ? bad
-                       : ((clamped ? CT_NARROW_OUTSIDE : 0) | (par ? CT_NARROW_PARALLEL : 0));
+                       : ((clamped ? CTI_NR_F(OUTSIDE) : 0) | (par ? CTI_NR_F(PARALLEL) : 0));
         }
         cti_nr_flags_out(F, oflag + k0, nb);
     }

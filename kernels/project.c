@@ -109,7 +109,7 @@ void cti_nr_block_tri(const cti_nr_args *a, ct_idx k0, ct_idx n, cti_nr_blk *b)
         /* Area |n|/2 <= tol * l2. */
         ct_real lim = 2 * CTI_NR_AREA_TOL * l2;
         cti_nr_int degen = !(nn > lim * lim);
-        cti_nr_int bad = nonfin ? CT_NARROW_NONFINITE : (degen ? CT_NARROW_DEGENERATE : 0);
+        cti_nr_int bad = nonfin ? CTI_NR_F(NONFINITE) : (degen ? CTI_NR_F(DEGENERATE) : 0);
         ct_real cx = v * x2 + w * x3;
         ct_real cy = v * y2 + w * y3;
         ct_real cz = v * z2 + w * z3;
