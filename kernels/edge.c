@@ -49,7 +49,7 @@ CTI_NR_NOVEC static void cti_ee_fetch(const ct_idx *restrict ea, const ct_idx *r
                                       const ct_idx *restrict e1, const ct_idx *restrict e2,
                                       const ct_real *restrict x, const ct_real *restrict y,
                                       const ct_real *restrict z, ct_idx n,
-                                      ct_real (*restrict C)[CTI_NR_BLOCK])
+                                      ct_real (*restrict C)[CTI_EE_BLOCK])
 {
     CTI_NR_NOVEC_LOOP
     for (ct_idx j = 0; j < n; j++) {
@@ -86,17 +86,17 @@ int ct_narrow_edge_edge(ct_idx npair, const ct_idx *restrict ea, const ct_idx *r
     ct_real *restrict opbx = out->pbx, *restrict opby = out->pby, *restrict opbz = out->pbz;
     ct_real *restrict ogap = out->gap;
     uint8_t *restrict oflag = out->flag;
-    ct_idx nblock = (ct_idx)((npair + CTI_NR_BLOCK - 1) / CTI_NR_BLOCK);
+    ct_idx nblock = (ct_idx)((npair + CTI_EE_BLOCK - 1) / CTI_EE_BLOCK);
     /* A call of one block runs without a thread team (cheaper). */
 #pragma omp parallel for schedule(static) if (nblock > 1)
     for (ct_idx bi = 0; bi < nblock; bi++) {
-        ct_idx k0 = bi * CTI_NR_BLOCK, nb = CTI_MIN(npair - k0, CTI_NR_BLOCK);
+        ct_idx k0 = bi * CTI_EE_BLOCK, nb = CTI_MIN(npair - k0, CTI_EE_BLOCK);
         /* The block's gaps, and its end points copied by a scalar loop into
          * contiguous arrays (cheaper than vector gathers, and it keeps the
          * 32-bit indices out of the vector loop: see narrow_internal.h). */
-        _Alignas(64) ct_real G[CTI_NR_BLOCK];
-        _Alignas(64) cti_nr_int F[CTI_NR_BLOCK];
-        _Alignas(64) ct_real C[12][CTI_NR_BLOCK];
+        _Alignas(64) ct_real G[CTI_EE_BLOCK];
+        _Alignas(64) cti_nr_int F[CTI_EE_BLOCK];
+        _Alignas(64) ct_real C[12][CTI_EE_BLOCK];
         cti_ee_fetch(ea + k0, eb + k0, e1, e2, x, y, z, nb, C);
         const ct_real *restrict Ax1 = C[0], *restrict Ay1 = C[1], *restrict Az1 = C[2];
         const ct_real *restrict Ax2 = C[3], *restrict Ay2 = C[4], *restrict Az2 = C[5];
@@ -243,10 +243,10 @@ int ct_edge_edge_forces(ct_idx npair, const ct_real *restrict fmag,
         return CT_OK;
     if (!fmag || !nx || !ny || !nz || !sa || !sb || !fx || !fy || !fz)
         return CT_ERR_ARG;
-    ct_idx nblock = (ct_idx)((npair + CTI_NR_BLOCK - 1) / CTI_NR_BLOCK);
+    ct_idx nblock = (ct_idx)((npair + CTI_EE_BLOCK - 1) / CTI_EE_BLOCK);
 #pragma omp parallel for schedule(static) if (nblock > 1)
     for (ct_idx bi = 0; bi < nblock; bi++) {
-        ct_idx k0 = bi * CTI_NR_BLOCK, k1 = CTI_MIN(npair, k0 + CTI_NR_BLOCK);
+        ct_idx k0 = bi * CTI_EE_BLOCK, k1 = CTI_MIN(npair, k0 + CTI_EE_BLOCK);
         CTI_NR_SIMD
         for (ct_idx k = k0; k < k1; k++) {
             ct_real F = fmag[k];
