@@ -63,20 +63,26 @@ CTI_NR_NOVEC void cti_nr_fetch(const cti_nr_args *a, ct_idx k0, ct_idx n, int qu
     const ct_idx *restrict n1 = a->n1, *restrict n2 = a->n2;
     const ct_idx *restrict n3 = a->n3, *restrict n4 = a->n4;
     const ct_real *restrict X = a->x, *restrict Y = a->y, *restrict Z = a->z;
+    if (!quad) {
+        CTI_NR_NOVEC_LOOP
+        for (ct_idx j = 0; j < n; j++) {
+            ct_idx i = node[j], s = seg[j];
+            ct_idx i1 = n1[s], i2 = n2[s], i3 = n3[s];
+            b->px[j] = X[i], b->py[j] = Y[i], b->pz[j] = Z[i];
+            b->x1[j] = X[i1], b->y1[j] = Y[i1], b->z1[j] = Z[i1];
+            b->x2[j] = X[i2], b->y2[j] = Y[i2], b->z2[j] = Z[i2];
+            b->x3[j] = X[i3], b->y3[j] = Y[i3], b->z3[j] = Z[i3];
+        }
+        return;
+    }
     CTI_NR_NOVEC_LOOP
     for (ct_idx j = 0; j < n; j++) {
         ct_idx i = node[j], s = seg[j];
-        ct_idx i1 = n1[s], i2 = n2[s], i3 = n3[s];
+        ct_idx i1 = n1[s], i2 = n2[s], i3 = n3[s], i4 = n4[s];
         b->px[j] = X[i], b->py[j] = Y[i], b->pz[j] = Z[i];
         b->x1[j] = X[i1], b->y1[j] = Y[i1], b->z1[j] = Z[i1];
         b->x2[j] = X[i2], b->y2[j] = Y[i2], b->z2[j] = Z[i2];
         b->x3[j] = X[i3], b->y3[j] = Y[i3], b->z3[j] = Z[i3];
-    }
-    if (!quad)
-        return;
-    CTI_NR_NOVEC_LOOP
-    for (ct_idx j = 0; j < n; j++) {
-        ct_idx i4 = n4[seg[j]];
         b->x4[j] = X[i4], b->y4[j] = Y[i4], b->z4[j] = Z[i4];
     }
 }
