@@ -43,6 +43,25 @@ static inline ct_real cti_ee_q(ct_real ux, ct_real uy, ct_real uz, ct_real vx, c
         bq = take_ ? q_ : bq;                                                             \
     } while (0)
 
+/* The end points A1, A2, B1, B2 of n pairs into C (x, y, z of each in
+ * turn), one scalar load and store each (kept scalar: see cti_nr_fetch). */
+CTI_NR_NOVEC static void cti_ee_fetch(const ct_idx *restrict ea, const ct_idx *restrict eb,
+                                      const ct_idx *restrict e1, const ct_idx *restrict e2,
+                                      const ct_real *restrict x, const ct_real *restrict y,
+                                      const ct_real *restrict z, ct_idx n,
+                                      ct_real (*restrict C)[CTI_EE_BLOCK])
+{
+    CTI_NR_NOVEC_LOOP
+    for (ct_idx j = 0; j < n; j++) {
+        ct_idx ia = ea[j], ib = eb[j];
+        ct_idx v0 = e1[ia], v1 = e2[ia], v2 = e1[ib], v3 = e2[ib];
+        C[0][j] = x[v0], C[1][j] = y[v0], C[2][j] = z[v0];
+        C[3][j] = x[v1], C[4][j] = y[v1], C[5][j] = z[v1];
+        C[6][j] = x[v2], C[7][j] = y[v2], C[8][j] = z[v2];
+        C[9][j] = x[v3], C[10][j] = y[v3], C[11][j] = z[v3];
+    }
+}
+
 int ct_narrow_edge_edge(ct_idx npair, const ct_idx *restrict ea, const ct_idx *restrict eb,
                         const ct_idx *restrict e1, const ct_idx *restrict e2,
                         const ct_real *restrict x, const ct_real *restrict y,
@@ -67,15 +86,22 @@ int ct_narrow_edge_edge(ct_idx npair, const ct_idx *restrict ea, const ct_idx *r
     ct_real *restrict opbx = out->pbx, *restrict opby = out->pby, *restrict opbz = out->pbz;
     ct_real *restrict ogap = out->gap;
     uint8_t *restrict oflag = out->flag;
-    ct_idx nblock = (ct_idx)((npair + CTI_NR_BLOCK - 1) / CTI_NR_BLOCK);
+    ct_idx nblock = (ct_idx)((npair + CTI_EE_BLOCK - 1) / CTI_EE_BLOCK);
     /* A call of one block runs without a thread team (cheaper). */
 #pragma omp parallel for schedule(static) if (nblock > 1)
     for (ct_idx bi = 0; bi < nblock; bi++) {
-        ct_idx k0 = bi * CTI_NR_BLOCK, nb = CTI_MIN(npair - k0, CTI_NR_BLOCK);
-        /* The block's gaps; the end points are loaded through the indices
-         * by the vector loop (gather instructions). */
-        _Alignas(64) ct_real G[CTI_NR_BLOCK];
-        _Alignas(64) cti_nr_int F[CTI_NR_BLOCK];
+        ct_idx k0 = bi * CTI_EE_BLOCK, nb = CTI_MIN(npair - k0, CTI_EE_BLOCK);
+        /* The block's gaps, and its end points copied by a scalar loop into
+         * contiguous arrays (cheaper than vector gathers, and it keeps the
+         * 32-bit indices out of the vector loop: see narrow_internal.h). */
+        _Alignas(64) ct_real G[CTI_EE_BLOCK];
+        _Alignas(64) cti_nr_int F[CTI_EE_BLOCK];
+        _Alignas(64) ct_real C[12][CTI_EE_BLOCK];
+        cti_ee_fetch(ea + k0, eb + k0, e1, e2, x, y, z, nb, C);
+        const ct_real *restrict Ax1 = C[0], *restrict Ay1 = C[1], *restrict Az1 = C[2];
+        const ct_real *restrict Ax2 = C[3], *restrict Ay2 = C[4], *restrict Az2 = C[5];
+        const ct_real *restrict Bx1 = C[6], *restrict By1 = C[7], *restrict Bz1 = C[8];
+        const ct_real *restrict Bx2 = C[9], *restrict By2 = C[10], *restrict Bz2 = C[11];
         for (ct_idx j = 0; j < nb; j++) {
             ct_real ga = gap, gb = gap;
             if (gap_edge) {
@@ -89,13 +115,11 @@ int ct_narrow_edge_edge(ct_idx npair, const ct_idx *restrict ea, const ct_idx *r
         CTI_NR_SIMD
         for (ct_idx j = 0; j < nb; j++) {
             ct_idx k = k0 + j;
-            ct_idx ia = ea[k], ib = eb[k];
-            ct_idx v0 = e1[ia], v1 = e2[ia], v2 = e1[ib], v3 = e2[ib];
             /* Relative to A1 (accuracy far from the origin). */
-            const ct_real ox = x[v0], oy = y[v0], oz = z[v0];
-            const ct_real ux = x[v1] - ox, uy = y[v1] - oy, uz = z[v1] - oz;
-            const ct_real b1x = x[v2] - ox, b1y = y[v2] - oy, b1z = z[v2] - oz;
-            const ct_real b2x = x[v3] - ox, b2y = y[v3] - oy, b2z = z[v3] - oz;
+            const ct_real ox = Ax1[j], oy = Ay1[j], oz = Az1[j];
+            const ct_real ux = Ax2[j] - ox, uy = Ay2[j] - oy, uz = Az2[j] - oz;
+            const ct_real b1x = Bx1[j] - ox, b1y = By1[j] - oy, b1z = Bz1[j] - oz;
+            const ct_real b2x = Bx2[j] - ox, b2y = By2[j] - oy, b2z = Bz2[j] - oz;
             const ct_real g = G[j];
             /* NaN or Inf anywhere makes the sum NaN or Inf. */
             ct_real zs = ((ux + uy) + (uz + b1x)) + ((b1y + b1z) + (b2x + b2y)) + (b2z + g);
@@ -137,7 +161,7 @@ int ct_narrow_edge_edge(ct_idx npair, const ct_idx *restrict ea, const ct_idx *r
             t = bt;
             ct_real lm = a > c ? a : c, ls = a < c ? a : c;
             cti_nr_int degen = !(ls > CTI_NR_EDGE_TOL * CTI_NR_EDGE_TOL * lm);
-            cti_nr_int bad = nonfin ? CT_NARROW_NONFINITE : (degen ? CT_NARROW_DEGENERATE : 0);
+            cti_nr_int bad = nonfin ? CTI_NR_F(NONFINITE) : (degen ? CTI_NR_F(DEGENERATE) : 0);
             ct_real pax = s * ux, pay = s * uy, paz = s * uz;
             ct_real pbx = b1x + t * vx, pby = b1y + t * vy, pbz = b1z + t * vz;
             ct_real rx = pax - pbx, ry = pay - pby, rz = paz - pbz;
@@ -186,7 +210,7 @@ int ct_narrow_edge_edge(ct_idx npair, const ct_idx *restrict ea, const ct_idx *r
             opbz[k] = bad ? 0 : pbz + oz;
             ogap[k] = nonfin ? 0 : g;
             F[j] = bad ? bad
-                       : ((clamped ? CT_NARROW_OUTSIDE : 0) | (par ? CT_NARROW_PARALLEL : 0));
+                       : ((clamped ? CTI_NR_F(OUTSIDE) : 0) | (par ? CTI_NR_F(PARALLEL) : 0));
         }
         cti_nr_flags_out(F, oflag + k0, nb);
     }
@@ -219,10 +243,10 @@ int ct_edge_edge_forces(ct_idx npair, const ct_real *restrict fmag,
         return CT_OK;
     if (!fmag || !nx || !ny || !nz || !sa || !sb || !fx || !fy || !fz)
         return CT_ERR_ARG;
-    ct_idx nblock = (ct_idx)((npair + CTI_NR_BLOCK - 1) / CTI_NR_BLOCK);
+    ct_idx nblock = (ct_idx)((npair + CTI_EE_BLOCK - 1) / CTI_EE_BLOCK);
 #pragma omp parallel for schedule(static) if (nblock > 1)
     for (ct_idx bi = 0; bi < nblock; bi++) {
-        ct_idx k0 = bi * CTI_NR_BLOCK, k1 = CTI_MIN(npair, k0 + CTI_NR_BLOCK);
+        ct_idx k0 = bi * CTI_EE_BLOCK, k1 = CTI_MIN(npair, k0 + CTI_EE_BLOCK);
         CTI_NR_SIMD
         for (ct_idx k = k0; k < k1; k++) {
             ct_real F = fmag[k];

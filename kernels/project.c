@@ -53,24 +53,57 @@ void cti_nr_gather(const cti_nr_args *a, ct_idx k0, ct_idx n, cti_nr_blk *b)
     }
 }
 
+/* The coordinates of a block's pairs, one scalar load and store each. The
+ * loops are kept scalar: vectorised, they would be the vector gathers this
+ * copy exists to avoid. */
+CTI_NR_NOVEC void cti_nr_fetch(const cti_nr_args *a, ct_idx k0, ct_idx n, int quad,
+                               cti_nr_blk *b)
+{
+    const ct_idx *restrict node = a->node + k0, *restrict seg = a->seg + k0;
+    const ct_idx *restrict n1 = a->n1, *restrict n2 = a->n2;
+    const ct_idx *restrict n3 = a->n3, *restrict n4 = a->n4;
+    const ct_real *restrict X = a->x, *restrict Y = a->y, *restrict Z = a->z;
+    if (!quad) {
+        CTI_NR_NOVEC_LOOP
+        for (ct_idx j = 0; j < n; j++) {
+            ct_idx i = node[j], s = seg[j];
+            ct_idx i1 = n1[s], i2 = n2[s], i3 = n3[s];
+            b->px[j] = X[i], b->py[j] = Y[i], b->pz[j] = Z[i];
+            b->x1[j] = X[i1], b->y1[j] = Y[i1], b->z1[j] = Z[i1];
+            b->x2[j] = X[i2], b->y2[j] = Y[i2], b->z2[j] = Z[i2];
+            b->x3[j] = X[i3], b->y3[j] = Y[i3], b->z3[j] = Z[i3];
+        }
+        return;
+    }
+    CTI_NR_NOVEC_LOOP
+    for (ct_idx j = 0; j < n; j++) {
+        ct_idx i = node[j], s = seg[j];
+        ct_idx i1 = n1[s], i2 = n2[s], i3 = n3[s], i4 = n4[s];
+        b->px[j] = X[i], b->py[j] = Y[i], b->pz[j] = Z[i];
+        b->x1[j] = X[i1], b->y1[j] = Y[i1], b->z1[j] = Z[i1];
+        b->x2[j] = X[i2], b->y2[j] = Y[i2], b->z2[j] = Z[i2];
+        b->x3[j] = X[i3], b->y3[j] = Y[i3], b->z3[j] = Z[i3];
+        b->x4[j] = X[i4], b->y4[j] = Y[i4], b->z4[j] = Z[i4];
+    }
+}
+
 /* Node-triangle over a block whose segments are all triangles: as
- * CTI_NR_LOAD, but only the three corners are loaded (n4 == n3). */
+ * CTI_NR_LOAD, but only the three corners are read (n4 == n3). */
 void cti_nr_block_tri(const cti_nr_args *a, ct_idx k0, ct_idx n, cti_nr_blk *b)
 {
     CTI_NR_OUTPTRS(a, k0);
     int two = a->two_sided;
-    const ct_idx *restrict node = a->node + k0, *restrict seg = a->seg + k0;
-    const ct_idx *restrict n1 = a->n1, *restrict n2 = a->n2, *restrict n3 = a->n3;
-    const ct_real *restrict X = a->x, *restrict Y = a->y, *restrict Z = a->z;
+    const ct_real *restrict PX = b->px, *restrict PY = b->py, *restrict PZ = b->pz;
+    const ct_real *restrict X1 = b->x1, *restrict Y1 = b->y1, *restrict Z1 = b->z1;
+    const ct_real *restrict X2 = b->x2, *restrict Y2 = b->y2, *restrict Z2 = b->z2;
+    const ct_real *restrict X3 = b->x3, *restrict Y3 = b->y3, *restrict Z3 = b->z3;
     const ct_real *restrict G = b->g;
     CTI_NR_SIMD
     for (ct_idx j = 0; j < n; j++) {
-        ct_idx i = node[j], s = seg[j];
-        ct_idx i1 = n1[s], i2 = n2[s], i3 = n3[s];
-        const ct_real ox = X[i1], oy = Y[i1], oz = Z[i1];
-        const ct_real px = X[i] - ox, py = Y[i] - oy, pz = Z[i] - oz;
-        const ct_real x2 = X[i2] - ox, y2 = Y[i2] - oy, z2 = Z[i2] - oz;
-        const ct_real x3 = X[i3] - ox, y3 = Y[i3] - oy, z3 = Z[i3] - oz;
+        const ct_real ox = X1[j], oy = Y1[j], oz = Z1[j];
+        const ct_real px = PX[j] - ox, py = PY[j] - oy, pz = PZ[j] - oz;
+        const ct_real x2 = X2[j] - ox, y2 = Y2[j] - oy, z2 = Z2[j] - oz;
+        const ct_real x3 = X3[j] - ox, y3 = Y3[j] - oy, z3 = Z3[j] - oz;
         const ct_real g = G[j];
         const ct_real zsum_ = (((px + py) + (pz + x2)) + ((y2 + z2) + (x3 + y3))) + (z3 + g);
         const cti_nr_int nonfin = !(zsum_ - zsum_ == 0);
@@ -82,7 +115,7 @@ void cti_nr_block_tri(const cti_nr_args *a, ct_idx k0, ct_idx n, cti_nr_blk *b)
         /* Area |n|/2 <= tol * l2. */
         ct_real lim = 2 * CTI_NR_AREA_TOL * l2;
         cti_nr_int degen = !(nn > lim * lim);
-        cti_nr_int bad = nonfin ? CT_NARROW_NONFINITE : (degen ? CT_NARROW_DEGENERATE : 0);
+        cti_nr_int bad = nonfin ? CTI_NR_F(NONFINITE) : (degen ? CTI_NR_F(DEGENERATE) : 0);
         ct_real cx = v * x2 + w * x3;
         ct_real cy = v * y2 + w * y3;
         ct_real cz = v * z2 + w * z3;
@@ -140,6 +173,7 @@ int ct_narrow_node_segment(ct_idx npair, const ct_idx *restrict node,
                 while (e < k1 && (n3[seg[e]] == n4[seg[e]]) == tri)
                     e++;
                 cti_nr_gather(&a, k0, e - k0, &blk);
+                cti_nr_fetch(&a, k0, e - k0, !tri, &blk);
                 (tri ? cti_nr_block_tri : quad)(&a, k0, e - k0, &blk);
                 k0 = e;
             }

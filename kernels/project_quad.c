@@ -88,7 +88,7 @@ void cti_nr_block_4tri(const cti_nr_args *a, ct_idx k0, ct_idx n, cti_nr_blk *b)
         }
         ct_real lim = 2 * CTI_NR_AREA_TOL * lmax;
         cti_nr_int degen = !(nnmin > lim * lim);
-        cti_nr_int bad = nonfin ? CT_NARROW_NONFINITE : (degen ? CT_NARROW_DEGENERATE : 0);
+        cti_nr_int bad = nonfin ? CTI_NR_F(NONFINITE) : (degen ? CTI_NR_F(DEGENERATE) : 0);
         ct_real cx = O.x + bc.x, cy = O.y + bc.y, cz = O.z + bc.z;
         ct_real dist, pen, mx, my, mz;
         cti_nr_int flag;
@@ -332,7 +332,7 @@ void cti_nr_block_newton(const cti_nr_args *a, ct_idx k0, ct_idx n, cti_nr_blk *
         ct_real h1, h2, h3, h4, dist, pen;
         cti_nr_int degen, flag;
         cti_quad_end(CTI_QARGS, s, t, 1, g, two, &cx, &cy, &cz, &h1, &h2, &h3, &h4, &dist, &pen, &nx, &ny, &nz, &degen, &flag);
-        cti_nr_int bad = nonfin ? CT_NARROW_NONFINITE : (degen ? CT_NARROW_DEGENERATE : 0);
+        cti_nr_int bad = nonfin ? CTI_NR_F(NONFINITE) : (degen ? CTI_NR_F(DEGENERATE) : 0);
         CTI_NR_STORE(j, bad, dist, pen, nx, ny, nz, cx, cy, cz, h1, h2, h3, h4,
                      g, flag);
     }
@@ -357,8 +357,8 @@ void cti_nr_block_newton(const cti_nr_args *a, ct_idx k0, ct_idx n, cti_nr_blk *
         ct_real h1, h2, h3, h4, dist, pen;
         cti_nr_int degen, flag;
         cti_quad_end(CTI_QARGS, s, t, conv | fb, g, two, &cx, &cy, &cz, &h1, &h2, &h3, &h4, &dist, &pen, &nx, &ny, &nz, &degen, &flag);
-        cti_nr_int bad = nonfin ? CT_NARROW_NONFINITE : (degen ? CT_NARROW_DEGENERATE : 0);
-        flag |= fb ? CT_NARROW_FALLBACK : 0;
+        cti_nr_int bad = nonfin ? CTI_NR_F(NONFINITE) : (degen ? CTI_NR_F(DEGENERATE) : 0);
+        flag |= fb ? CTI_NR_F(FALLBACK) : 0;
         CTI_NR_STORE(j, bad, dist, pen, nx, ny, nz, cx, cy, cz, h1, h2, h3, h4,
                      g, flag);
     }
@@ -414,7 +414,7 @@ void cti_nr_block_closed(const cti_nr_args *a, ct_idx k0, ct_idx n, cti_nr_blk *
         ct_real h1, h2, h3, h4, dist, pen;
         cti_nr_int degen, flag;
         cti_quad_end(CTI_QARGS, s, t, 1, g, two, &cx, &cy, &cz, &h1, &h2, &h3, &h4, &dist, &pen, &nx, &ny, &nz, &degen, &flag);
-        cti_nr_int bad = nonfin ? CT_NARROW_NONFINITE : (degen ? CT_NARROW_DEGENERATE : 0);
+        cti_nr_int bad = nonfin ? CTI_NR_F(NONFINITE) : (degen ? CTI_NR_F(DEGENERATE) : 0);
         CTI_NR_STORE(j, bad, dist, pen, nx, ny, nz, cx, cy, cz, h1, h2, h3, h4,
                      g, flag);
     }
