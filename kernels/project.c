@@ -156,9 +156,11 @@ int ct_narrow_node_segment(ct_idx npair, const ct_idx *restrict node,
                          : method == CT_QUAD_NEWTON ? cti_nr_block_newton
                                                     : cti_nr_block_closed;
     ct_idx nblock = (ct_idx)((npair + CTI_NR_BLOCK - 1) / CTI_NR_BLOCK);
-    /* A call of one block (a few pairs) runs without a thread team: opening
-     * one costs more than the work. */
-#pragma omp parallel if (nblock > 1)
+    /* A call of up to 128 pairs (two blocks) runs without a thread team:
+     * opening one costs more than the work. (The threshold was one block
+     * when blocks were 128 pairs; the results do not depend on it.) */
+    const int team = npair > 128;
+#pragma omp parallel if (team)
     {
         /* One block scratch per thread, on its stack. */
         cti_nr_blk blk;
@@ -183,7 +185,7 @@ int ct_narrow_node_segment(ct_idx npair, const ct_idx *restrict node,
         int64_t act = 0, fb = 0, dg = 0, nf = 0, bh = 0, os = 0;
         const ct_real *restrict pen = out->pen;
         const uint8_t *restrict fl = out->flag;
-#pragma omp parallel for schedule(static) reduction(+ : act, fb, dg, nf, bh, os) if (nblock > 1)
+#pragma omp parallel for schedule(static) reduction(+ : act, fb, dg, nf, bh, os) if (team)
         for (ct_idx k = 0; k < npair; k++) {
             act += pen[k] > 0;
             fb += (fl[k] & CT_NARROW_FALLBACK) != 0;
