@@ -18,6 +18,10 @@
  * ct_pair_may_touch runs, on the same values: each lane's answer is the
  * one-pair answer, bit for bit, so the batch changes no search's pair set.
  * On smooth surfaces the lanes decide every pair (steps 1 to 4).
+ *
+ * Threads: a batch belongs to one thread (it lives on that thread's stack)
+ * and is appended to that thread's own output (a query block's buffer or
+ * the collector's per-thread buffer), so batching adds no shared write.
  */
 #include "ct_internal.h"
 #include "predicate_steps.h"
