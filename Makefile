@@ -147,8 +147,12 @@ $(BENCHBIN): $(BENCH_OBJ) $(LIBDRIVER) $(LIBCONTACT)
 
 # SCENE=path runs another scene; `contact demo` shows the search comparison.
 SCENE ?= data/scenes/showcase.yaml
+# The driver creates the run's own directory but, on purpose, not a missing
+# parent (a mistyped path is an error there): out/ is made here, since a
+# fresh checkout has none.
 run: deps
 	@$(MAKE) --no-print-directory $(CONTACT)
+	@mkdir -p out
 	$(CONTACT) run $(SCENE) --out out/$(basename $(notdir $(SCENE)))
 
 # Criterion forks one process per test; tests set their own thread counts.
