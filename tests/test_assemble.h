@@ -232,6 +232,21 @@ static inline int run_variant(ct_assemble_ws *ws, ct_assemble_variant v, const t
                        f->y, f->z);
 }
 
+/* Prepare variant v for map, zero f, and assemble the pair forces (fx, fy,
+ * fz with weights w) into it; both calls must succeed. */
+static inline void assemble_zeroed(ct_assemble_ws *ws, int v, const ct_asm_map *map,
+                                   const ct_real *const w[], const ct_real *fx,
+                                   const ct_real *fy, const ct_real *fz, nodef *f)
+{
+    memset(f->x, 0, (size_t)f->n * sizeof(ct_real));
+    memset(f->y, 0, (size_t)f->n * sizeof(ct_real));
+    memset(f->z, 0, (size_t)f->n * sizeof(ct_real));
+    cr_assert_eq(ct_assemble_prepare(ws, (ct_assemble_variant)v, map, f->n), CT_OK);
+    cr_assert_eq(ct_assemble(ws, (ct_assemble_variant)v, map, w, fx, fy, fz, f->n, f->x, f->y,
+                             f->z),
+                 CT_OK);
+}
+
 static inline void random_init(ct_idx n, ct_real **x0, ct_real **y0, ct_real **z0)
 {
     *x0 = ct_calloc((size_t)n, sizeof(ct_real));

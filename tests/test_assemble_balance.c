@@ -80,12 +80,7 @@ Test(assemble, edge_edge_balance)
     nf_init(&f, nn, NULL, NULL, NULL);
     ctt_threads(2);
     for (int v = 0; v < CT_ASM_NVARIANT; v++) {
-        memset(f.x, 0, (size_t)nn * sizeof(ct_real));
-        memset(f.y, 0, (size_t)nn * sizeof(ct_real));
-        memset(f.z, 0, (size_t)nn * sizeof(ct_real));
-        cr_assert_eq(ct_assemble_prepare(&ws, v, &map, nn), CT_OK);
-        cr_assert_eq(ct_assemble(&ws, v, &map, w, g.f[0], g.f[1], g.f[2], nn, f.x, f.y, f.z),
-                     CT_OK);
+        assemble_zeroed(&ws, v, &map, w, g.f[0], g.f[1], g.f[2], &f);
         double F[3] = {0, 0, 0}, M[3] = {0, 0, 0};
         for (ct_idx i = 0; i < nn; i++) {
             F[0] += f.x[i];
@@ -142,13 +137,7 @@ Test(assemble, newton_third_law)
     nf_init(&f, nn, NULL, NULL, NULL);
     ctt_threads(2);
     for (int v = 0; v < CT_ASM_NVARIANT; v++) {
-        memset(f.x, 0, (size_t)nn * sizeof(ct_real));
-        memset(f.y, 0, (size_t)nn * sizeof(ct_real));
-        memset(f.z, 0, (size_t)nn * sizeof(ct_real));
-        cr_assert_eq(ct_assemble_prepare(&ws, v, &map, nn), CT_OK);
-        cr_assert_eq(ct_assemble(&ws, v, &map, weights(&g, wb), g.f[0], g.f[1], g.f[2], nn,
-                                 f.x, f.y, f.z),
-                     CT_OK);
+        assemble_zeroed(&ws, v, &map, weights(&g, wb), g.f[0], g.f[1], g.f[2], &f);
         double F[3] = {0, 0, 0};
         for (ct_idx i = 0; i < nn; i++) {
             F[0] += f.x[i];
