@@ -53,4 +53,13 @@ static inline void tstep(ctd_iface *it, tnodes *t, double time, double dt, ctd_i
     cr_assert_eq(rc, CT_OK, "step: %s", ct_strerror(rc));
 }
 
+/* Sum of a nodal force component over n nodes. */
+static inline double fsum(const ct_real *f, ct_idx n)
+{
+    double s = 0;
+    for (ct_idx i = 0; i < n; i++)
+        s += (double)f[i];
+    return s;
+}
+
 #endif /* TEST_IFACE_UTIL_H */
