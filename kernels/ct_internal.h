@@ -210,8 +210,13 @@ static inline void cti_collect_mark(cti_collect *c, int t, ct_idx secpos, size_t
     c->count[secpos] = (ct_idx)(c->len[t] - start);
 }
 
-/* Decide the batch pb (loaded by indices, or from the corner records rec
- * when not NULL; the secondary position of each pair in pos[]) and append the accepted segments to thread t's
+/* Load the batch pb's coordinates (by the segments' indices, or from the
+ * corner records rec when not NULL) and decide it: pb->ok. */
+void cti_pair_batch_decide(cti_pair_batch *restrict pb, const ct_search_input *in,
+                           const ct_real *rec, ct_real d);
+
+/* Decide the batch pb (cti_pair_batch_decide; the secondary position of
+ * each pair in pos[]) and append the accepted segments to thread t's
  * collector buffer from *len on, which must have room for pb->n more. A
  * node's pairs must be consecutive in the batches; they may span two:
  * *last is the position whose record is open (-1 before the first). */

@@ -125,15 +125,21 @@ void cti_pair_batch_test(cti_pair_batch *restrict b, ct_real d)
     }
 }
 
-void cti_pair_batch_collect(cti_pair_batch *restrict pb, const ct_idx *restrict pos,
-                            const ct_search_input *in, const ct_real *rec, ct_real d,
-                            cti_collect *col, int t, size_t *len, ct_idx *last)
+void cti_pair_batch_decide(cti_pair_batch *restrict pb, const ct_search_input *in,
+                           const ct_real *rec, ct_real d)
 {
     if (rec)
         cti_pair_batch_load_rec(pb, in->x, in->y, in->z, rec);
     else
         cti_pair_batch_load(pb, in->x, in->y, in->z, in->n1, in->n2, in->n3, in->n4);
     cti_pair_batch_test(pb, d);
+}
+
+void cti_pair_batch_collect(cti_pair_batch *restrict pb, const ct_idx *restrict pos,
+                            const ct_search_input *in, const ct_real *rec, ct_real d,
+                            cti_collect *col, int t, size_t *len, ct_idx *last)
+{
+    cti_pair_batch_decide(pb, in, rec, d);
     ct_idx *restrict buf = col->buf[t];
     size_t l = *len;
     for (int q = 0; q < pb->n; q++) {

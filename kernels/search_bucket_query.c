@@ -122,13 +122,10 @@ static inline ct_idx bk_cands_box(const bk_ctx *restrict k, ct_idx node, ct_real
 /* The hull filter in batches: decide the pending candidates of pb
  * (cti_pair_batch_test) and append the accepted ones, in their order, to
  * w, which has room for all of them. */
-static void bk_flush(const bk_ctx *restrict k, cti_pair_batch *restrict pb, bk_out *restrict w)
+static void bk_flush(const bk_ctx *restrict k, const ct_search_input *in,
+                     cti_pair_batch *restrict pb, bk_out *restrict w)
 {
-    if (k->srec)
-        cti_pair_batch_load_rec(pb, k->x, k->y, k->z, k->srec);
-    else
-        cti_pair_batch_load(pb, k->x, k->y, k->z, k->n1, k->n2, k->n3, k->n4);
-    cti_pair_batch_test(pb, k->d);
+    cti_pair_batch_decide(pb, in, k->srec, k->d);
     size_t n = w->n;
     ct_idx *restrict on = w->node, *restrict os = w->seg;
     const cti_lane *restrict ok = pb->ok;
@@ -156,7 +153,7 @@ typedef struct bk_sink {
 static void bk_sink_flush(const bk_ctx *restrict k, cti_pair_batch *restrict pb, bk_sink *o)
 {
     if (o->w) {
-        bk_flush(k, pb, o->w);
+        bk_flush(k, o->in, pb, o->w);
         return;
     }
     size_t len = o->col->len[o->t];
@@ -243,7 +240,6 @@ int cti_bucket_query_direct(const bk_state *st, const ct_search_input *in, const
                 break;
             }
             if (batch) {
-                sink.w = &w;
                 bk_cands_batch(&k, node, i, X, Y, Z, e0, e1, &pb, &sink);
                 continue;
             }
@@ -253,7 +249,7 @@ int cti_bucket_query_direct(const bk_state *st, const ct_search_input *in, const
             w.n += (size_t)m;
         }
         if (pb.n > 0 && !(err & BK_ENOMEM))
-            bk_flush(&k, &pb, &w);
+            bk_sink_flush(&k, &pb, &sink);
         o[b] = w;
     }
     return err;
