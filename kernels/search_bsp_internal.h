@@ -25,13 +25,13 @@ typedef float bsp_f;
 static inline bsp_f bsp_down(double v)
 {
     bsp_f f = (bsp_f)v;
-    return (double)f > v ? nextafterf(f, -INFINITY) : f;
+    return (double)f > v ? cti_next_down_f(f) : f;
 }
 
 static inline bsp_f bsp_up(double v)
 {
     bsp_f f = (bsp_f)v;
-    return (double)f < v ? nextafterf(f, INFINITY) : f;
+    return (double)f < v ? cti_next_up_f(f) : f;
 }
 
 /* Blocks of the deterministic per-block loops over nodes and segments. */

@@ -196,10 +196,15 @@ void cti_bsp_leaf(bsp_ctx *c, ct_idx n0, ct_idx n1, const ct_idx *restrict segs,
         ct_idx *restrict buf = col->buf[t];
         const bsp_f px = st->nx[k], py = st->ny[k], pz = st->nz[k];
         const ct_idx pos = st->nid[k], node = in->sec[pos];
+        /* Sixteen lanes at a time with a constant trip count: a loop over
+         * ns16 left most leaves (a few dozen segments) to gcc's scalar
+         * epilogue. */
+        for (ct_idx q0 = 0; q0 < ns16; q0 += 16) {
 #pragma omp simd
-        for (ct_idx q = 0; q < ns16; q++)
-            hit[q] = (unsigned char)((px >= l0[q]) & (px <= h0[q]) & (py >= l1[q]) &
-                                     (py <= h1[q]) & (pz >= l2[q]) & (pz <= h2[q]));
+            for (ct_idx q = q0; q < q0 + 16; q++)
+                hit[q] = (unsigned char)((px >= l0[q]) & (px <= h0[q]) & (py >= l1[q]) &
+                                         (py <= h1[q]) & (pz >= l2[q]) & (pz <= h2[q]));
+        }
         size_t start = len;
         for (ct_idx q0 = 0; q0 < ns16; q0 += 8) {
             uint64_t m;

@@ -27,9 +27,9 @@ static inline float bk_float_out(ct_real v, int round_down)
     float f = (float)v;
 #ifndef CT_SINGLE
     if (round_down && (ct_real)f > v)
-        f = nextafterf(f, -INFINITY);
+        f = cti_next_down_f(f);
     if (!round_down && (ct_real)f < v)
-        f = nextafterf(f, INFINITY);
+        f = cti_next_up_f(f);
 #else
     (void)round_down;
 #endif

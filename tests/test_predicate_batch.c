@@ -11,6 +11,8 @@
  * also checks that the vector lanes decide most pairs by themselves, so a
  * batch that silently sent everything to the one-pair predicate would fail.
  */
+#include <float.h>
+
 #include "test_util.h"
 
 #include "ct_internal.h"
@@ -228,4 +230,34 @@ Test(predicate_batch, non_finite_coordinates)
     int64_t scalar =
         check_batch(16, (const double(*)[3])p, (const double(*)[4][3])c, 0.5, &accepted);
     cr_assert_geq(scalar, 4, "the four non-finite pairs must go to the one-pair predicate");
+}
+
+/* The searches round box bounds outward to float with cti_next_down_f and
+ * cti_next_up_f; they must be libm's nextafterf toward -inf and +inf, on
+ * zeros, subnormals, the largest float, infinities and random bit
+ * patterns. */
+static void check_next(float f)
+{
+    float d = cti_next_down_f(f), u = cti_next_up_f(f);
+    float wd = nextafterf(f, -INFINITY), wu = nextafterf(f, INFINITY);
+    cr_assert(memcmp(&d, &wd, sizeof d) == 0, "next down of %a: %a, libm %a", (double)f,
+              (double)d, (double)wd);
+    cr_assert(memcmp(&u, &wu, sizeof u) == 0, "next up of %a: %a, libm %a", (double)f,
+              (double)u, (double)wu);
+}
+
+Test(predicate_batch, float_rounding_steps_match_nextafterf)
+{
+    const float special[] = {0.0f,       -0.0f,     0x1p-149f,  -0x1p-149f, 0x1p-126f,
+                             -0x1p-126f, 1.0f,      -1.0f,      FLT_MAX,    -FLT_MAX,
+                             INFINITY,   -INFINITY, 0x1.fffffep-127f, -0x1.fffffep-127f};
+    for (size_t k = 0; k < sizeof special / sizeof special[0]; k++)
+        check_next(special[k]);
+    for (int k = 0; k < 100000; k++) {
+        uint32_t b = (uint32_t)(urand() * 4294967296.0);
+        float f;
+        memcpy(&f, &b, sizeof f);
+        if (f == f)
+            check_next(f);
+    }
 }
