@@ -108,6 +108,12 @@ static ct_idx cti_colour_pass(ct_assemble_ws *ws, const ct_asm_map *map, ct_idx 
     return nnext;
 }
 
+ct_idx ct_asm_default_block(ct_idx npair)
+{
+    return (ct_idx)CTI_MIN((int64_t)CT_ASM_BLOCK_MAX,
+                           CTI_MAX((int64_t)CT_ASM_BLOCK_MIN, (int64_t)npair / 32));
+}
+
 int ct_colour_pairs(ct_assemble_ws *ws, const ct_asm_map *map, ct_idx nnode, ct_idx block)
 {
     if (!ws || !cti_asm_map_ok(map) || nnode < 0)
@@ -116,7 +122,7 @@ int ct_colour_pairs(ct_assemble_ws *ws, const ct_asm_map *map, ct_idx nnode, ct_
     int rc = cti_map_nodes_in_range(map, nnode);
     if (rc != CT_OK)
         return rc;
-    const ct_idx npair = map->npair, B = block > 0 ? block : CT_ASM_DEFAULT_BLOCK;
+    const ct_idx npair = map->npair, B = block > 0 ? block : ct_asm_default_block(map->npair);
     const int ns = map->nslot;
     const ct_idx nblock = (ct_idx)(((int64_t)npair + B - 1) / B);
     if (CTI_GROW(ws, colour, cap_colour, nblock) || CTI_GROW(ws, bperm, cap_bperm, nblock) ||

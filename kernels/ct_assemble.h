@@ -149,13 +149,29 @@ size_t ct_assemble_ws_memory(const ct_assemble_ws *ws);
  * the smallest colour not used by an earlier block that shares a node.
  * A first pass gives colours 0..63 with one 64-bit mask per node; blocks
  * that found all 64 taken go to further passes with wider masks over their
- * nodes only, which gives exactly the one-by-one greedy result. block <= 0 selects the default (CT_ASM_DEFAULT_BLOCK); block == 1
- * colours single pairs. The result depends on the map only, never on the
- * thread count. Node indices must lie in [0, nnode) (else CT_ERR_RANGE).
+ * nodes only, which gives exactly the one-by-one greedy result. block <= 0
+ * selects ct_asm_default_block(npair); block == 1 colours single pairs. The
+ * result depends on the map only, never on the thread count. Node indices
+ * must lie in [0, nnode) (else CT_ERR_RANGE).
  */
-#define CT_ASM_DEFAULT_BLOCK 256
 int ct_colour_pairs(ct_assemble_ws *ws, const ct_asm_map *map, ct_idx nnode,
                     ct_idx block);
+
+/*
+ * The default block of the colouring: npair / 32 pairs, at least
+ * CT_ASM_BLOCK_MIN and at most CT_ASM_BLOCK_MAX. A colour's blocks lie
+ * apart in the pair arrays; each block is a dozen short streams (forces,
+ * slots, weights), and blocks of 256 pairs left the hardware prefetcher too
+ * little to lock on: at 10^6 pairs the coloured loop was 2-3x slower than
+ * the serial one. Blocks of 4096 stream like the serial loop and need fewer
+ * colours (2 instead of 6 on the plates). The size depends on npair only,
+ * so the colouring, and with it every node's order of contributions, stays
+ * independent of the thread count; npair / 32 keeps 16 or more blocks per
+ * colour for the threads to share.
+ */
+#define CT_ASM_BLOCK_MIN 256
+#define CT_ASM_BLOCK_MAX 4096
+ct_idx ct_asm_default_block(ct_idx npair);
 
 /* The greedy bound of the last colouring: the largest, over blocks, number
  * of (other block, shared node) incidences; ncolour <= it + 1. Costs a pass
