@@ -71,6 +71,7 @@ static void bk_free(void *v)
     ct_free(st->fbox);
     ct_free(st->rng);
     ct_free(st->srec);
+    ct_free(st->xyzw);
     ct_free(st->cnt);
     ct_free(st->start);
     ct_free(st->ent);
@@ -90,7 +91,7 @@ static size_t bk_memory(const void *v)
     const bk_state *st = v;
     size_t b = sizeof *st + (size_t)st->maxblk * sizeof(bk_out);
     b += st->box_cap * sizeof(ct_real) + st->fbox_cap * sizeof(float);
-    b += st->rng_cap * sizeof(uint64_t) + st->srec_cap * sizeof(ct_real);
+    b += st->rng_cap * sizeof(uint64_t) + (st->srec_cap + st->xyzw_cap) * sizeof(ct_real);
     b += (st->cnt_cap + st->start_cap + st->ent_cap) * sizeof(ct_idx);
     b += (st->ncl_cap + st->ord_cap + st->ordc_cap) * sizeof(ct_idx);
     for (int k = 0; k < st->maxblk; k++)
@@ -324,11 +325,12 @@ int cti_search_bucket(ct_search *s, const ct_search_input *in, ct_pairs *out)
      * candidate's corners are two cache lines, not twelve random ones. */
     st->srec_on = !boxf && cti_bucket_scattered(in);
     if (st->srec_on &&
-        bk_grow(&st->srec, &st->srec_cap, (size_t)12 * (size_t)in->nseg, sizeof(ct_real)))
+        (bk_grow(&st->srec, &st->srec_cap, (size_t)12 * (size_t)in->nseg, sizeof(ct_real)) ||
+         bk_grow(&st->xyzw, &st->xyzw_cap, (size_t)4 * (size_t)in->nnode, sizeof(ct_real))))
         return CT_ERR_NOMEM;
     ct_real mb[6];
-    rc = cti_bucket_boxes(in, boxf ? st->box : NULL, st->fbox, st->srec_on ? st->srec : NULL,
-                          mb);
+    rc = cti_bucket_boxes(in, st->srec_on ? st->xyzw : NULL, boxf ? st->box : NULL, st->fbox,
+                          st->srec_on ? st->srec : NULL, mb);
     if (rc)
         return rc;
     if (in->nsec == 0 || in->nseg == 0)

@@ -9,7 +9,8 @@
 
 #include "ct_internal.h"
 
-int cti_bucket_boxes(const ct_search_input *in, ct_real *restrict box, float *restrict fbox,
+int cti_bucket_boxes(const ct_search_input *in, ct_real *restrict xyzw, ct_real *restrict box,
+                     float *restrict fbox,
                      ct_real *restrict srec, ct_real mb[6]);
 int cti_bucket_scattered(const ct_search_input *in);
 int cti_bucket_check_sec(const ct_search_input *in);
@@ -44,6 +45,8 @@ typedef struct bk_state {
     ct_real *srec; /* per segment: its 4 corners (hull filter, scattered
                       numberings only) */
     size_t srec_cap;
+    ct_real *xyzw; /* per node: x y z 0 (scattered numberings only) */
+    size_t xyzw_cap;
     ct_idx *cnt; /* per block: counters per cell, then offsets (stride cstride) */
     size_t cnt_cap;
     ct_idx *start; /* per cell: first entry; start[ncell] = entries */

@@ -608,6 +608,35 @@ Test(search_bucket, scattered_numbering, .timeout = 120)
     shuffle_sec(&s, 31);
     ct_search_input in = sc_input(&s, 0.3, 0.2, 0);
     cr_assert_eq(check_same(&in), 3 * n * n - 2 * n);
+    /* One search reused across calls (its packed copy of the coordinates
+     * must be made afresh by each): a NaN main corner is seen, then the
+     * repaired input gives the pairs again, and a main node lifted out of
+     * reach loses its segments' pairs. */
+    {
+        ct_search_params p = ct_search_default_params(CT_SEARCH_BUCKET);
+        ct_search *bs;
+        cr_assert_eq(ct_search_init(&bs, &p), CT_OK);
+        ct_pairs o;
+        ct_pairs_init(&o, 0);
+        ctt_threads(2);
+        const ct_idx m = s.n1[s.ns / 2];
+        const ct_real zm = s.z[m];
+        cr_assert_eq(ct_search_run(bs, &in, &o), CT_OK);
+        cr_assert_eq(o.n, 3 * n * n - 2 * n);
+        s.z[m] = (ct_real)NAN;
+        cr_assert_eq(ct_search_run(bs, &in, &o), CT_ERR_NONFINITE);
+        s.z[m] = zm;
+        cr_assert_eq(ct_search_run(bs, &in, &o), CT_OK);
+        cr_assert_eq(o.n, 3 * n * n - 2 * n);
+        s.z[m] = zm - 100;
+        cr_assert_eq(ct_search_run(bs, &in, &o), CT_OK);
+        ct_idx moved = o.n;
+        cr_assert_eq(check_same(&in), moved);
+        cr_assert_lt(moved, 3 * n * n - 2 * n);
+        s.z[m] = zm;
+        ct_pairs_destroy(&o);
+        ct_search_destroy(bs);
+    }
     if (!ctt_checking()) {
         in.filter = CT_FILTER_BOX;
         cr_assert_geq(check_same(&in), 3 * n * n - 2 * n);
