@@ -142,19 +142,30 @@ void cti_pair_batch_collect(cti_pair_batch *restrict pb, const ct_idx *restrict 
     cti_pair_batch_decide(pb, in, rec, d);
     ct_idx *restrict buf = col->buf[t];
     size_t l = *len;
+    /* Every segment is written and the length advances by the answer (0
+     * or 1): no branch on the answers, which a dense region makes
+     * unpredictable. A node's record is opened at its first accepted pair
+     * and its count is the length run since then, written when the next
+     * record opens and at the end of the batch (the record stays open for
+     * the next batch). */
+    ct_idx lp = *last;
+    int64_t ls = lp >= 0 ? col->start[lp] : 0;
     for (int q = 0; q < pb->n; q++) {
-        if (!pb->ok[q])
-            continue;
         const ct_idx p = pos[q];
-        if (p != *last) {
+        const size_t okq = (size_t)(pb->ok[q] != 0);
+        if (okq & (p != lp)) {
+            if (lp >= 0)
+                col->count[lp] = (ct_idx)((int64_t)l - ls);
             col->owner[p] = t;
-            col->start[p] = (int64_t)l;
-            col->count[p] = 0;
-            *last = p;
+            col->start[p] = ls = (int64_t)l;
+            lp = p;
         }
-        buf[l++] = pb->seg[q];
-        col->count[p]++;
+        buf[l] = pb->seg[q];
+        l += okq;
     }
+    if (lp >= 0)
+        col->count[lp] = (ct_idx)((int64_t)l - ls);
+    *last = lp;
     *len = l;
     pb->n = 0;
 }
