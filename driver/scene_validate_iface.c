@@ -1,0 +1,154 @@
+/*
+ * scene_validate_iface.c -- the checks of a scene's contact interfaces:
+ * type, sides, gaps, stiffness, friction and their ranges (scene_validate.c
+ * has the rest).
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "meshgen.h"
+#include "scene_validate_internal.h"
+
+/* ---- Interfaces ------------------------------------------------------------ */
+
+void cti_vcheck_interface(vctx *v, unsigned i, ctd_scene_interface *f)
+{
+    char b[64];
+    snprintf(b, sizeof b, "interfaces[%u]", i);
+    f->line = cti_path_line(v->e->root, b);
+    snprintf(f->label, sizeof f->label, "%s", f->name ? f->name : "");
+    if (!f->name)
+        snprintf(f->label, sizeof f->label, "if%u", i);
+    const int64_t t = f->type;
+    if (t != 3 && t != 5 && t != 6 && t != 7 && t != 11 && t != 24) {
+        cti_err(v->e, CT_ERR_ARG, 0, cti_vpath(v, "%s.type", b),
+                "expected one of 3, 5, 6, 7, 11, 24, got %lld", (long long)t);
+        return;
+    }
+    /* Selections: main is a surface; secondary per type. */
+    cti_vsel(v, cti_vpath(v, "%s.main", b), f->main, SEL_SURF);
+    f->self = f->secondary == NULL;
+    if (f->self && (t == 3 || t == 5 || t == 6))
+        cti_err(v->e, CT_ERR_ARG, 0, cti_vpath(v, "%s.secondary", b),
+                "required field missing for type %lld (expected a %s selection)", (long long)t,
+                t == 5 ? "node" : "surface");
+    else if (f->secondary)
+        cti_vsel(v, cti_vpath(v, "%s.secondary", b), f->secondary,
+                 (t == 3 || t == 6 || t == 11) ? SEL_SURF
+                 : (t == 5 || t == 7)          ? SEL_NODES
+                                               : SEL_NODES | SEL_SURF);
+    if (f->grnd_IDs && t != 24)
+        cti_err(v->e, CT_ERR_ARG, 0, cti_vpath(v, "%s.grnd_IDs", b), "only used by type 24");
+    else if (f->grnd_IDs)
+        cti_vsel(v, cti_vpath(v, "%s.grnd_IDs", b), f->grnd_IDs, SEL_NODES);
+    /* TYPE6: both sides on rigid parts, and the force curve. */
+    if (t == 6) {
+        ctd_scene_sel *side[2] = {f->main, f->secondary};
+        for (int s = 0; s < 2; s++) {
+            if (!side[s])
+                continue;
+            int64_t pid = side[s]->part          ? side[s]->part
+                          : side[s]->parts_count ? side[s]->parts[0]
+                                                 : 0;
+            const ctd_scene_part *p = pid ? ctd_scene_part_by_id(v->sc, pid) : NULL;
+            if (p && p->element != CTD_ELEM_RIGID)
+                cti_err(v->e, CT_ERR_ARG, 0, cti_vpath(v, "%s.%s", b, s ? "secondary" : "main"),
+                        "part %lld has element %s; type 6 expects a part with element rigid",
+                        (long long)pid, p->element_name);
+        }
+        if (!f->curve)
+            cti_err(v->e, CT_ERR_ARG, 0, cti_vpath(v, "%s.curve", b),
+                    "required field missing for type 6 (expected [[p0, F0], [p1, F1], ...])");
+    } else if (f->curve) {
+        cti_err(v->e, CT_ERR_ARG, 0, cti_vpath(v, "%s.curve", b), "only used by type 6");
+    }
+    if (f->curve && f->curve_count < 2)
+        cti_err(v->e, CT_ERR_ARG, 0, cti_vpath(v, "%s.curve", b),
+                "expected at least 2 points, got %u", f->curve_count);
+    for (unsigned k = 0; f->curve && k < f->curve_count; k++) {
+        cti_vnum(v, cti_vpath(v, "%s.curve[%u][0]", b, k), f->curve[k][0], 0, 0, INFINITY, 0,
+                 "a penetration >= 0");
+        cti_vnum(v, cti_vpath(v, "%s.curve[%u][1]", b, k), f->curve[k][1], 0, 0, INFINITY, 0,
+                 "a force >= 0");
+        if (k > 0 && !(f->curve[k][0] > f->curve[k - 1][0]))
+            cti_err(v->e, CT_ERR_ARG, 0, cti_vpath(v, "%s.curve[%u][0]", b, k),
+                    "expected penetrations in strictly ascending order, got %g after %g",
+                    f->curve[k][0], f->curve[k - 1][0]);
+    }
+    /* Search. */
+    static const char *const search_names[] = {"direct", "topological", "bucket", "bsp"};
+    if (f->search_name)
+        f->search = cti_venum(v, cti_vpath(v, "%s.search", b), f->search_name, search_names, 4);
+    else
+        f->search = (t == 3 || t == 5) ? CT_SEARCH_TOPO : CT_SEARCH_BUCKET;
+    /* Defaults of the card fields that are not zero. */
+    if (!cti_vhas(v, cti_vpath(v, "%s.Stfac", b)))
+        f->Stfac = (t == 3 || t == 5 || t == 6) ? 0.2 : 1.0;
+    if (!cti_vhas(v, cti_vpath(v, "%s.VisS", b)))
+        f->VisS = (t == 7 || t == 11) ? 0.05 : t == 24 ? 1.0 : 0.0;
+    /* Integer flags. */
+    if (!(f->Istf >= 0 && f->Istf <= 5) && f->Istf != 1000)
+        cti_err(v->e, CT_ERR_ARG, 0, cti_vpath(v, "%s.Istf", b),
+                "expected one of 0, 1, 2, 3, 4, 5, 1000, got %lld", (long long)f->Istf);
+    if (f->Igap0 < 0 || f->Igap0 > 1)
+        cti_err(v->e, CT_ERR_ARG, 0, cti_vpath(v, "%s.Igap0", b), "expected 0 or 1, got %lld",
+                (long long)f->Igap0);
+    if (f->Ipen0 < 0 || f->Ipen0 > 1)
+        cti_err(v->e, CT_ERR_ARG, 0, cti_vpath(v, "%s.Ipen0", b), "expected 0 or 1, got %lld",
+                (long long)f->Ipen0);
+    if (f->Inacti < -1 || (f->Inacti > 6 && f->Inacti != 1000) || f->Inacti == 4)
+        cti_err(v->e, CT_ERR_ARG, 0, cti_vpath(v, "%s.Inacti", b),
+                "expected one of -1, 0, 1, 2, 3, 5, 6, 1000, got %lld", (long long)f->Inacti);
+    if (f->Ifric < 0 || f->Ifric > 4)
+        cti_err(v->e, CT_ERR_ARG, 0, cti_vpath(v, "%s.Ifric", b),
+                "expected an integer in 0..4, got %lld", (long long)f->Ifric);
+    if (f->Ifiltr < 0 || f->Ifiltr > 3)
+        cti_err(v->e, CT_ERR_ARG, 0, cti_vpath(v, "%s.Ifiltr", b),
+                "expected an integer in 0..3, got %lld", (long long)f->Ifiltr);
+    /* Numbers. */
+    cti_vnum(v, cti_vpath(v, "%s.Stfac", b), f->Stfac, 0, 1, INFINITY, 0, "a number > 0");
+    cti_vnum(v, cti_vpath(v, "%s.Stmin", b), f->Stmin, 0, 0, INFINITY, 0, "a number >= 0");
+    if (cti_vnum(v, cti_vpath(v, "%s.Stmax", b), f->Stmax, 0, 0, INFINITY, 0,
+                 "a number >= 0 (0: no limit)") &&
+        f->Stmax > 0 && f->Stmax < f->Stmin)
+        cti_err(v->e, CT_ERR_ARG, 0, cti_vpath(v, "%s.Stmax", b),
+                "expected a number >= Stmin (%g), got %g", f->Stmin, f->Stmax);
+    cti_vnum(v, cti_vpath(v, "%s.gap", b), f->gap, 0, 0, INFINITY, 0,
+             "a number >= 0 (0: automatic)");
+    cti_vnum(v, cti_vpath(v, "%s.Gap_max_s", b), f->Gap_max_s, 0, 0, INFINITY, 0, "a number >= 0");
+    cti_vnum(v, cti_vpath(v, "%s.Gap_max_m", b), f->Gap_max_m, 0, 0, INFINITY, 0, "a number >= 0");
+    cti_vnum(v, cti_vpath(v, "%s.Ipen_max", b), f->Ipen_max, 0, 0, INFINITY, 0, "a number >= 0");
+    cti_vnum(v, cti_vpath(v, "%s.VisS", b), f->VisS, 0, 0, INFINITY, 0, "a number >= 0");
+    cti_vnum(v, cti_vpath(v, "%s.Fric", b), f->Fric, 0, 0, INFINITY, 0, "a number >= 0");
+    const double C[6] = {f->C1, f->C2, f->C3, f->C4, f->C5, f->C6};
+    for (int k = 0; k < 6; k++)
+        cti_vnum(v, cti_vpath(v, "%s.C%d", b, k + 1), C[k], -INFINITY, 0, INFINITY, 0,
+                 "a finite number");
+    if (f->Ifric == 3 && !(f->C5 > 0 && f->C6 > f->C5))
+        cti_err(v->e, CT_ERR_ARG, 0, cti_vpath(v, "%s.C5", b),
+                "Renard friction (Ifric 3) expects 0 < C5 < C6, got C5 = %g, C6 = %g", f->C5,
+                f->C6);
+    if (f->Ifric == 4 && f->C2 < 0)
+        cti_err(v->e, CT_ERR_ARG, 0, cti_vpath(v, "%s.C2", b),
+                "Ifric 4 expects a decay rate C2 >= 0, got %g", f->C2);
+    const char *px = cti_vpath(v, "%s.Xfreq", b);
+    char pxs[96];
+    snprintf(pxs, sizeof pxs, "%s", px);
+    if (f->Ifiltr == 1)
+        cti_vnum(v, pxs, f->Xfreq, 0, 1, 1, 0, "a number in (0, 1] for Ifiltr 1");
+    else if (f->Ifiltr == 2)
+        cti_vnum(v, pxs, f->Xfreq, 6.283185307179586, 0, INFINITY, 0,
+                 "a number >= 2 pi for Ifiltr 2");
+    else if (f->Ifiltr == 3)
+        cti_vnum(v, pxs, f->Xfreq, 0, 1, INFINITY, 0, "a number > 0 for Ifiltr 3");
+    else
+        cti_vnum(v, pxs, f->Xfreq, -INFINITY, 0, INFINITY, 0, "a finite number");
+    cti_vnum(v, cti_vpath(v, "%s.Tstart", b), f->Tstart, 0, 0, INFINITY, 0, "a time >= 0");
+    if (cti_vnum(v, cti_vpath(v, "%s.Tstop", b), f->Tstop, 0, 0, INFINITY, 0,
+                 "a time >= 0 (0: never)") &&
+        f->Tstop > 0 && !(f->Tstop > f->Tstart))
+        cti_err(v->e, CT_ERR_ARG, 0, cti_vpath(v, "%s.Tstop", b),
+                "expected a time > Tstart (%g), got %g", f->Tstart, f->Tstop);
+}
