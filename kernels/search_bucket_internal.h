@@ -10,8 +10,7 @@
 #include "ct_internal.h"
 
 int cti_bucket_boxes(const ct_search_input *in, ct_real *restrict xyzw, ct_real *restrict box,
-                     float *restrict fbox,
-                     ct_real *restrict srec, ct_real mb[6]);
+                     float *restrict fbox, ct_real *restrict srec, ct_real mb[6]);
 int cti_bucket_scattered(const ct_search_input *in);
 int cti_bucket_check_sec(const ct_search_input *in);
 int64_t cti_bucket_offsets(ct_idx *cnt, int nb, size_t stride, int64_t ncell, ct_idx *start);
