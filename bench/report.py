@@ -45,6 +45,11 @@ present, else the median of the repetition rows), and prints:
     trade/precision/<prec> runs, and their accuracy comes from the output of
     bench/trade_precision.py --json when that file is given too (a file with
     a top-level "trade_precision" key is that output, not a benchmark run);
+  - the full contact cycle (cycle/<family>/t<threads>/<nodes>, bench_cycle.c):
+    per precision, one row per family, size and threads with the ns per node
+    per cycle of each phase (the search amortised over the re-sort interval),
+    the total, the total times the threads against the target of 15 ns, and
+    the speed-up over the 1-thread row of the same family and size;
   - any other benchmark as name / median time.
 Standard library only.
 """
@@ -84,6 +89,16 @@ TRADE_RE = re.compile(
 TRADE_KNOBS = ["search", "filter", "margin", "quad", "precision", "assembly", "stiffness",
                "safety"]
 COUNTERS += ["cost", "accuracy"]
+# The full contact cycle (bench_cycle.c); its ns_* counters are ns per node
+# per cycle, wall time.
+CYCLE_RE = re.compile(
+    r"^cycle/(?P<family>[^/]+)/t(?P<threads>\d+)/(?P<n>\d+)(?:/iterations:\d+)?"
+    r"(?:/(?:real_time|manual_time))?$")
+CYCLE_PHASES = ["ns_search", "ns_narrow", "ns_force", "ns_assemble", "ns_timestep"]
+CYCLE_TARGET_NS = 15.0
+COUNTERS += [c for c in CYCLE_PHASES + [
+    "ns_total", "ns_total_x_threads", "ns_per_sort", "ns_check", "resort_interval",
+    "resort_interval_seen", "cand_per_node", "active_per_node", "nodes"] if c not in COUNTERS]
 PREC_ORDER = ["double", "single"]
 
 
@@ -526,6 +541,71 @@ def print_trade(trade, compare, out):
         out.append("")
 
 
+def parse_cycle(other, prec):
+    """Split the full contact cycle records (cycle/<family>/t<threads>/<nodes>)
+    from the others; the precision is the label's prec=, else the file's."""
+    cyc, rest = [], []
+    for r in other:
+        m = CYCLE_RE.match(r["name"])
+        if not m:
+            rest.append(r)
+            continue
+        r.update(m.groupdict())
+        r["threads"] = int(r["threads"])
+        r["n"] = int(r["n"])
+        lm = re.match(r"prec=(\w+)", r["label"] or "")
+        r["prec"] = lm.group(1) if lm else prec
+        cyc.append(r)
+    return cyc, rest
+
+
+def print_cycle(cyc, out):
+    """The full contact cycle: per precision, one row per family, size and
+    threads, sorted in that order."""
+    if not cyc:
+        return
+    out.append("## Full contact cycle\n")
+    out.append("Median of the repetitions, in ns per node per cycle (wall time); search "
+               "amortised over the re-sort interval (check per cycle + one search / "
+               "interval); × threads = total × threads, the per-thread figure of the target "
+               "of issue 5 (≤ %s ns/node/cycle per thread); speed-up = total with 1 thread / "
+               "total with this row's threads.\n" % fmt_num(CYCLE_TARGET_NS))
+    present = sorted(set(r["prec"] for r in cyc),
+                     key=lambda p: (PREC_ORDER.index(p) if p in PREC_ORDER else 99, p))
+    for p in present:
+        rows = sorted((r for r in cyc if r["prec"] == p),
+                      key=lambda r: (r["family"], r["n"], r["threads"]))
+        one = {(r["family"], r["n"]): r["counters"].get("ns_total") for r in rows
+               if r["threads"] == 1 and not r["error"]}
+        out.append("### %s precision\n" % p)
+        out.append("| family | nodes | threads | candidates/node | active/node | re-sort "
+                   "interval (cycles) | search (amortised) | narrow | force | assembly "
+                   "| time step | total ns/node/cycle | × threads (per thread) "
+                   "| vs target %s | speed-up |" % fmt_num(CYCLE_TARGET_NS))
+        out.append("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+        for r in rows:
+            head = "| %s | %d | %d " % (r["family"], r["n"], r["threads"])
+            if r["error"]:
+                out.append(head + "| %s | - | - | - | - | - | - | - | - | - | - | - |"
+                           % r["error"])
+                continue
+            c = r["counters"]
+            interval = fmt_num(c.get("resort_interval"))
+            if "resort_interval_seen" in c:
+                # The interval the interface saw, when it re-sorted by itself.
+                interval += " (seen %s)" % fmt_num(c["resort_interval_seen"])
+            total, per_thread = c.get("ns_total"), c.get("ns_total_x_threads")
+            target = "%.1f×" % (per_thread / CYCLE_TARGET_NS) if per_thread is not None \
+                else "-"
+            t1 = one.get((r["family"], r["n"]))
+            speedup = "%.2f" % (t1 / total) if r["threads"] > 1 and t1 and total else "-"
+            out.append(head + "| %s | %s | %s | %s | %s | %s | %s | %s |" % (
+                fmt_num(c.get("cand_per_node"), 2), fmt_num(c.get("active_per_node"), 2),
+                interval, " | ".join(fmt_ns(c.get(k)) for k in CYCLE_PHASES), fmt_ns(total),
+                fmt_ns(per_thread), target, speedup))
+        out.append("")
+
+
 def print_other(other, out):
     if not other:
         return
@@ -734,9 +814,10 @@ def report(datas, names=None, compare=None):
         kern, flo, other = split_records(rest, tag)
         peers, other = parse_peers(other)
         trade, other = parse_trade(other, tag)
+        cyc, other = parse_cycle(other, tag)
         files.append({"tag": tag, "name": name, "data": data, "search": search,
                       "kern": kern, "flo": flo, "other": other, "peers": peers,
-                      "trade": trade})
+                      "trade": trade, "cycle": cyc})
     for f in files:
         if multi:
             out.append("# %s precision (%s)\n" % (f["tag"], f["name"]))
@@ -754,6 +835,7 @@ def report(datas, names=None, compare=None):
     print_kernels([r for f in files for r in f["kern"]], precs, out)
     print_floor([r for f in files for r in f["flo"]], {f["tag"]: f["search"] for f in files},
                 out)
+    print_cycle([r for f in files for r in f["cycle"]], out)
     for f in files:
         print_peers(f["peers"], f["search"], out)
     print_trade([r for f in files for r in f["trade"]], compare, out)

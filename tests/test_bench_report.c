@@ -2,8 +2,10 @@
  * test_bench_report.c -- the JSON-to-Markdown script of the benchmarks
  * (bench/report.py) on a fixed file, tests/data/bench_sample.json: a real
  * `make bench` output (plates, 1000 and 10000 target nodes, 1 and 2
- * threads, 3 repetitions), trimmed. The expected numbers are worked out by
- * hand from the JSON values and written next to each check.
+ * threads, 3 repetitions), trimmed, and two full contact cycle medians
+ * (cycle/folded/t1/100000 from a real run, its t2 row made up). The
+ * expected numbers are worked out by hand from the JSON values and written
+ * next to each check.
  *
  * The tests run the script with python3 from the repository's top
  * directory (where `make test` runs them).
@@ -79,6 +81,45 @@ Test(bench_report, tables_from_sample)
     /* Speed-up 1 -> 2 threads at 10000: 2471139.17 / 6490199.50 = 0.381,
      * efficiency 0.381 / 2 = 19%. */
     expect_line(out, "| plates | bucket | natural | 10000 | 2.47 ms | 6.49 ms | 0.38 | 19% |");
+
+    free(out);
+}
+
+Test(bench_report, cycle_table_from_sample)
+{
+    cr_assert(access(SAMPLE, R_OK) == 0, "%s not found", SAMPLE);
+    int status = -1;
+    char *out = run_report(SAMPLE, &status);
+    cr_assert_eq(status, 0, "report.py failed:\n%s", out);
+
+    expect_line(out, "## Full contact cycle");
+    /* No label on the aggregates: the precision is the file's (ct_build's
+     * precision=double). */
+    expect_line(out, "### double precision");
+    expect_line(out, "| family | nodes | threads | candidates/node | active/node | re-sort "
+                     "interval (cycles) | search (amortised) | narrow | force | assembly "
+                     "| time step | total ns/node/cycle | × threads (per thread) "
+                     "| vs target 15 | speed-up |");
+    /* 1 thread, the real run's median: cand_per_node 6.7979 and
+     * active_per_node 2.0834 to 2 decimals; resort_interval 19 (no
+     * resort_interval_seen); phases 34.07, 259.71, 226.42, 83.52, 29.90;
+     * total 633.63, times 1 thread 633.63; vs target 633.63 / 15 = 42.24;
+     * no speed-up on the 1-thread row. */
+    expect_line(out, "| folded | 100000 | 1 | 6.80 | 2.08 | 19 | 34.1 | 259.7 | 226.4 | 83.5 "
+                     "| 29.9 | 633.6 | 633.6 | 42.2× | - |");
+    /* 2 threads: search 1.83 + 334.9 / 19 = 19.456, then 141.27, 122.64,
+     * 48.31, 16.04; total 347.716, times 2 threads 695.433; vs target
+     * 695.433 / 15 = 46.36 (the total alone would give 23.2); interval 19,
+     * seen 17.5; speed-up 633.634 / 347.716 = 1.822 (the wall times would
+     * give 539.2 / 305.1 = 1.77). */
+    expect_line(out, "| folded | 100000 | 2 | 6.80 | 2.08 | 19 (seen 17.5) | 19.5 | 141.3 | "
+                     "122.6 | 48.3 | 16.0 | 347.7 | 695.4 | 46.4× | 1.82 |");
+    /* The cycle rows are in their own table, not in the "other" one (which
+     * would list them by name with their median time). */
+    cr_expect(strstr(out, "| cycle/folded/") == NULL,
+              "cycle rows left in the \"other\" table:\n%s", out);
+    cr_expect(strstr(out, "## Other benchmarks") == NULL,
+              "the sample has no other benchmarks, but the table is there:\n%s", out);
 
     free(out);
 }
