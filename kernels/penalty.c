@@ -171,32 +171,74 @@ ct_real ct_type7_energy(ct_real K0, ct_real g, ct_real p)
     return K0 * g * g * cti_type7_phi(xc) + fmax * g * (xe - xc);
 }
 
+/* One block [i0, i1) of ct_penalty_type7, inlined with constant has_*
+ * flags: force, tangent and flag in a branch-free SIMD loop; then, when
+ * asked for, the energy in a scalar loop (gcc cannot vectorise its series
+ * and log1p) over the pairs in contact only: the others' energy is an
+ * exact zero, as the formula gives them. */
+static inline __attribute__((always_inline)) void
+cti_type7_block(int64_t i0, int64_t i1, const ct_real *restrict p, const ct_real *restrict g,
+                const ct_real *restrict K0, ct_real *restrict fel, ct_real *restrict ktan,
+                ct_real *restrict energy, int32_t *restrict flag, const int has_kt,
+                const int has_e, const int has_flag)
+{
+    const ct_real xc = (ct_real)1 - (ct_real)CT_TYPE7_RMIN;
+#pragma omp simd
+    for (int64_t i = i0; i < i1; i++) {
+        ct_real gi = g[i], k0 = K0[i], q = p[i];
+        /* Selects on floating compares (no int flag: see pair_force_body.h). */
+        ct_real ok = gi > 0 ? (ct_real)1 : 0;
+        ok = k0 > 0 ? ok : 0;
+        ok = q > 0 ? ok : 0;
+        ok = gi < (ct_real)INFINITY ? ok : 0;
+        ok = k0 < (ct_real)INFINITY ? ok : 0;
+        ct_real gs = ok > 0 ? gi : 1, ks = ok > 0 ? k0 : 0;
+        ct_real x = ok > 0 ? q / gs : 0;
+        ct_real xs = x >= xc ? xc : x, r = (ct_real)1 - xs;
+        fel[i] = ks * gs * xs / r;
+        if (has_kt)
+            ktan[i] = ks / (r * r);
+        if (has_flag)
+            flag[i] = x >= xc ? 1 : 0;
+    }
+    if (!has_e)
+        return;
+    for (int64_t i = i0; i < i1; i++) {
+        ct_real gi = g[i], k0 = K0[i], q = p[i];
+        if (!(gi > 0 && k0 > 0 && q > 0 && gi < (ct_real)INFINITY && k0 < (ct_real)INFINITY)) {
+            energy[i] = 0;
+            continue;
+        }
+        ct_real x = q / gi;
+        ct_real xs = x >= xc ? xc : x;
+        ct_real e = k0 * gi * gi * cti_type7_phi(xs);
+        if (x >= xc)
+            e += fel[i] * gi * ((x < 1 ? x : 1) - xc);
+        energy[i] = e;
+    }
+}
+
+/* Pairs per block of the TYPE7 loop. */
+#define CTI_TYPE7_BLOCK 2048
+
 int ct_penalty_type7(ct_idx npair, const ct_real *p, const ct_real *g, const ct_real *K0,
                      ct_real *fel, ct_real *ktan, ct_real *energy, int32_t *flag)
 {
     if (npair < 0 || !p || !g || !K0 || !fel)
         return CT_ERR_ARG;
-    const ct_real xc = (ct_real)1 - (ct_real)CT_TYPE7_RMIN;
+    const int variant = (ktan != NULL) | (energy != NULL) << 1 | (flag != NULL) << 2;
+    const int64_t nblk = ((int64_t)npair + CTI_TYPE7_BLOCK - 1) / CTI_TYPE7_BLOCK;
 #pragma omp parallel for schedule(static) if (npair > CTI_PAR_MIN)
-    for (ct_idx i = 0; i < npair; i++) {
-        ct_real gi = g[i], k0 = K0[i], q = p[i];
-        int valid = gi > 0 && k0 > 0 && q > 0 && gi < (ct_real)INFINITY &&
-                    k0 < (ct_real)INFINITY;
-        ct_real gs = valid ? gi : 1, ks = valid ? k0 : 0;
-        ct_real x = valid ? q / gs : 0;
-        int dead = x >= xc;
-        ct_real xs = dead ? xc : x, r = (ct_real)1 - xs;
-        ct_real f = ks * gs * xs / r;
-        ct_real e = ks * gs * gs * cti_type7_phi(xs);
-        if (dead)
-            e += f * gs * ((x < 1 ? x : 1) - xc);
-        fel[i] = f;
-        if (ktan)
-            ktan[i] = ks / (r * r);
-        if (energy)
-            energy[i] = e;
-        if (flag)
-            flag[i] = dead;
+    for (int64_t b = 0; b < nblk; b++) {
+        int64_t i0, i1;
+        cti_block_range(b, CTI_TYPE7_BLOCK, npair, &i0, &i1);
+#define CTI_T7_CASE(V)                                                                     \
+    case V:                                                                                \
+        cti_type7_block(i0, i1, p, g, K0, fel, ktan, energy, flag, (V)&1, ((V) >> 1) & 1,  \
+                        ((V) >> 2) & 1);                                                   \
+        break;
+        switch (variant) { CTI_CASES8(CTI_T7_CASE) }
+#undef CTI_T7_CASE
     }
     return CT_OK;
 }
@@ -285,6 +327,45 @@ ct_real ct_damping_coef(ct_real viss, ct_real K, ct_real ms, ct_real mm)
     return (viss > 0 && a > 0) ? viss * CTI_SQRT(a) : 0;
 }
 
+/* One block [i0, i1) of ct_normal_finish, inlined with constant has_*
+ * flags: a branch-free SIMD loop. */
+static inline __attribute__((always_inline)) void
+cti_finish_block(int64_t i0, int64_t i1, const ct_real *restrict pp,
+                 const ct_real *restrict fe_, const ct_real *restrict k,
+                 const ct_real *restrict v, const ct_real *restrict m1,
+                 const ct_real *restrict m2, ct_real vs, ct_real dt,
+                 const ct_real *restrict ax, const ct_real *restrict ay,
+                 const ct_real *restrict az, ct_real *restrict ofn, ct_real *restrict ox,
+                 ct_real *restrict oy, ct_real *restrict oz, ct_real *restrict od,
+                 const int has_mm, const int has_fn, const int has_d)
+{
+CTI_SIMD_SQRT
+    for (int64_t i = i0; i < i1; i++) {
+        ct_real q = pp[i];
+        ct_real fe = fe_[i] > 0 ? fe_[i] : 0;
+        ct_real m = has_mm ? cti_reduced_mass(m1[i], m2[i]) : m1[i];
+        ct_real a = (ct_real)2 * k[i] * m;
+        a = a > 0 ? a : 0;
+        ct_real c = vs * CTI_SQRT(a);
+        ct_real ft = fe - c * v[i];
+        ft = ft > 0 ? ft : 0;
+        ft = q > 0 ? ft : 0;
+        fe = q > 0 ? fe : 0;
+        ct_real d = (fe - ft) * v[i] * dt;
+        d = d > 0 ? d : 0;
+        if (has_fn)
+            ofn[i] = ft;
+        ox[i] = ft * ax[i];
+        oy[i] = ft * ay[i];
+        oz[i] = ft * az[i];
+        if (has_d)
+            od[i] = d;
+    }
+}
+
+/* Pairs per block of the damping loop. */
+#define CTI_FINISH_BLOCK 2048
+
 int ct_normal_finish(ct_idx npair, const ct_real *p, const ct_real *fel, const ct_real *kd,
                      const ct_real *vn, const ct_real *ms, const ct_real *mm, ct_real viss,
                      ct_real dt, const ct_real *nx, const ct_real *ny, const ct_real *nz,
@@ -293,33 +374,20 @@ int ct_normal_finish(ct_idx npair, const ct_real *p, const ct_real *fel, const c
     if (npair < 0 || !p || !fel || !kd || !vn || !ms || !nx || !ny || !nz || !fx || !fy ||
         !fz || !(dt >= 0))
         return CT_ERR_ARG;
-    const ct_real *restrict pp = p, *restrict fe_ = fel, *restrict k = kd, *restrict v = vn,
-                            *restrict m1 = ms, *restrict m2 = mm, *restrict ax = nx,
-                            *restrict ay = ny, *restrict az = nz;
-    ct_real *restrict ofn = fn, *restrict ox = fx, *restrict oy = fy, *restrict oz = fz,
-                      *restrict od = dissip;
     const ct_real vs = viss > 0 ? viss : 0;
+    const int variant = (mm != NULL) | (fn != NULL) << 1 | (dissip != NULL) << 2;
+    const int64_t nblk = ((int64_t)npair + CTI_FINISH_BLOCK - 1) / CTI_FINISH_BLOCK;
 #pragma omp parallel for schedule(static) if (npair > CTI_PAR_MIN)
-    for (ct_idx i = 0; i < npair; i++) {
-        int in = pp[i] > 0;
-        ct_real fe = fe_[i] > 0 ? fe_[i] : 0;
-        ct_real m = m2 ? cti_reduced_mass(m1[i], m2[i]) : m1[i];
-        ct_real a = (ct_real)2 * k[i] * m;
-        a = a > 0 ? a : 0;
-        ct_real c = vs * CTI_SQRT(a);
-        ct_real ft = fe - c * v[i];
-        ft = ft > 0 ? ft : 0;
-        ft = in ? ft : 0;
-        fe = in ? fe : 0;
-        ct_real d = (fe - ft) * v[i] * dt;
-        d = d > 0 ? d : 0;
-        if (ofn)
-            ofn[i] = ft;
-        ox[i] = ft * ax[i];
-        oy[i] = ft * ay[i];
-        oz[i] = ft * az[i];
-        if (od)
-            od[i] = d;
+    for (int64_t b = 0; b < nblk; b++) {
+        int64_t i0, i1;
+        cti_block_range(b, CTI_FINISH_BLOCK, npair, &i0, &i1);
+#define CTI_NFIN_CASE(V)                                                                   \
+    case V:                                                                                \
+        cti_finish_block(i0, i1, p, fel, kd, vn, ms, mm, vs, dt, nx, ny, nz, fn, fx, fy, fz, \
+                         dissip, (V)&1, ((V) >> 1) & 1, ((V) >> 2) & 1);                   \
+        break;
+        switch (variant) { CTI_CASES8(CTI_NFIN_CASE) }
+#undef CTI_NFIN_CASE
     }
     return CT_OK;
 }
