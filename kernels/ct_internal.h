@@ -15,9 +15,13 @@
 #include <omp.h>
 static inline int cti_num_threads(void) { return omp_get_max_threads(); }
 static inline int cti_thread_id(void) { return omp_get_thread_num(); }
+/* Inside a caller's parallel region a kernel opens no team of its own (a
+ * nested region would run on one thread anyway, at the cost of making it). */
+static inline int cti_in_parallel(void) { return omp_in_parallel(); }
 #else
 static inline int cti_num_threads(void) { return 1; }
 static inline int cti_thread_id(void) { return 0; }
+static inline int cti_in_parallel(void) { return 0; }
 #endif
 
 /* The float next below f (f not NaN), as nextafterf(f, -INFINITY) but

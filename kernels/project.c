@@ -158,8 +158,9 @@ int ct_narrow_node_segment(ct_idx npair, const ct_idx *restrict node,
     ct_idx nblock = (ct_idx)((npair + CTI_NR_BLOCK - 1) / CTI_NR_BLOCK);
     /* A call of up to 128 pairs (two blocks) runs without a thread team:
      * opening one costs more than the work. (The threshold was one block
-     * when blocks were 128 pairs; the results do not depend on it.) */
-    const int team = npair > 128;
+     * when blocks were 128 pairs; the results do not depend on it.) Nor
+     * does a call from inside the caller's own parallel region. */
+    const int team = npair > 128 && !cti_in_parallel();
 #pragma omp parallel if (team)
     {
         /* One block scratch per thread, on its stack. */
