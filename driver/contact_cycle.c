@@ -22,6 +22,22 @@ static double wtime(void)
 }
 #endif
 
+/* Pairs per block of the fused narrow/force/step pass (phase_pairs): a
+ * multiple of the kernels' own blocks (64 for the narrow phase, 2048 for
+ * the normal force and friction), so each kernel sees the block boundaries
+ * a whole-list call would. 2048 pairs of the ~40 per-pair arrays the pass
+ * touches are about 650 KB: they stay in L2. */
+#define CY_BLOCK 4096
+
+/* One block's results of the fused pass. */
+typedef struct cy_block {
+    int rc, rc_kin, rc_nod;  /* the first failing kernel; the step kernels' codes */
+    int64_t active;          /* pairs with p > 0 */
+    ct_real dt_kin, dt_nod;  /* the block's smallest limits */
+    ct_idx i_kin, i_nod;     /* their pairs (global indices; -1: none) */
+    double t[3];             /* seconds in narrow phase, force, step */
+} cy_block;
+
 /* Per-pair real arrays of the force phase. */
 enum { R_VRX, R_VRY, R_VRZ, R_VN, R_FEL, R_KTAN, R_FN, R_FX, R_FY, R_FZ, R_MS, R_K0, R_N };
 
@@ -50,6 +66,7 @@ struct ctd_cycle {
     int32_t *flag7;
     ct_real *r[R_N];
     ct_contact_geo geo;
+    cy_block *blk; /* (cap + CY_BLOCK - 1) / CY_BLOCK records */
     /* Assembly. */
     ct_assemble_ws ws;
     int ws_ready;
@@ -86,6 +103,8 @@ static void free_pair_arrays(ctd_cycle *cy)
     ct_free(cy->flag7);
     for (int i = 0; i < R_N; i++)
         ct_free(cy->r[i]);
+    free(cy->blk);
+    cy->blk = NULL;
     memset(cy->s, 0, sizeof cy->s);
     cy->old_of_new = NULL;
     memset(cy->g, 0, sizeof cy->g);
@@ -113,6 +132,7 @@ static int grow_pair_arrays(ctd_cycle *cy, size_t n, int exact)
     ok &= (cy->flag7 = ct_calloc(c, sizeof(int32_t))) != NULL;
     for (int i = 0; i < R_N; i++)
         ok &= (cy->r[i] = ct_calloc(c, sizeof(ct_real))) != NULL;
+    ok &= (cy->blk = calloc((c + CY_BLOCK - 1) / CY_BLOCK, sizeof *cy->blk)) != NULL;
     if (!ok) {
         free_pair_arrays(cy);
         return CT_ERR_NOMEM;
@@ -262,6 +282,7 @@ size_t ctd_cycle_memory(const ctd_cycle *cy)
     size_t per = 5 * sizeof(ct_idx) + 13 * sizeof(ct_real) + 1 + sizeof(int32_t) +
                  R_N * sizeof(ct_real);
     size_t b = cy->cap * per + (cy->capft[0] + cy->capft[1]) * 3 * sizeof(ct_real);
+    b += (cy->cap + CY_BLOCK - 1) / CY_BLOCK * sizeof(cy_block);
     b += ((size_t)cy->pairs[0].cap + (size_t)cy->pairs[1].cap) * 2 * sizeof(ct_idx);
     b += 3 * (size_t)cy->nnode * sizeof(ct_real);
     b += ct_search_memory(cy->search) + ct_assemble_ws_memory(&cy->ws);
@@ -353,8 +374,8 @@ static int phase_search(ctd_cycle *cy, const ct_real *x, const ct_real *y, const
 }
 
 /* Velocity of the secondary node relative to the contact point
- * (sum_i h_i v(s_i)), and its normal component. */
-static void relative_velocity(ct_idx n, const ct_idx *restrict node,
+ * (sum_i h_i v(s_i)), and its normal component, for pairs [k0, k1). */
+static void relative_velocity(ct_idx k0, ct_idx k1, const ct_idx *restrict node,
                               const ct_idx *restrict s1, const ct_idx *restrict s2,
                               const ct_idx *restrict s3, const ct_idx *restrict s4,
                               const ct_real *restrict h1, const ct_real *restrict h2,
@@ -365,8 +386,8 @@ static void relative_velocity(ct_idx n, const ct_idx *restrict node,
                               ct_real *restrict rx, ct_real *restrict ry,
                               ct_real *restrict rz, ct_real *restrict vn)
 {
-#pragma omp parallel for simd schedule(static)
-    for (ct_idx k = 0; k < n; k++) {
+#pragma omp simd
+    for (ct_idx k = k0; k < k1; k++) {
         ct_idx a = node[k], i1 = s1[k], i2 = s2[k], i3 = s3[k], i4 = s4[k];
         ct_real ux = vx[a] - (h1[k] * vx[i1] + h2[k] * vx[i2] + h3[k] * vx[i3] + h4[k] * vx[i4]);
         ct_real uy = vy[a] - (h1[k] * vy[i1] + h2[k] * vy[i2] + h3[k] * vy[i3] + h4[k] * vy[i4]);
@@ -378,50 +399,155 @@ static void relative_velocity(ct_idx n, const ct_idx *restrict node,
     }
 }
 
-static int phase_force(ctd_cycle *cy, ct_idx n, const ct_real *vx, const ct_real *vy,
-                       const ct_real *vz, ct_real dt)
+/* The force of pairs [k0, k1): relative velocity, normal law, damping,
+ * Coulomb friction and the total pair force. Every kernel is called on the
+ * block alone (below their thread-team thresholds: no team). */
+static int block_force(ctd_cycle *cy, ct_idx k0, ct_idx k1, const ct_real *vx,
+                       const ct_real *vy, const ct_real *vz, ct_real dt)
 {
     const ct_contact_geo *g = &cy->geo;
-    ct_real **r = cy->r;
-    relative_velocity(n, cy->pairs[cy->cur].node, cy->s[0], cy->s[1], cy->s[2], cy->s[3],
+    ct_real *const *r = cy->r;
+    const ct_idx n = k1 - k0;
+    relative_velocity(k0, k1, cy->pairs[cy->cur].node, cy->s[0], cy->s[1], cy->s[2], cy->s[3],
                       g->h1, g->h2, g->h3, g->h4, g->nx, g->ny, g->nz, vx, vy, vz, r[R_VRX],
                       r[R_VRY], r[R_VRZ], r[R_VN]);
     int rc;
     if (cy->p.law == CTD_LAW_TYPE7) {
-        rc = ct_penalty_type7(n, g->pen, g->gap, r[R_K0], r[R_FEL], r[R_KTAN], NULL,
-                              cy->flag7);
+        rc = ct_penalty_type7(n, g->pen + k0, g->gap + k0, r[R_K0] + k0, r[R_FEL] + k0,
+                              r[R_KTAN] + k0, NULL, cy->flag7 + k0);
         if (rc == CT_OK)
-            rc = ct_normal_finish(n, g->pen, r[R_FEL], r[R_KTAN], r[R_VN], r[R_MS], NULL,
-                                  cy->p.viss, dt, g->nx, g->ny, g->nz, r[R_FN], r[R_FX],
-                                  r[R_FY], r[R_FZ], NULL);
+            rc = ct_normal_finish(n, g->pen + k0, r[R_FEL] + k0, r[R_KTAN] + k0, r[R_VN] + k0,
+                                  r[R_MS] + k0, NULL, cy->p.viss, dt, g->nx + k0, g->ny + k0,
+                                  g->nz + k0, r[R_FN] + k0, r[R_FX] + k0, r[R_FY] + k0,
+                                  r[R_FZ] + k0, NULL);
     } else {
-        rc = ct_normal_force(n, g->pen, g->nx, g->ny, g->nz, r[R_VN], NULL, cy->p.K0, r[R_MS],
-                             NULL, cy->p.viss, dt, r[R_FX], r[R_FY], r[R_FZ], r[R_FN], NULL,
-                             NULL);
+        rc = ct_normal_force(n, g->pen + k0, g->nx + k0, g->ny + k0, g->nz + k0, r[R_VN] + k0,
+                             NULL, cy->p.K0, r[R_MS] + k0, NULL, cy->p.viss, dt, r[R_FX] + k0,
+                             r[R_FY] + k0, r[R_FZ] + k0, r[R_FN] + k0, NULL, NULL);
         /* The tangent stiffness for the nodal step: K0 in contact. */
         const ct_real *restrict pen = g->pen;
         ct_real *restrict kt = r[R_KTAN];
         const ct_real K0 = cy->p.K0;
-#pragma omp parallel for simd schedule(static)
-        for (ct_idx k = 0; k < n; k++)
+#pragma omp simd
+        for (ct_idx k = k0; k < k1; k++)
             kt[k] = pen[k] > 0 ? K0 : 0;
     }
     if (rc != CT_OK || !(cy->p.mu > 0))
         return rc;
-    ct_real **ft = cy->ft[cy->cur];
-    rc = ct_friction_step(n, g->nx, g->ny, g->nz, r[R_VRX], r[R_VRY], r[R_VRZ], r[R_FN],
-                          NULL, cy->p.mu, NULL, cy->p.kt, dt, 1, ft[0], ft[1], ft[2], NULL);
+    ct_real *const *ft = cy->ft[cy->cur];
+    rc = ct_friction_step(n, g->nx + k0, g->ny + k0, g->nz + k0, r[R_VRX] + k0, r[R_VRY] + k0,
+                          r[R_VRZ] + k0, r[R_FN] + k0, NULL, cy->p.mu, NULL, cy->p.kt, dt, 1,
+                          ft[0] + k0, ft[1] + k0, ft[2] + k0, NULL);
     if (rc != CT_OK)
         return rc;
     /* The pair force on the secondary node: normal plus tangential. */
     ct_real *restrict fx = r[R_FX], *restrict fy = r[R_FY], *restrict fz = r[R_FZ];
     const ct_real *restrict tx = ft[0], *restrict ty = ft[1], *restrict tz = ft[2];
-#pragma omp parallel for simd schedule(static)
-    for (ct_idx k = 0; k < n; k++) {
+#pragma omp simd
+    for (ct_idx k = k0; k < k1; k++) {
         fx[k] += tx[k];
         fy[k] += ty[k];
         fz[k] += tz[k];
     }
+    return CT_OK;
+}
+
+/* The two step limits of pairs [k0, k1) into the block's record. */
+static void block_timestep(const ctd_cycle *cy, ct_idx k0, ct_idx k1, cy_block *b)
+{
+    const ct_idx n = k1 - k0;
+    b->rc_kin = ct_dt_type7_kinematic(n, cy->geo.pen + k0, cy->geo.gap + k0,
+                                      cy->r[R_VN] + k0, NULL, &b->dt_kin, &b->i_kin);
+    b->rc_nod = ct_dt_nodal(n, cy->pairs[cy->cur].node + k0, cy->m, NULL, cy->r[R_KTAN] + k0,
+                            NULL, &b->dt_nod, &b->i_nod);
+    b->i_kin += b->i_kin >= 0 ? k0 : 0;
+    b->i_nod += b->i_nod >= 0 ? k0 : 0;
+}
+
+/* Fold block b's limit into the running one (blocks in increasing order:
+ * the first smallest wins, as in one scan). A NaN item is reported by its
+ * kernel as CT_ERR_NONFINITE with its index; the first one wins. */
+static void fold_limit(int rc, ct_real d, ct_idx i, int *best_rc, ct_real *best, ct_idx *bi)
+{
+    if (*best_rc != CT_OK)
+        return;
+    if (rc != CT_OK) {
+        *best_rc = rc;
+        *best = CT_DT_NONE;
+        *bi = i;
+    } else if (i >= 0 && d < *best) {
+        *best = d;
+        *bi = i;
+    }
+}
+
+/* Narrow phase, force and time step of every pair, fused in blocks of
+ * CY_BLOCK pairs so that the block's per-pair arrays stay in cache from one
+ * kernel to the next (separate passes streamed about 30 arrays of the size
+ * of the pair list through memory). Each kernel computes every pair alone,
+ * and CY_BLOCK is a multiple of the kernels' own blocks, so the results are
+ * those of whole-list calls, bit for bit. The phases are timed per block;
+ * the caller shares the pass's wall time among them in proportion to the
+ * sums of those times (tph: narrow, force, step). */
+static int phase_pairs(ctd_cycle *cy, ct_idx n, const ct_real *x, const ct_real *y,
+                       const ct_real *z, const ct_real *vx, const ct_real *vy,
+                       const ct_real *vz, ct_real dt, int64_t *active, double tph[3])
+{
+    const ct_pairs *pp = &cy->pairs[cy->cur];
+    const ct_idx nblk = (n + CY_BLOCK - 1) / CY_BLOCK;
+    cy_block *blk = cy->blk;
+#pragma omp parallel for schedule(static)
+    for (ct_idx bi = 0; bi < nblk; bi++) {
+        const ct_idx k0 = bi * CY_BLOCK, k1 = n - k0 < CY_BLOCK ? n : k0 + CY_BLOCK;
+        cy_block *b = &blk[bi];
+        ct_narrow_stats ns;
+        double t0 = wtime();
+        b->rc = ct_narrow_node_segment(
+            k1 - k0, pp->node + k0, pp->seg + k0, cy->n1, cy->n2, cy->n3, cy->n4, x, y, z, NULL,
+            NULL, cy->p.gap, 0, 0, cy->p.quad, cy->p.two_sided,
+            &(ct_contact_geo){cy->geo.dist + k0, cy->geo.pen + k0, cy->geo.nx + k0,
+                              cy->geo.ny + k0, cy->geo.nz + k0, cy->geo.cx + k0,
+                              cy->geo.cy + k0, cy->geo.cz + k0, cy->geo.h1 + k0,
+                              cy->geo.h2 + k0, cy->geo.h3 + k0, cy->geo.h4 + k0,
+                              cy->geo.gap + k0, cy->geo.flag + k0},
+            &ns);
+        b->active = ns.active;
+        double t1 = wtime();
+        if (b->rc == CT_OK)
+            b->rc = block_force(cy, k0, k1, vx, vy, vz, dt);
+        double t2 = wtime();
+        if (b->rc == CT_OK)
+            block_timestep(cy, k0, k1, b);
+        double t3 = wtime();
+        b->t[0] = t1 - t0;
+        b->t[1] = t2 - t1;
+        b->t[2] = t3 - t2;
+    }
+    /* In block order: the first failing kernel, the active count, the
+     * limits, and the share of each phase. */
+    int rc_kin = CT_OK, rc_nod = CT_OK;
+    ct_real dkin = CT_DT_NONE, dnod = CT_DT_NONE;
+    ct_idx ikin = -1, inod = -1;
+    double sum[3] = {0, 0, 0};
+    *active = 0;
+    for (ct_idx bi = 0; bi < nblk; bi++) {
+        const cy_block *b = &blk[bi];
+        if (b->rc != CT_OK)
+            return b->rc;
+        *active += b->active;
+        fold_limit(b->rc_kin, b->dt_kin, b->i_kin, &rc_kin, &dkin, &ikin);
+        fold_limit(b->rc_nod, b->dt_nod, b->i_nod, &rc_nod, &dnod, &inod);
+        for (int i = 0; i < 3; i++)
+            sum[i] += b->t[i];
+    }
+    for (int i = 0; i < 3; i++)
+        tph[i] = sum[i];
+    if (rc_kin != CT_OK)
+        return rc_kin;
+    cy->st.dt_kin = dkin;
+    if (rc_nod != CT_OK)
+        return rc_nod;
+    cy->st.dt_nodal = dnod;
     return CT_OK;
 }
 
@@ -442,22 +568,6 @@ static int phase_assemble(ctd_cycle *cy, ct_idx n, ct_real *fxn, ct_real *fyn, c
                        cy->r[R_FZ], nn, fxn, fyn, fzn);
 }
 
-static int phase_timestep(ctd_cycle *cy, ct_idx n)
-{
-    ct_idx imin;
-    ct_real dmin;
-    int rc = ct_dt_type7_kinematic(n, cy->geo.pen, cy->geo.gap, cy->r[R_VN], NULL, &dmin,
-                                   &imin);
-    if (rc != CT_OK)
-        return rc;
-    cy->st.dt_kin = dmin;
-    rc = ct_dt_nodal(n, cy->pairs[cy->cur].node, cy->m, NULL, cy->r[R_KTAN], NULL, &dmin,
-                     &imin);
-    if (rc == CT_OK)
-        cy->st.dt_nodal = dmin;
-    return rc;
-}
-
 int ctd_cycle_step(ctd_cycle *cy, const ct_real *x, const ct_real *y, const ct_real *z,
                    const ct_real *vx, const ct_real *vy, const ct_real *vz, ct_real dt,
                    ct_real *fxn, ct_real *fyn, ct_real *fzn)
@@ -474,36 +584,34 @@ int ctd_cycle_step(ctd_cycle *cy, const ct_real *x, const ct_real *y, const ct_r
         cy->need_sort = 1;
         return rc;
     }
-    const ct_pairs *pp = &cy->pairs[cy->cur];
-    ct_idx n = pp->n;
-    ct_narrow_stats ns;
-    rc = ct_narrow_node_segment(n, pp->node, pp->seg, cy->n1, cy->n2, cy->n3, cy->n4, x, y, z,
-                                NULL, NULL, cy->p.gap, 0, 0, cy->p.quad, cy->p.two_sided,
-                                &cy->geo, &ns);
+    ct_idx n = cy->pairs[cy->cur].n;
+    int64_t active = 0;
+    double tph[3] = {0, 0, 0};
+    rc = phase_pairs(cy, n, x, y, z, vx, vy, vz, dt, &active, tph);
     double t2 = wtime();
-    if (rc == CT_OK)
-        rc = phase_force(cy, n, vx, vy, vz, dt);
-    double t3 = wtime();
+    /* The pass's wall time, shared among narrow phase, force and step. */
+    if (rc == CT_OK) {
+        double all = tph[0] + tph[1] + tph[2], w = t2 - t1;
+        for (int i = 0; i < 3; i++)
+            tph[i] = all > 0 ? w * tph[i] / all : w / 3;
+    }
     if (rc == CT_OK)
         rc = phase_assemble(cy, n, fxn, fyn, fzn);
-    double t4 = wtime();
-    if (rc == CT_OK)
-        rc = phase_timestep(cy, n);
-    double t5 = wtime();
+    double t3 = wtime();
     if (rc != CT_OK)
         return rc;
     ctd_cycle_stats *s = &cy->st;
     s->t[CTD_PH_SEARCH] += t1 - t0;
-    s->t[CTD_PH_NARROW] += t2 - t1;
-    s->t[CTD_PH_FORCE] += t3 - t2;
-    s->t[CTD_PH_ASSEMBLE] += t4 - t3;
-    s->t[CTD_PH_TIMESTEP] += t5 - t4;
+    s->t[CTD_PH_NARROW] += tph[0];
+    s->t[CTD_PH_FORCE] += tph[1];
+    s->t[CTD_PH_ASSEMBLE] += t3 - t2;
+    s->t[CTD_PH_TIMESTEP] += tph[2];
     s->cycles++;
     s->life_cycles++;
     s->ncand = n;
-    s->nactive = (ct_idx)ns.active;
+    s->nactive = (ct_idx)active;
     s->cand_sum += n;
-    s->active_sum += ns.active;
+    s->active_sum += active;
     return CT_OK;
 }
 

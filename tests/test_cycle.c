@@ -2,8 +2,9 @@
  * test_cycle.c -- the full contact cycle (driver/contact_cycle.c) on a
  * small folded sheet under the prescribed fold-and-slide motion: the stored
  * candidates stay complete against the direct search while re-sorts are
- * skipped, the nodal forces balance, 1 and 2 threads agree to the bit, and
- * nothing is NaN.
+ * skipped, the nodal forces balance, 1 and 2 threads agree to the bit,
+ * nothing is NaN, and the fused block pass gives what whole-list kernel
+ * calls give.
  */
 #include "test_util.h"
 
@@ -209,4 +210,142 @@ Test(cycle, threads_bit_identical)
     cr_assert_gt(mag, 0);
     crun_free(&r1);
     crun_free(&r2);
+}
+
+/* One pair list through the public kernels called once on the whole list
+ * (the composition the cycle's fused block pass must reproduce), assembled
+ * by a plain serial loop: nodal forces into f, the two step limits into
+ * dkin and dnod. ft is the friction history (updated). */
+static void whole_list_reference(const crun *r, const ct_pairs *P, ct_real *const ft[3],
+                                 ct_real *const f[3], ct_real *dkin, ct_real *dnod,
+                                 const ct_contact_geo *geo_out)
+{
+    const ct_idx n = P->n;
+    const ctd_cycle_params p = ctd_cycle_default_params(r->h);
+    const ct_real dt = (ct_real)1e-3;
+    enum { DIST, PEN, NX, NY, NZ, CX, CY, CZ, H1, H2, H3, H4, GAP, VX, VY, VZ, VN, K0, MS, FEL,
+           KT, FN, PX, PY, PZ, NA };
+    ct_real *a[NA];
+    for (int i = 0; i < NA; i++) {
+        a[i] = ct_calloc((size_t)n + 1, sizeof(ct_real));
+        cr_assert(a[i]);
+    }
+    uint8_t *flag = ct_calloc((size_t)n + 1, 1);
+    cr_assert(flag);
+    ct_contact_geo g = {a[DIST], a[PEN], a[NX], a[NY], a[NZ], a[CX], a[CY],
+                        a[CZ],   a[H1],  a[H2], a[H3], a[H4], a[GAP], flag};
+    const ctd_case *c = &r->c;
+    cr_assert_eq(ct_narrow_node_segment(n, P->node, P->seg, c->mn1, c->mn2, c->mn3, c->mn4,
+                                        r->pos[0], r->pos[1], r->pos[2], NULL, NULL, p.gap, 0,
+                                        0, p.quad, p.two_sided, &g, NULL),
+                 CT_OK);
+    /* The narrow phase is per pair: the block pass must give its bytes. */
+    ct_real *const mine[13] = {geo_out->dist, geo_out->pen, geo_out->nx, geo_out->ny,
+                               geo_out->nz,   geo_out->cx,  geo_out->cy, geo_out->cz,
+                               geo_out->h1,   geo_out->h2,  geo_out->h3, geo_out->h4,
+                               geo_out->gap};
+    for (int i = 0; i < 13; i++)
+        cr_assert(memcmp(mine[i], a[i], sizeof(ct_real) * (size_t)n) == 0,
+                  "narrow-phase array %d differs from the whole-list call", i);
+    cr_assert(memcmp(geo_out->flag, flag, (size_t)n) == 0);
+    for (ct_idx k = 0; k < n; k++) {
+        ct_idx s = P->seg[k], q[4] = {c->mn1[s], c->mn2[s], c->mn3[s], c->mn4[s]};
+        const ct_real *h[4] = {a[H1], a[H2], a[H3], a[H4]};
+        for (int d = 0; d < 3; d++) {
+            double u = r->vel[d][P->node[k]];
+            for (int j = 0; j < 4; j++)
+                u -= (double)h[j][k] * r->vel[d][q[j]];
+            a[VX + d][k] = (ct_real)u;
+        }
+        a[VN][k] = a[VX][k] * a[NX][k] + a[VY][k] * a[NY][k] + a[VZ][k] * a[NZ][k];
+        a[K0][k] = p.K0;
+        a[MS][k] = r->m[P->node[k]];
+    }
+    cr_assert_eq(ct_penalty_type7(n, a[PEN], a[GAP], a[K0], a[FEL], a[KT], NULL, NULL), CT_OK);
+    cr_assert_eq(ct_normal_finish(n, a[PEN], a[FEL], a[KT], a[VN], a[MS], NULL, p.viss, dt,
+                                  a[NX], a[NY], a[NZ], a[FN], a[PX], a[PY], a[PZ], NULL),
+                 CT_OK);
+    cr_assert_eq(ct_friction_step(n, a[NX], a[NY], a[NZ], a[VX], a[VY], a[VZ], a[FN], NULL,
+                                  p.mu, NULL, p.kt, dt, 1, ft[0], ft[1], ft[2], NULL),
+                 CT_OK);
+    for (int d = 0; d < 3; d++)
+        memset(f[d], 0, sizeof(ct_real) * (size_t)r->n);
+    for (ct_idx k = 0; k < n; k++) {
+        ct_idx s = P->seg[k], q[4] = {c->mn1[s], c->mn2[s], c->mn3[s], c->mn4[s]};
+        const ct_real *h[4] = {a[H1], a[H2], a[H3], a[H4]};
+        for (int d = 0; d < 3; d++) {
+            ct_real F = a[PX + d][k] + ft[d][k];
+            f[d][P->node[k]] += F;
+            for (int j = 0; j < 4; j++)
+                f[d][q[j]] -= h[j][k] * F;
+        }
+    }
+    ct_idx i;
+    cr_assert_eq(ct_dt_type7_kinematic(n, a[PEN], a[GAP], a[VN], NULL, dkin, &i), CT_OK);
+    cr_assert_eq(ct_dt_nodal(n, P->node, r->m, NULL, a[KT], NULL, dnod, &i), CT_OK);
+    for (int k = 0; k < NA; k++)
+        ct_free(a[k]);
+    ct_free(flag);
+}
+
+/* (e) The narrow phase, force and step run fused in blocks of pairs; the
+ * result must be that of each kernel called once on the whole list: the
+ * same narrow-phase bytes, the same nodal step limit (the kinematic one and
+ * the nodal forces within round-off: the reference sums the relative
+ * velocity in its own order), and nodal forces equal to
+ * a serial assembly of the whole-list pair forces within round-off (the
+ * colouring sums in another order). Checked at the first cycle (friction
+ * history zero) and at the following cycles while no re-sort moves the
+ * pairs, with the history carried by the reference itself. Two threads, a
+ * list of several blocks. */
+Test(cycle, fused_pass_equals_whole_list_kernels)
+{
+    crun r;
+    ctt_threads(2);
+    crun_make(&r, nodes_for_test(), 0.015);
+    ct_real *ft[3] = {NULL, NULL, NULL}, *f[3];
+    for (int d = 0; d < 3; d++) {
+        f[d] = ct_calloc((size_t)r.n, sizeof(ct_real));
+        cr_assert(f[d]);
+    }
+    int checked = 0;
+    for (int k = 0; k < 6; k++) {
+        crun_step(&r, k);
+        const ctd_cycle_stats *s = ctd_cycle_get_stats(r.cy);
+        const ct_pairs *P = ctd_cycle_pairs(r.cy);
+        if (k == 0) {
+            cr_assert_gt(P->n, 4 * 2048, "%d pairs: too few for several blocks", (int)P->n);
+            for (int d = 0; d < 3; d++) {
+                ft[d] = ct_calloc((size_t)P->n, sizeof(ct_real));
+                cr_assert(ft[d]);
+            }
+        } else if (s->resorts > 1) {
+            break; /* the pairs moved: the reference's history no longer applies */
+        }
+        ct_real dkin, dnod;
+        whole_list_reference(&r, P, ft, f, &dkin, &dnod, ctd_cycle_geo(r.cy));
+        double mag = 0, err = 0;
+        for (int d = 0; d < 3; d++)
+            for (ct_idx i = 0; i < r.n; i++) {
+                mag = fmax(mag, fabs((double)f[d][i]));
+                err = fmax(err, fabs((double)f[d][i] - (double)r.f[d][i]));
+            }
+        cr_assert_gt(mag, 0, "cycle %d: no force", k);
+        cr_assert_leq(err, CTT_TOL(1e-12, 1e-4) * mag, "cycle %d: |f - f_ref| %g of max %g", k, err,
+                      mag);
+        /* The reference's relative velocity sums in another order. */
+        cr_assert_leq(fabs((double)s->dt_kin - (double)dkin),
+                      CTT_TOL(1e-12, 1e-4) * fabs((double)dkin),
+                      "cycle %d: kinematic step %g, whole list %g", k, (double)s->dt_kin,
+                      (double)dkin);
+        cr_assert_eq(s->dt_nodal, dnod, "cycle %d: nodal step %g, whole list %g", k,
+                     (double)s->dt_nodal, (double)dnod);
+        checked++;
+    }
+    cr_assert_geq(checked, 2, "only %d cycles before the first re-sort", checked);
+    for (int d = 0; d < 3; d++) {
+        ct_free(ft[d]);
+        ct_free(f[d]);
+    }
+    crun_free(&r);
 }
