@@ -374,32 +374,6 @@ static int phase_search(ctd_cycle *cy, const ct_real *x, const ct_real *y, const
     return CT_OK;
 }
 
-/* Velocity of the secondary node relative to the contact point
- * (sum_i h_i v(s_i)), and its normal component, for pairs [k0, k1). */
-static void relative_velocity(ct_idx k0, ct_idx k1, const ct_idx *restrict node,
-                              const ct_idx *restrict s1, const ct_idx *restrict s2,
-                              const ct_idx *restrict s3, const ct_idx *restrict s4,
-                              const ct_real *restrict h1, const ct_real *restrict h2,
-                              const ct_real *restrict h3, const ct_real *restrict h4,
-                              const ct_real *restrict nx, const ct_real *restrict ny,
-                              const ct_real *restrict nz, const ct_real *restrict vx,
-                              const ct_real *restrict vy, const ct_real *restrict vz,
-                              ct_real *restrict rx, ct_real *restrict ry,
-                              ct_real *restrict rz, ct_real *restrict vn)
-{
-#pragma omp simd
-    for (ct_idx k = k0; k < k1; k++) {
-        ct_idx a = node[k], i1 = s1[k], i2 = s2[k], i3 = s3[k], i4 = s4[k];
-        ct_real ux = vx[a] - (h1[k] * vx[i1] + h2[k] * vx[i2] + h3[k] * vx[i3] + h4[k] * vx[i4]);
-        ct_real uy = vy[a] - (h1[k] * vy[i1] + h2[k] * vy[i2] + h3[k] * vy[i3] + h4[k] * vy[i4]);
-        ct_real uz = vz[a] - (h1[k] * vz[i1] + h2[k] * vz[i2] + h3[k] * vz[i3] + h4[k] * vz[i4]);
-        rx[k] = ux;
-        ry[k] = uy;
-        rz[k] = uz;
-        vn[k] = ux * nx[k] + uy * ny[k] + uz * nz[k];
-    }
-}
-
 /* The force of pairs [k0, k1): relative velocity, normal law, damping,
  * Coulomb friction and the total pair force. Every kernel is called on the
  * block alone (below their thread-team thresholds: no team). */
@@ -409,10 +383,13 @@ static int block_force(ctd_cycle *cy, ct_idx k0, ct_idx k1, const ct_real *vx,
     const ct_contact_geo *g = &cy->geo;
     ct_real *const *r = cy->r;
     const ct_idx n = k1 - k0;
-    relative_velocity(k0, k1, cy->pairs[cy->cur].node, cy->s[0], cy->s[1], cy->s[2], cy->s[3],
-                      g->h1, g->h2, g->h3, g->h4, g->nx, g->ny, g->nz, vx, vy, vz, r[R_VRX],
-                      r[R_VRY], r[R_VRZ], r[R_VN]);
-    int rc;
+    int rc = ct_relative_velocity(
+        n, cy->pairs[cy->cur].node + k0, cy->s[0] + k0, cy->s[1] + k0, cy->s[2] + k0,
+        cy->s[3] + k0, g->h1 + k0, g->h2 + k0, g->h3 + k0, g->h4 + k0, g->nx + k0, g->ny + k0,
+        g->nz + k0, vx, vy, vz, NULL, r[R_VRX] + k0, r[R_VRY] + k0, r[R_VRZ] + k0, r[R_VN] + k0,
+        NULL);
+    if (rc != CT_OK)
+        return rc;
     if (cy->p.law == CTD_LAW_TYPE7) {
         rc = ct_penalty_type7(n, g->pen + k0, g->gap + k0, r[R_K0] + k0, r[R_FEL] + k0,
                               r[R_KTAN] + k0, NULL, cy->flag7 + k0);

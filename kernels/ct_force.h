@@ -255,6 +255,24 @@ int ct_normal_force(ct_idx npair, const ct_real *p, const ct_real *nx, const ct_
                     ct_real *fx, ct_real *fy, ct_real *fz, ct_real *fn, ct_real *energy,
                     ct_real *dissip);
 
+/* ---- Kinematics at the contact point ----------------------------------- */
+
+/*
+ * Relative velocity of each pair: the secondary node's velocity minus the
+ * contact point's, u = v(node) - sum_i h_i v(s_i), written to (rx, ry, rz),
+ * and its normal part vn = u . n. s1..s4 are the segment's nodes per pair
+ * and h1..h4 their weights (ct_contact_geo; a triangle has h4 = 0). When m
+ * is given, mm gets the main mass at the contact point, sum_i h_i m(s_i)
+ * (the reduced mass of the damper); m and mm are both NULL or both given.
+ */
+int ct_relative_velocity(ct_idx npair, const ct_idx *node, const ct_idx *s1, const ct_idx *s2,
+                         const ct_idx *s3, const ct_idx *s4, const ct_real *h1,
+                         const ct_real *h2, const ct_real *h3, const ct_real *h4,
+                         const ct_real *nx, const ct_real *ny, const ct_real *nz,
+                         const ct_real *vx, const ct_real *vy, const ct_real *vz,
+                         const ct_real *m, ct_real *rx, ct_real *ry, ct_real *rz, ct_real *vn,
+                         ct_real *mm);
+
 /* ---- Deterministic sum --------------------------------------------------- */
 
 /* Sum of a[0..n-1] in an order fixed by n alone (64 fixed blocks, each

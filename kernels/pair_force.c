@@ -2,7 +2,8 @@
  * pair_force.c -- the fused per-pair contact force: linear penalty with
  * normal damping and the Coulomb friction step, in one pass over the pairs
  * (DESIGN.md section 7; the formulas are those of ct_normal_force and
- * ct_friction_step, documented in ct_force.h and ct_friction.h).
+ * ct_friction_step, documented in ct_force.h and ct_friction.h); and the
+ * relative velocity at the contact point, which damping and friction read.
  *
  * The two-kernel composition reads the normals twice and writes fn only for
  * the friction pass to read it back; at 10^6 pairs both passes stream from
@@ -105,6 +106,72 @@ int ct_pair_force_linear_coulomb(
             switch (variant) { CTI_CASES8(CTI_PF_CASE) }
 #undef CTI_PF_CASE
         }
+    }
+    return CT_OK;
+}
+
+/* ---- Relative velocity ----------------------------------------------------- */
+
+/* One block [i0, i1) of ct_relative_velocity; has_m constant after
+ * inlining. */
+static inline __attribute__((always_inline)) void
+cti_relvel_block(int64_t i0, int64_t i1, const ct_idx *restrict node,
+                 const ct_idx *restrict s1, const ct_idx *restrict s2,
+                 const ct_idx *restrict s3, const ct_idx *restrict s4,
+                 const ct_real *restrict h1, const ct_real *restrict h2,
+                 const ct_real *restrict h3, const ct_real *restrict h4,
+                 const ct_real *restrict nx, const ct_real *restrict ny,
+                 const ct_real *restrict nz, const ct_real *restrict vx,
+                 const ct_real *restrict vy, const ct_real *restrict vz,
+                 const ct_real *restrict m, ct_real *restrict rx, ct_real *restrict ry,
+                 ct_real *restrict rz, ct_real *restrict vn, ct_real *restrict mm,
+                 const int has_m)
+{
+#pragma omp simd
+    for (int64_t k = i0; k < i1; k++) {
+        ct_idx a = node[k], i1_ = s1[k], i2 = s2[k], i3 = s3[k], i4 = s4[k];
+        ct_real ux =
+            vx[a] - (h1[k] * vx[i1_] + h2[k] * vx[i2] + h3[k] * vx[i3] + h4[k] * vx[i4]);
+        ct_real uy =
+            vy[a] - (h1[k] * vy[i1_] + h2[k] * vy[i2] + h3[k] * vy[i3] + h4[k] * vy[i4]);
+        ct_real uz =
+            vz[a] - (h1[k] * vz[i1_] + h2[k] * vz[i2] + h3[k] * vz[i3] + h4[k] * vz[i4]);
+        rx[k] = ux;
+        ry[k] = uy;
+        rz[k] = uz;
+        vn[k] = ux * nx[k] + uy * ny[k] + uz * nz[k];
+        if (has_m)
+            mm[k] = h1[k] * m[i1_] + h2[k] * m[i2] + h3[k] * m[i3] + h4[k] * m[i4];
+    }
+}
+
+/* Pairs per block of the relative velocity loop. */
+#define CTI_RELVEL_BLOCK 2048
+
+int ct_relative_velocity(ct_idx npair, const ct_idx *node, const ct_idx *s1, const ct_idx *s2,
+                         const ct_idx *s3, const ct_idx *s4, const ct_real *h1,
+                         const ct_real *h2, const ct_real *h3, const ct_real *h4,
+                         const ct_real *nx, const ct_real *ny, const ct_real *nz,
+                         const ct_real *vx, const ct_real *vy, const ct_real *vz,
+                         const ct_real *m, ct_real *rx, ct_real *ry, ct_real *rz, ct_real *vn,
+                         ct_real *mm)
+{
+    if (npair < 0 || (!m) != (!mm))
+        return CT_ERR_ARG;
+    if (npair > 0 && (!node || !s1 || !s2 || !s3 || !s4 || !h1 || !h2 || !h3 || !h4 || !nx ||
+                      !ny || !nz || !vx || !vy || !vz || !rx || !ry || !rz || !vn))
+        return CT_ERR_ARG;
+    const int64_t nblk = ((int64_t)npair + CTI_RELVEL_BLOCK - 1) / CTI_RELVEL_BLOCK;
+#pragma omp parallel for schedule(static) if (npair > CTI_PAR_MIN)
+    for (int64_t b = 0; b < nblk; b++) {
+        int64_t i0, i1;
+        cti_block_range(b, CTI_RELVEL_BLOCK, npair, &i0, &i1);
+        if (m)
+            cti_relvel_block(i0, i1, node, s1, s2, s3, s4, h1, h2, h3, h4, nx, ny, nz, vx, vy,
+                             vz, m, rx, ry, rz, vn, mm, 1);
+        else
+            cti_relvel_block(i0, i1, node, s1, s2, s3, s4, h1, h2, h3, h4, nx, ny, nz, vx, vy,
+                             vz, NULL, rx, ry, rz, vn, NULL, 0);
     }
     return CT_OK;
 }

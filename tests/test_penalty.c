@@ -1,7 +1,8 @@
 /*
  * test_penalty.c -- normal force laws: linear penalty, TYPE24 stiffness
  * blending and initial penetration, TYPE7 (energy by quadrature, no NaN),
- * TYPE6 curve, damping, the fused fast path and thread independence.
+ * TYPE6 curve, damping, the fused fast path and thread independence; the
+ * relative velocity at the contact point.
  */
 #include "test_util.h"
 
@@ -395,4 +396,128 @@ Test(penalty, ordered_sum_threads)
         ref += v[i];
     cr_assert_leq(ctt_rel(s1, (double)ref), 1e-13);
     free(v);
+}
+
+/* Uniform in [0, 1) from a 64-bit LCG (Knuth's MMIX constants). */
+static double rv_rand01(uint64_t *s)
+{
+    *s = *s * 6364136223846793005ULL + 1442695040888963407ULL;
+    return (double)(*s >> 11) * 0x1p-53;
+}
+
+/* ct_relative_velocity: a hand case (a quad and a triangle), then a rigid
+ * rotation v = w x x of many pairs, where the relative velocity must be
+ * w x (p - c) for the node p and the contact point c = sum h_i x_i, and the
+ * main mass at c the interpolated one; argument checks. */
+Test(penalty, relative_velocity_hand_and_rigid_rotation)
+{
+    /* Nodes 0..3 a quad, 4 a triangle's third node, 5 the secondary. */
+    ct_real vx[6] = {1, 2, 3, 4, 5, 10}, vy[6] = {0, 0, 0, 0, -2, 1}, vz[6] = {1, 1, 1, 1, 1, 4};
+    ct_real m[6] = {1, 2, 3, 4, 5, 6};
+    ct_idx node[2] = {5, 5}, s1[2] = {0, 0}, s2[2] = {1, 1}, s3[2] = {2, 4}, s4[2] = {3, 4};
+    ct_real h1[2] = {0.1, 0.5}, h2[2] = {0.2, 0.25}, h3[2] = {0.3, 0.25}, h4[2] = {0.4, 0};
+    ct_real nx[2] = {0, 0.6}, ny[2] = {0, 0.8}, nz[2] = {1, 0};
+    ct_real rx[2], ry[2], rz[2], vn[2], mm[2];
+    cr_assert_eq(ct_relative_velocity(2, node, s1, s2, s3, s4, h1, h2, h3, h4, nx, ny, nz, vx, vy,
+                                      vz, m, rx, ry, rz, vn, mm),
+                 CT_OK);
+    /* Quad: contact point velocity (0.1 + 0.4 + 0.9 + 1.6, 0, 1) = (3, 0, 1);
+     * u = (7, 1, 3), vn = 3; mass 0.1 + 0.4 + 0.9 + 1.6 = 3. */
+    const double tol = CTT_TOL(1e-15, 1e-6);
+    cr_assert_leq(fabs(rx[0] - 7) + fabs(ry[0] - 1) + fabs(rz[0] - 3), 4 * tol);
+    cr_assert_leq(fabs(vn[0] - 3), 4 * tol);
+    cr_assert_leq(fabs(mm[0] - 3), 4 * tol);
+    /* Triangle (0, 1, 4): point velocity (0.5 + 0.5 + 1.25, -0.5, 1) =
+     * (2.25, -0.5, 1); u = (7.75, 1.5, 3); vn = 4.65 + 1.2 = 5.85; mass
+     * 0.5 + 0.5 + 1.25 = 2.25. */
+    cr_assert_leq(fabs(rx[1] - 7.75) + fabs(ry[1] - 1.5) + fabs(rz[1] - 3), 16 * tol);
+    cr_assert_leq(fabs(vn[1] - 5.85), 16 * tol);
+    cr_assert_leq(fabs(mm[1] - 2.25), 4 * tol);
+    /* Without masses: the same velocities. */
+    ct_real r2[2];
+    cr_assert_eq(ct_relative_velocity(2, node, s1, s2, s3, s4, h1, h2, h3, h4, nx, ny, nz, vx, vy,
+                                      vz, NULL, r2, ry, rz, vn, NULL),
+                 CT_OK);
+    cr_assert(memcmp(r2, rx, sizeof r2) == 0);
+    /* m without mm (or the reverse), a negative count, a missing array. */
+    cr_assert_eq(ct_relative_velocity(2, node, s1, s2, s3, s4, h1, h2, h3, h4, nx, ny, nz, vx, vy,
+                                      vz, m, rx, ry, rz, vn, NULL),
+                 CT_ERR_ARG);
+    cr_assert_eq(ct_relative_velocity(2, node, s1, s2, s3, s4, h1, h2, h3, h4, nx, ny, nz, vx, vy,
+                                      vz, NULL, rx, ry, rz, vn, mm),
+                 CT_ERR_ARG);
+    cr_assert_eq(ct_relative_velocity(-1, node, s1, s2, s3, s4, h1, h2, h3, h4, nx, ny, nz, vx,
+                                      vy, vz, NULL, rx, ry, rz, vn, NULL),
+                 CT_ERR_ARG);
+    cr_assert_eq(ct_relative_velocity(2, node, s1, s2, s3, s4, h1, h2, h3, NULL, nx, ny, nz, vx,
+                                      vy, vz, NULL, rx, ry, rz, vn, NULL),
+                 CT_ERR_ARG);
+
+    /* Rigid rotation about w through the origin, 3 x 10^4 random pairs
+     * (several blocks, two threads). */
+    const ct_idx nn = 20000, np = 30000;
+    ct_real *X[3], *V[3], *H[4], *R[3], *N[3], *vnr = ct_calloc(np, sizeof(ct_real));
+    ct_idx *S[5];
+    for (int a = 0; a < 3; a++) {
+        X[a] = ct_calloc(nn, sizeof(ct_real));
+        V[a] = ct_calloc(nn, sizeof(ct_real));
+        R[a] = ct_calloc(np, sizeof(ct_real));
+        N[a] = ct_calloc(np, sizeof(ct_real));
+    }
+    for (int j = 0; j < 4; j++)
+        H[j] = ct_calloc(np, sizeof(ct_real));
+    for (int j = 0; j < 5; j++)
+        S[j] = ct_calloc(np, sizeof(ct_idx));
+    const double w[3] = {0.3, -1.1, 0.7};
+    uint64_t st = 12345;
+    for (ct_idx i = 0; i < nn; i++) {
+        for (int a = 0; a < 3; a++)
+            X[a][i] = (ct_real)(4 * rv_rand01(&st) - 2);
+        V[0][i] = (ct_real)(w[1] * X[2][i] - w[2] * X[1][i]);
+        V[1][i] = (ct_real)(w[2] * X[0][i] - w[0] * X[2][i]);
+        V[2][i] = (ct_real)(w[0] * X[1][i] - w[1] * X[0][i]);
+    }
+    for (ct_idx k = 0; k < np; k++) {
+        double hs = 0, h[4];
+        for (int j = 0; j < 5; j++)
+            S[j][k] = (ct_idx)(rv_rand01(&st) * nn) % nn;
+        for (int j = 0; j < 4; j++)
+            hs += h[j] = rv_rand01(&st);
+        for (int j = 0; j < 4; j++)
+            H[j][k] = (ct_real)(h[j] / hs);
+        N[0][k] = 0, N[1][k] = 0, N[2][k] = 1;
+    }
+    ctt_threads(2);
+    cr_assert_eq(ct_relative_velocity(np, S[4], S[0], S[1], S[2], S[3], H[0], H[1], H[2], H[3],
+                                      N[0], N[1], N[2], V[0], V[1], V[2], NULL, R[0], R[1], R[2],
+                                      vnr, NULL),
+                 CT_OK);
+    double err = 0;
+    for (ct_idx k = 0; k < np; k++) {
+        double d[3];
+        for (int a = 0; a < 3; a++) {
+            double c = 0;
+            for (int j = 0; j < 4; j++)
+                c += (double)H[j][k] * X[a][S[j][k]];
+            d[a] = X[a][S[4][k]] - c;
+        }
+        double u[3] = {w[1] * d[2] - w[2] * d[1], w[2] * d[0] - w[0] * d[2],
+                       w[0] * d[1] - w[1] * d[0]};
+        for (int a = 0; a < 3; a++)
+            err = fmax(err, fabs(R[a][k] - u[a]));
+        err = fmax(err, fabs(vnr[k] - u[2]));
+    }
+    /* |v| <= 2 sqrt(3) |w|: a few roundings of that. */
+    cr_assert_leq(err, CTT_TOL(1e-13, 1e-5), "max error %g against w x (p - c)", err);
+    for (int a = 0; a < 3; a++) {
+        ct_free(X[a]);
+        ct_free(V[a]);
+        ct_free(R[a]);
+        ct_free(N[a]);
+    }
+    for (int j = 0; j < 4; j++)
+        ct_free(H[j]);
+    for (int j = 0; j < 5; j++)
+        ct_free(S[j]);
+    ct_free(vnr);
 }

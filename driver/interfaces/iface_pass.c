@@ -318,7 +318,7 @@ static int pass_search(ctd_iface *it, ctdi_pass *p, const ct_real *x, const ct_r
 /* Relative velocity at the contact point, its normal part, the main mass
  * at the contact point (sum h_i m_i) and, for pressure-dependent friction,
  * the segment area. */
-static void kinematics(ctdi_pass *p, ct_idx n, const ct_idx *restrict node,
+static int kinematics(ctdi_pass *p, ct_idx n, const ct_idx *restrict node,
                        const ct_real *restrict x, const ct_real *restrict y,
                        const ct_real *restrict z, const ct_real *restrict vx,
                        const ct_real *restrict vy, const ct_real *restrict vz,
@@ -327,26 +327,13 @@ static void kinematics(ctdi_pass *p, ct_idx n, const ct_idx *restrict node,
     const ct_idx *restrict s1 = p->s[0], *restrict s2 = p->s[1], *restrict s3 = p->s[2],
                            *restrict s4 = p->s[3];
     const ct_contact_geo *g = &p->geo;
-    const ct_real *restrict h1 = g->h1, *restrict h2 = g->h2, *restrict h3 = g->h3,
-                            *restrict h4 = g->h4, *restrict nx = g->nx, *restrict ny = g->ny,
-                            *restrict nz = g->nz;
-    ct_real *restrict rx = p->r[CTDI_R_VRX], *restrict ry = p->r[CTDI_R_VRY],
-                      *restrict rz = p->r[CTDI_R_VRZ], *restrict vn = p->r[CTDI_R_VN],
-                      *restrict mm = p->r[CTDI_R_MM], *restrict area = p->r[CTDI_R_PRS];
-#pragma omp parallel for simd schedule(static) if (n > CTDI_PAR_MIN)
-    for (ct_idx k = 0; k < n; k++) {
-        ct_idx a = node[k], i1 = s1[k], i2 = s2[k], i3 = s3[k], i4 = s4[k];
-        ct_real ux = vx[a] - (h1[k] * vx[i1] + h2[k] * vx[i2] + h3[k] * vx[i3] + h4[k] * vx[i4]);
-        ct_real uy = vy[a] - (h1[k] * vy[i1] + h2[k] * vy[i2] + h3[k] * vy[i3] + h4[k] * vy[i4]);
-        ct_real uz = vz[a] - (h1[k] * vz[i1] + h2[k] * vz[i2] + h3[k] * vz[i3] + h4[k] * vz[i4]);
-        rx[k] = ux;
-        ry[k] = uy;
-        rz[k] = uz;
-        vn[k] = ux * nx[k] + uy * ny[k] + uz * nz[k];
-        mm[k] = h1[k] * m[i1] + h2[k] * m[i2] + h3[k] * m[i3] + h4[k] * m[i4];
-    }
-    if (!want_area)
-        return;
+    ct_real *restrict area = p->r[CTDI_R_PRS];
+    int rc = ct_relative_velocity(n, node, s1, s2, s3, s4, g->h1, g->h2, g->h3, g->h4, g->nx,
+                                  g->ny, g->nz, vx, vy, vz, m, p->r[CTDI_R_VRX],
+                                  p->r[CTDI_R_VRY], p->r[CTDI_R_VRZ], p->r[CTDI_R_VN],
+                                  p->r[CTDI_R_MM]);
+    if (rc != CT_OK || !want_area)
+        return rc;
 #pragma omp parallel for schedule(static) if (n > CTDI_PAR_MIN)
     for (ct_idx k = 0; k < n; k++) {
         ct_idx i1 = s1[k], i2 = s2[k], i3 = s3[k], i4 = s4[k];
@@ -363,6 +350,7 @@ static void kinematics(ctdi_pass *p, ct_idx n, const ct_idx *restrict node,
         ct_real cx = ay * bz - az * by, cy = az * bx - ax * bz, cz = ax * by - ay * bx;
         area[k] = (ct_real)0.5 * CTI_SQRT(cx * cx + cy * cy + cz * cz);
     }
+    return CT_OK;
 }
 
 /* Friction: mu per pair when the law needs it, the step, the total force. */
@@ -629,8 +617,9 @@ int ctdi_pass_step(ctd_iface *it, ctdi_pass *p, ct_real dt, const ct_real *x,
     }
     double t2 = ctdi_wtime();
     int wa = it->fric_on && (it->fric_law == CT_FRIC_POLY || it->fric_law == CT_FRIC_DARMSTAD);
-    kinematics(p, n, pp->node, x, y, z, vx, vy, vz, m, wa);
-    rc = normal_force(it, p, n, dt);
+    rc = kinematics(p, n, pp->node, x, y, z, vx, vy, vz, m, wa);
+    if (rc == CT_OK)
+        rc = normal_force(it, p, n, dt);
     ct_real *fd = p->r[CTDI_R_FD];
     if (rc == CT_OK && it->fric_on)
         rc = friction(it, p, n, dt);
