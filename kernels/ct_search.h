@@ -86,6 +86,13 @@ typedef struct ct_search_params {
      * min_box (0 -> gap + margin). */
     int leaf_size;
     double min_box;
+    /* bucket and bsp: 0 (default) renumber the input spatially when its
+     * numbering is scattered (segment corners far apart in number), 1
+     * always, -1 never. The search then runs on a renumbered copy (nodes
+     * by grid cell, segments by their first corner, secondaries by number)
+     * and its pairs are mapped back: the same canonical list, bit for bit,
+     * for about 100 bytes per node of workspace. */
+    int renumber;
 } ct_search_params;
 
 /* The defaults above for one algorithm. */
@@ -98,7 +105,12 @@ typedef struct ct_search ct_search;
 int ct_search_init(ct_search **s, const ct_search_params *p);
 void ct_search_destroy(ct_search *s);
 
-/* Run the search; out is grown as needed and overwritten. */
+/* Run the search; out is grown as needed and overwritten. Returns CT_OK;
+ * CT_ERR_ARG for a missing array, a negative count or a gap or margin that
+ * is negative or not finite; CT_ERR_RANGE when a secondary or a segment
+ * corner is not a node index (0 <= i < nnode); CT_ERR_NONFINITE when one of
+ * those nodes has a NaN or infinite coordinate (other nodes are not read);
+ * CT_ERR_NOMEM. The same for every algorithm. */
 int ct_search_run(ct_search *s, const ct_search_input *in, ct_pairs *out);
 
 /* Forget the history: the next topological search is a full search. */

@@ -45,7 +45,8 @@ int ct_search_init(ct_search **s, const ct_search_params *p)
     *s = NULL;
     if (p && (p->algo < 0 || p->algo >= CT_SEARCH_NALGO || p->variant < 0 || p->variant > 1 ||
               !(p->cell_factor >= 0) ||
-              p->max_cells < 0 || p->leaf_size < 0 || !(p->min_box >= 0)))
+              p->max_cells < 0 || p->leaf_size < 0 || !(p->min_box >= 0) ||
+              p->renumber < -1 || p->renumber > 1))
         return CT_ERR_ARG;
     ct_search *w = calloc(1, sizeof *w);
     if (!w)
@@ -72,6 +73,7 @@ void ct_search_destroy(ct_search *s)
         return;
     ct_search_reset(s);
     cti_collect_free(&s->col);
+    cti_renum_free(s->rn);
     free(s);
 }
 
@@ -79,10 +81,16 @@ size_t ct_search_memory(const ct_search *s)
 {
     if (!s)
         return 0;
-    size_t b = cti_collect_memory(&s->col);
+    size_t b = cti_collect_memory(&s->col) + cti_renum_memory(s->rn);
     if (s->algo_memory && s->algo_state)
         b += s->algo_memory(s->algo_state);
     return b;
+}
+
+static inline int node_finite(const ct_search_input *in, ct_idx i)
+{
+    return CTI_FABS(in->x[i]) <= CTI_HUGE && CTI_FABS(in->y[i]) <= CTI_HUGE &&
+           CTI_FABS(in->z[i]) <= CTI_HUGE;
 }
 
 static int check_input(const ct_search_input *in)
@@ -96,6 +104,35 @@ static int check_input(const ct_search_input *in)
         return CT_ERR_ARG;
     if (!(in->gap >= 0) || !(in->margin >= 0) || !isfinite((double)(in->gap + in->margin)))
         return CT_ERR_ARG;
+    /* Every index in range, for every algorithm (one streaming pass). */
+    const uint32_t nn = (uint32_t)in->nnode;
+    int bad = 0;
+#pragma omp parallel for schedule(static) reduction(| : bad) if (in->nseg > 65536)
+    for (ct_idx j = 0; j < in->nseg; j++)
+        bad |= ((uint32_t)in->n1[j] >= nn) | ((uint32_t)in->n2[j] >= nn) |
+               ((uint32_t)in->n3[j] >= nn) | ((uint32_t)in->n4[j] >= nn);
+#pragma omp parallel for schedule(static) reduction(| : bad) if (in->nsec > 65536)
+    for (ct_idx i = 0; i < in->nsec; i++)
+        bad |= (uint32_t)in->sec[i] >= nn;
+    if (bad)
+        return CT_ERR_RANGE;
+    /* Every node the search reads finite: first all nodes in one stream
+     * (the common case ends here); only when one is not, the nodes used. */
+    const ct_real *restrict x = in->x, *restrict y = in->y, *restrict z = in->z;
+    int nonfin = 0;
+#pragma omp parallel for simd schedule(static) reduction(| : nonfin) if (in->nnode > 65536)
+    for (ct_idx i = 0; i < in->nnode; i++)
+        nonfin |= !(CTI_FABS(x[i]) <= CTI_HUGE) | !(CTI_FABS(y[i]) <= CTI_HUGE) |
+                  !(CTI_FABS(z[i]) <= CTI_HUGE);
+    if (!nonfin)
+        return CT_OK;
+    for (ct_idx i = 0; i < in->nsec; i++)
+        if (!node_finite(in, in->sec[i]))
+            return CT_ERR_NONFINITE;
+    for (ct_idx j = 0; j < in->nseg; j++)
+        if (!node_finite(in, in->n1[j]) || !node_finite(in, in->n2[j]) ||
+            !node_finite(in, in->n3[j]) || !node_finite(in, in->n4[j]))
+            return CT_ERR_NONFINITE;
     return CT_OK;
 }
 
@@ -106,13 +143,22 @@ int ct_search_run(ct_search *s, const ct_search_input *in, ct_pairs *out)
     int rc = check_input(in);
     if (rc)
         return rc;
+    int (*run)(ct_search *, const ct_search_input *, ct_pairs *) = NULL;
     switch (s->p.algo) {
     case CT_SEARCH_DIRECT: return cti_search_direct(s, in, out);
     case CT_SEARCH_TOPO: return cti_search_topo(s, in, out);
-    case CT_SEARCH_BUCKET: return cti_search_bucket(s, in, out);
-    case CT_SEARCH_BSP: return cti_search_bsp(s, in, out);
+    case CT_SEARCH_BUCKET: run = cti_search_bucket; break;
+    case CT_SEARCH_BSP: run = cti_search_bsp; break;
     default: return CT_ERR_ARG;
     }
+    /* Scattered numberings: the search on a renumbered copy. */
+    if (s->p.renumber > 0 || (s->p.renumber == 0 && cti_bucket_scattered(in))) {
+        int done = 0;
+        rc = cti_search_renumbered(s, in, out, run, &done);
+        if (rc || done)
+            return rc;
+    }
+    return run(s, in, out);
 }
 
 /* Every secondary node against every segment: O(nsec * nseg). Threads take
