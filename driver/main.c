@@ -47,6 +47,7 @@ typedef struct search_opts {
     uint64_t seed;
     ct_search_filter filter;
     int check; /* 0: no direct reference, even when affordable */
+    int renumber; /* ct_search_params.renumber: 0 auto, 1 on, -1 off */
 } search_opts;
 
 static void usage_search(FILE *f)
@@ -54,7 +55,7 @@ static void usage_search(FILE *f)
     fprintf(f, "usage: contact search [--family F] [--n NODES] [--algo direct|topological|bucket|bsp|all]\n"
                "                      [--numbering natural|shuffled|sfc] [--gap G] [--margin M]\n"
                "                      [--filter hull|box] [--repeat R] [--seed S] [--threads T]\n"
-               "                      [--check auto|off]\n"
+               "                      [--check auto|off] [--renumber auto|on|off]\n"
                "Runs each search on a synthetic case, checks its pair set against the direct\n"
                "search (when affordable; --check off skips it, for timing runs) and prints\n"
                "the median time per secondary node.\n"
@@ -149,6 +150,7 @@ static int run_search(const search_opts *o)
         if (o->algo >= 0 && a != o->algo)
             continue;
         ct_search_params p = ct_search_default_params((ct_search_algo)a);
+        p.renumber = o->renumber;
         ct_search *s;
         if ((rc = ct_search_init(&s, &p)) != CT_OK)
             goto done;
@@ -226,7 +228,7 @@ static int parse_dbl(const char *s, double *v)
 
 static int cmd_search(int argc, char **argv)
 {
-    search_opts o = {"plates", 100000, -1, CTD_NUM_NATURAL, -1, -1, 5, 1, CT_FILTER_HULL, 1};
+    search_opts o = {"plates", 100000, -1, CTD_NUM_NATURAL, -1, -1, 5, 1, CT_FILTER_HULL, 1, 0};
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         int64_t iv;
@@ -280,6 +282,13 @@ static int cmd_search(int argc, char **argv)
                 return EXIT_USAGE;
             }
             o.check = !strcmp(v, "auto");
+        } else if (!strcmp(a, "--renumber")) {
+            if (strcmp(v, "auto") && strcmp(v, "on") && strcmp(v, "off")) {
+                fprintf(stderr, "contact search: --renumber expects auto, on or off, got '%s'\n",
+                        v);
+                return EXIT_USAGE;
+            }
+            o.renumber = !strcmp(v, "on") ? 1 : !strcmp(v, "off") ? -1 : 0;
         } else if (!strcmp(a, "--repeat")) {
             if (parse_i64(v, &iv) || iv < 1 || iv > 1000) {
                 fprintf(stderr, "contact search: --repeat expects 1..1000, got '%s'\n", v);
@@ -315,10 +324,10 @@ static int cmd_demo(void)
     printf("\nContact search comparison: every search is checked pair for pair against\n"
            "the direct (all pairs) search; times are medians of 5 runs.\n\n");
     search_opts cases[] = {
-        {"folded", 20000, -1, CTD_NUM_NATURAL, -1, -1, 5, 1, CT_FILTER_HULL, 1},
-        {"plates", 100000, -1, CTD_NUM_NATURAL, -1, -1, 5, 1, CT_FILTER_HULL, 1},
-        {"plates", 100000, -1, CTD_NUM_SHUFFLED, -1, -1, 5, 1, CT_FILTER_HULL, 1},
-        {"graded", 50000, -1, CTD_NUM_NATURAL, -1, -1, 5, 1, CT_FILTER_HULL, 1},
+        {"folded", 20000, -1, CTD_NUM_NATURAL, -1, -1, 5, 1, CT_FILTER_HULL, 1, 0},
+        {"plates", 100000, -1, CTD_NUM_NATURAL, -1, -1, 5, 1, CT_FILTER_HULL, 1, 0},
+        {"plates", 100000, -1, CTD_NUM_SHUFFLED, -1, -1, 5, 1, CT_FILTER_HULL, 1, 0},
+        {"graded", 50000, -1, CTD_NUM_NATURAL, -1, -1, 5, 1, CT_FILTER_HULL, 1, 0},
     };
     int worst = 0;
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {

@@ -18,10 +18,12 @@ static inline int cti_thread_id(void) { return omp_get_thread_num(); }
 /* Inside a caller's parallel region a kernel opens no team of its own (a
  * nested region would run on one thread anyway, at the cost of making it). */
 static inline int cti_in_parallel(void) { return omp_in_parallel(); }
+static inline int cti_team_size(void) { return omp_get_num_threads(); }
 #else
 static inline int cti_num_threads(void) { return 1; }
 static inline int cti_thread_id(void) { return 0; }
 static inline int cti_in_parallel(void) { return 0; }
+static inline int cti_team_size(void) { return 1; }
 #endif
 
 /* The float next below f (f not NaN), as nextafterf(f, -INFINITY) but
@@ -272,9 +274,15 @@ size_t cti_collect_memory(const cti_collect *c);
 
 /* ---- Per-algorithm entry points (search.c dispatches) ------------------ */
 
+/* The spatial renumbering of scattered inputs (search_renumber.c). */
+typedef struct cti_renum cti_renum;
+void cti_renum_free(cti_renum *r);
+size_t cti_renum_memory(const cti_renum *r);
+
 struct ct_search {
     ct_search_params p;
     cti_collect col;
+    cti_renum *rn; /* created on first use */
     void *algo_state; /* owned by the algorithm */
     void (*algo_free)(void *state);
     size_t (*algo_memory)(const void *state);
@@ -284,5 +292,14 @@ int cti_search_direct(ct_search *s, const ct_search_input *in, ct_pairs *out);
 int cti_search_topo(ct_search *s, const ct_search_input *in, ct_pairs *out);
 int cti_search_bucket(ct_search *s, const ct_search_input *in, ct_pairs *out);
 int cti_search_bsp(ct_search *s, const ct_search_input *in, ct_pairs *out);
+
+/* Run `run` on a spatially renumbered copy of the input (every index
+ * checked) and map its pairs back (search_renumber.c). *done = 0 (and
+ * nothing written) when the input is left to the plain search: empty, or a
+ * secondary listed twice. */
+int cti_search_renumbered(ct_search *s, const ct_search_input *in, ct_pairs *out,
+                          int (*run)(ct_search *, const ct_search_input *, ct_pairs *),
+                          int *done);
+int cti_bucket_scattered(const ct_search_input *in);
 
 #endif /* CT_INTERNAL_H */

@@ -1,0 +1,215 @@
+/*
+ * test_search_renumber.c -- the spatial renumbering of scattered inputs
+ * (ct_search_params.renumber, kernels/search_renumber.c): forced on, the
+ * bucket and bsp searches return exactly the direct search's pairs on every
+ * family, natural and shuffled, self contact included, with the same bytes
+ * for 1 and 2 threads; "auto" renumbers a large shuffled case and not an
+ * ordered one; a secondary list out of order and a secondary listed twice
+ * give what the plain search gives; every algorithm reports an index out of
+ * range and a non-finite node it uses with the same code.
+ */
+#include "test_search_scene.h"
+
+#include <math.h>
+
+#include "meshgen.h"
+
+static void search_rn(ct_search_algo a, int renumber, const ct_search_input *in, ct_pairs *out)
+{
+    ct_search_params p = ct_search_default_params(a);
+    p.renumber = renumber;
+    ctt_search_with(&p, in, out);
+}
+
+static void check_family(const char *family, int64_t n, ctd_numbering num)
+{
+    ctd_case c;
+    ct_diag d = {0};
+    cr_assert_eq(ctd_case_make(&c, family, n, num, 11, &d), CT_OK, "%s: %s", family, d.msg);
+    ct_search_input in;
+    ctd_case_input(&c, (ct_real)(0.4 * c.h_mean), (ct_real)(0.1 * c.h_mean), &in);
+    ct_pairs ref, got, got2;
+    ct_pairs_init(&ref, 0);
+    ct_pairs_init(&got, 0);
+    ct_pairs_init(&got2, 0);
+    ctt_search(CT_SEARCH_DIRECT, &in, &ref);
+    for (int a = CT_SEARCH_BUCKET; a <= CT_SEARCH_BSP; a++) {
+        ctt_threads(1);
+        search_rn((ct_search_algo)a, 1, &in, &got);
+        ctt_threads(2);
+        search_rn((ct_search_algo)a, 1, &in, &got2);
+        cr_assert(ctt_same_pairs(&ref, &got), "%s n=%lld %s: renumbered %s gives %d pairs, direct %d",
+                  family, (long long)n, ctd_numbering_name(num), ct_search_algo_name(a), got.n,
+                  ref.n);
+        cr_assert(ctt_same_pairs(&got, &got2), "%s %s: 1 and 2 threads differ", family,
+                  ct_search_algo_name(a));
+    }
+    ct_pairs_destroy(&ref);
+    ct_pairs_destroy(&got);
+    ct_pairs_destroy(&got2);
+    ctd_case_destroy(&c);
+}
+
+Test(search_renumber, forced_on_matches_direct_on_every_family, .timeout = 240)
+{
+    int nf = 0;
+    const char *const *fam = ctd_case_families(&nf);
+    cr_assert_geq(nf, 8);
+    for (int f = 0; f < nf; f++) {
+        check_family(fam[f], 400, CTD_NUM_SHUFFLED);
+        check_family(fam[f], ctt_checking() ? 1000 : 3000, CTD_NUM_SHUFFLED);
+        check_family(fam[f], 1000, CTD_NUM_NATURAL);
+    }
+}
+
+/* "auto": a shuffled case above the sampling threshold is renumbered (the
+ * workspace then holds the copy: more memory than the same search with
+ * renumbering off), an ordered one is not; the pairs are those of the
+ * plain bucket search either way. */
+Test(search_renumber, auto_renumbers_scattered_only, .timeout = 120)
+{
+    const ctd_numbering nums[2] = {CTD_NUM_SHUFFLED, CTD_NUM_NATURAL};
+    for (int k = 0; k < 2; k++) {
+        ctd_case c;
+        ct_diag d = {0};
+        cr_assert_eq(ctd_case_make(&c, "plates", 20000, nums[k], 5, &d), CT_OK, "%s", d.msg);
+        ct_search_input in;
+        ctd_case_input(&c, (ct_real)(0.4 * c.h_mean), (ct_real)(0.1 * c.h_mean), &in);
+        ct_pairs ref, got;
+        ct_pairs_init(&ref, 0);
+        ct_pairs_init(&got, 0);
+        search_rn(CT_SEARCH_BUCKET, -1, &in, &ref);
+        cr_assert_gt(ref.n, 0);
+        size_t mem[2];
+        for (int r = 0; r < 2; r++) {
+            ct_search_params p = ct_search_default_params(CT_SEARCH_BSP);
+            p.renumber = r == 0 ? -1 : 0;
+            ct_search *s;
+            cr_assert_eq(ct_search_init(&s, &p), CT_OK);
+            cr_assert_eq(ct_search_run(s, &in, &got), CT_OK);
+            mem[r] = ct_search_memory(s);
+            ct_search_destroy(s);
+            cr_assert(ctt_same_pairs(&ref, &got), "%s, renumber %d: bsp differs from bucket",
+                      ctd_numbering_name(nums[k]), p.renumber);
+        }
+        /* The copy holds more than 40 bytes per node; the tree's own
+         * buffers vary by far less from run to run. */
+        const size_t copy = 40 * (size_t)c.mesh.nodes.n;
+        if (nums[k] == CTD_NUM_SHUFFLED)
+            cr_assert_gt(mem[1], mem[0] + copy,
+                         "auto did not renumber the shuffled case (%zu vs %zu bytes)", mem[1],
+                         mem[0]);
+        else
+            cr_assert_lt(mem[1], mem[0] + copy, "auto renumbered the ordered case (%zu vs %zu)",
+                         mem[1], mem[0]);
+        ct_pairs_destroy(&ref);
+        ct_pairs_destroy(&got);
+        ctd_case_destroy(&c);
+    }
+}
+
+/* A small scene: two rows of quads, a node above each corner region. */
+static void build_scene(ctt_scene *s)
+{
+    ctt_scene_init(s, 64, 16);
+    for (int j = 0; j < 2; j++)
+        for (int i = 0; i < 5; i++)
+            ctt_scene_node(s, i, j, 0);
+    for (int i = 0; i < 4; i++)
+        ctt_scene_seg(s, i, i + 1, i + 6, i + 5);
+    for (int i = 0; i < 8; i++)
+        ctt_scene_sec(s, ctt_scene_node(s, 0.3 + 0.5 * i, 0.4, 0.2 + 0.05 * i));
+}
+
+/* The secondary list in reverse order: canonical order is by position in
+ * the list, so the renumbered result must follow the list, as the plain
+ * one does. A secondary listed twice: the plain search's result (the
+ * renumbering steps aside). */
+Test(search_renumber, secondary_order_and_duplicates)
+{
+    ctt_scene s;
+    build_scene(&s);
+    for (int i = 0; i < s.nsec / 2; i++) {
+        ct_idx t = s.sec[i];
+        s.sec[i] = s.sec[s.nsec - 1 - i];
+        s.sec[s.nsec - 1 - i] = t;
+    }
+    ct_search_input in = ctt_scene_input(&s, 0.5, 0.1, 0);
+    ct_pairs a, b;
+    ct_pairs_init(&a, 0);
+    ct_pairs_init(&b, 0);
+    for (int alg = CT_SEARCH_BUCKET; alg <= CT_SEARCH_BSP; alg++) {
+        search_rn((ct_search_algo)alg, -1, &in, &a);
+        search_rn((ct_search_algo)alg, 1, &in, &b);
+        cr_assert_gt(a.n, 4);
+        cr_assert_eq(a.node[0], s.sec[0], "the first pair is not the first listed secondary's");
+        cr_assert(ctt_same_pairs(&a, &b), "%s: the renumbered pairs differ (reversed list)",
+                  ct_search_algo_name(alg));
+    }
+    ctt_scene_sec(&s, s.sec[2]); /* listed twice */
+    in = ctt_scene_input(&s, 0.5, 0.1, 0);
+    for (int alg = CT_SEARCH_BUCKET; alg <= CT_SEARCH_BSP; alg++) {
+        search_rn((ct_search_algo)alg, -1, &in, &a);
+        search_rn((ct_search_algo)alg, 1, &in, &b);
+        cr_assert(ctt_same_pairs(&a, &b), "%s: the renumbered pairs differ (duplicate)",
+                  ct_search_algo_name(alg));
+    }
+    ct_pairs_destroy(&a);
+    ct_pairs_destroy(&b);
+    ctt_scene_free(&s);
+}
+
+/* Bad input: every algorithm, with renumbering on and off, reports an
+ * index out of range (a corner, a secondary) and a non-finite secondary or
+ * corner with the same code. */
+Test(search_renumber, bad_input_every_algorithm)
+{
+    const int want[4] = {CT_ERR_RANGE, CT_ERR_RANGE, CT_ERR_NONFINITE, CT_ERR_NONFINITE};
+    for (int bad = 0; bad < 4; bad++) {
+        ctt_scene s;
+        build_scene(&s);
+        if (bad == 0)
+            s.n3[1] = s.nn + 7; /* corner out of range */
+        else if (bad == 1)
+            s.sec[3] = -2; /* secondary out of range */
+        else if (bad == 2)
+            s.x[s.sec[5]] = (ct_real)NAN; /* non-finite secondary */
+        else
+            s.z[s.n2[3]] = (ct_real)INFINITY; /* non-finite corner */
+        ct_search_input in = ctt_scene_input(&s, 0.5, 0.1, 0);
+        for (int alg = 0; alg < CT_SEARCH_NALGO; alg++)
+            for (int r = -1; r <= 1; r += 2) {
+                ct_search_params p = ct_search_default_params((ct_search_algo)alg);
+                p.renumber = r;
+                ct_search *w;
+                ct_pairs o;
+                ct_pairs_init(&o, 0);
+                cr_assert_eq(ct_search_init(&w, &p), CT_OK);
+                int rc = ct_search_run(w, &in, &o);
+                ct_search_destroy(w);
+                ct_pairs_destroy(&o);
+                cr_assert_eq(rc, want[bad], "case %d, %s, renumber %d: %s, want %s", bad,
+                             ct_search_algo_name(alg), r, ct_strerror(rc),
+                             ct_strerror(want[bad]));
+            }
+        ctt_scene_free(&s);
+    }
+    /* A non-finite node no segment and no secondary uses is not read. */
+    ctt_scene s;
+    build_scene(&s);
+    ctt_scene_node(&s, (double)NAN, 0, 0);
+    ct_search_input in = ctt_scene_input(&s, 0.5, 0.1, 0);
+    ct_pairs a, b;
+    ct_pairs_init(&a, 0);
+    ct_pairs_init(&b, 0);
+    ctt_search(CT_SEARCH_DIRECT, &in, &a);
+    search_rn(CT_SEARCH_BUCKET, 1, &in, &b);
+    cr_assert(ctt_same_pairs(&a, &b));
+    ct_pairs_destroy(&a);
+    ct_pairs_destroy(&b);
+    ctt_scene_free(&s);
+    ct_search_params p = ct_search_default_params(CT_SEARCH_BUCKET);
+    p.renumber = 2;
+    ct_search *w;
+    cr_assert_eq(ct_search_init(&w, &p), CT_ERR_ARG);
+}
