@@ -7,9 +7,9 @@
  * a random cache line in every pass of a search, and the bucket's counting
  * passes write to random cells. Here, instead:
  *  1. the nodes are counting-sorted by the cell of a grid over their box
- *     (row-major cells of about one node each; non-finite nodes last): P
- *     maps a new number to the old one, Q the old to the new;
- *  2. the coordinates are copied in the new order;
+ *     (row-major cells of about CTI_RN_CELL nodes; non-finite nodes last):
+ *     Q maps an old number to the new one;
+ *  2. the coordinates are copied in the new order (by the sort itself);
  *  3. the segments are counting-sorted by the new number of their first
  *     corner and their corners renumbered (the corner order is kept);
  *  4. the secondaries are counting-sorted by their new number;
@@ -22,8 +22,8 @@
  * Every sort is a stable counting sort over contiguous blocks of the input
  * (a stable sort has one result), so nothing depends on the thread count.
  *
- * The copy costs per node 4 numbers (P, Q, key, rank) and 7 coordinates
- * (the new x, y, z, and x y z 0 packed for the gather),
+ * The copy costs per node 3 numbers (Q, key, rank) and 7 coordinates (the
+ * new x, y, z, and x y z 0 packed by the sort),
  * per segment 10 numbers, per secondary 3 numbers and 2 offsets, plus the
  * inner pair list and the counting sorts' counters (at most CTI_RN_MAXBLK
  * blocks of one counter per 8 nodes): O(N), about 130 bytes per secondary
@@ -54,9 +54,9 @@
 
 struct cti_renum {
     size_t cap_node, cap_seg, cap_sec, cap_cnt;
-    ct_idx *P, *Q, *key, *rank;   /* per node: new->old, old->new, sort key, sec rank */
+    ct_idx *Q, *key, *rank;       /* per node: old->new number, sort key, sec rank */
     ct_real *x, *y, *z;           /* coordinates in the new order */
-    ct_real *w4;                  /* x y z 0 per node, old order (the gather's source) */
+    ct_real *w4;                  /* x y z 0 per node, new order (the sort's output) */
     ct_idx *smap, *n1, *n2, *n3, *n4; /* per new segment: old number, corners */
     ct_idx *skey, *c4;            /* per segment: sort key; new corners, packed */
     ct_idx *spos, *sec, *gcnt;    /* per new secondary: old position, new node, pairs */
@@ -70,8 +70,8 @@ void cti_renum_free(cti_renum *r)
 {
     if (!r)
         return;
-    ct_idx *ip[] = {r->P,  r->Q,    r->key,  r->rank, r->smap, r->n1,  r->n2, r->n3,
-                    r->n4, r->skey, r->c4, r->spos, r->sec,  r->gcnt, r->cnt};
+    ct_idx *ip[] = {r->Q,  r->key, r->rank, r->smap, r->n1,  r->n2,  r->n3,
+                    r->n4, r->skey, r->c4, r->spos, r->sec, r->gcnt, r->cnt};
     for (size_t i = 0; i < sizeof ip / sizeof ip[0]; i++)
         ct_free(ip[i]);
     ct_free(r->x);
@@ -89,7 +89,7 @@ size_t cti_renum_memory(const cti_renum *r)
 {
     if (!r)
         return 0;
-    return r->cap_node * (4 * sizeof(ct_idx) + 7 * sizeof(ct_real)) +
+    return r->cap_node * (3 * sizeof(ct_idx) + 7 * sizeof(ct_real)) +
            r->cap_seg * 10 * sizeof(ct_idx) +
            r->cap_sec * (3 * sizeof(ct_idx) + 2 * sizeof(int64_t)) +
            r->cap_cnt * sizeof(ct_idx) + (size_t)r->inner.cap * 2 * sizeof(ct_idx);
@@ -101,9 +101,9 @@ static int rn_grow(cti_renum *r, size_t n, size_t m, size_t s, size_t c)
 {
     int ok = 1;
     if (n > r->cap_node) {
-        ct_idx **ip[] = {&r->P, &r->Q, &r->key, &r->rank};
+        ct_idx **ip[] = {&r->Q, &r->key, &r->rank};
         ct_real **rp[] = {&r->x, &r->y, &r->z};
-        for (int i = 0; i < 4; i++) {
+        for (int i = 0; i < 3; i++) {
             ct_free(*ip[i]);
             ok &= (*ip[i] = ct_calloc(n, sizeof(ct_idx))) != NULL;
         }
@@ -202,7 +202,6 @@ static void rn_nodes(cti_renum *r, const ct_search_input *in, int nb, size_t str
         inv[0] = inv[1] = inv[2] = 0, lo[0] = lo[1] = lo[2] = 0;
     const int64_t ncell = (int64_t)g[0] * g[1] * g[2];
     ct_idx *restrict key = r->key;
-    ct_real *restrict w4 = r->w4;
 #pragma omp parallel for schedule(static)
     for (ct_idx i = 0; i < nn; i++) {
         ct_real a = x[i], b = y[i], c = z[i];
@@ -210,28 +209,42 @@ static void rn_nodes(cti_renum *r, const ct_search_input *in, int nb, size_t str
         ct_idx ix = bk_cell1(a, lo[0], inv[0], g[0] - 1), iy = bk_cell1(b, lo[1], inv[1], g[1] - 1),
                iz = bk_cell1(c, lo[2], inv[2], g[2] - 1);
         key[i] = fin ? (ct_idx)(((int64_t)iz * g[1] + iy) * g[0] + ix) : (ct_idx)ncell;
-        /* Packed for the gather below: one random line per node, not three. */
-        w4[4 * (size_t)i] = a;
-        w4[4 * (size_t)i + 1] = b;
-        w4[4 * (size_t)i + 2] = c;
-        w4[4 * (size_t)i + 3] = 0;
     }
-    rn_sort(nn, key, ncell + 1, nb, stride, r->cnt, r->P);
-    const ct_idx *restrict P = r->P;
-    ct_idx *restrict Q = r->Q;
+    /* The counting sort of rn_sort, whose scatter writes, instead of the
+     * order, each node's new number (Q, in sequence) and its coordinates,
+     * packed x y z 0 at their new place (one random line per node), which
+     * a last pass unpacks in sequence. */
+    ct_idx *restrict cnt = r->cnt, *restrict Q = r->Q;
+    ct_real *restrict w4 = r->w4;
+#pragma omp parallel for schedule(static)
+    for (int b = 0; b < nb; b++) {
+        ct_idx *restrict c = cnt + (size_t)b * stride;
+        memset(c, 0, (size_t)(ncell + 1) * sizeof *c);
+        const ct_idx lo_ = (ct_idx)((int64_t)nn * b / nb), hi_ = (ct_idx)((int64_t)nn * (b + 1) / nb);
+        for (ct_idx i = lo_; i < hi_; i++)
+            c[key[i]]++;
+    }
+    cti_bucket_offsets(cnt, nb, stride, ncell + 1, NULL);
+#pragma omp parallel for schedule(static)
+    for (int b = 0; b < nb; b++) {
+        ct_idx *restrict c = cnt + (size_t)b * stride;
+        const ct_idx lo_ = (ct_idx)((int64_t)nn * b / nb), hi_ = (ct_idx)((int64_t)nn * (b + 1) / nb);
+        for (ct_idx i = lo_; i < hi_; i++) {
+            const ct_idx k = c[key[i]]++;
+            Q[i] = k;
+            ct_real *restrict w = w4 + 4 * (size_t)k;
+            w[0] = x[i];
+            w[1] = y[i];
+            w[2] = z[i];
+            w[3] = 0;
+        }
+    }
     ct_real *restrict X = r->x, *restrict Y = r->y, *restrict Z = r->z;
 #pragma omp parallel for schedule(static)
     for (ct_idx k = 0; k < nn; k++) {
-        if (k + CTI_RN_AHEAD < nn) {
-            const ct_idx a = P[k + CTI_RN_AHEAD];
-            CTI_RN_PREFETCH(w4 + 4 * (size_t)a);
-            CTI_RN_PREFETCH(Q + a);
-        }
-        ct_idx i = P[k];
-        Q[i] = k;
-        X[k] = w4[4 * (size_t)i];
-        Y[k] = w4[4 * (size_t)i + 1];
-        Z[k] = w4[4 * (size_t)i + 2];
+        X[k] = w4[4 * (size_t)k];
+        Y[k] = w4[4 * (size_t)k + 1];
+        Z[k] = w4[4 * (size_t)k + 2];
     }
 }
 
