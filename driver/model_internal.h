@@ -1,6 +1,7 @@
 /*
- * model_internal.h -- helpers shared by model.c, model_gen.c and
- * model_select.c (prefix cti_). Not part of the driver's API.
+ * model_internal.h -- helpers shared by model.c, model_parts.c,
+ * model_gen.c and model_select.c (prefix cti_). Not part of the driver's
+ * API.
  */
 #ifndef CTD_MODEL_INTERNAL_H
 #define CTD_MODEL_INTERNAL_H
@@ -8,6 +9,8 @@
 #include <stddef.h>
 
 #include "contact.h"
+#include "import_radioss.h"
+#include "model.h"
 #include "scene.h"
 
 /* A growable array of fixed-size items. */
@@ -35,5 +38,33 @@ typedef struct cti_gen {
 
 int cti_generate(cti_gen *g, const ctd_scene_generate *sg);
 void cti_gen_destroy(cti_gen *g);
+
+/* ---- Building a model (model.c, model_parts.c) ---------------------------- */
+
+/* The meshes of a scene collected into one numbering. */
+typedef struct cti_hex { ct_idx n[8]; int64_t part; } cti_hex;
+typedef struct cti_quad { ct_idx n[4]; int64_t part; int32_t mesh, deck; } cti_quad;
+typedef struct cti_line { ct_idx n[2]; int64_t part; } cti_line;
+
+typedef struct cti_mcollect {
+    cti_vec x, y, z;          /* double */
+    cti_vec id;               /* int64_t */
+    cti_vec hex, quad, line;  /* elements */
+    cti_vec dface;            /* cti_quad: deck faces of /SURF surfaces */
+} cti_mcollect;
+
+/* The state of ctd_model_build. */
+typedef struct cti_mbuild {
+    ctd_model *m;
+    const ctd_scene *sc;
+    cti_mcollect c;
+    ctd_faces *faces;   /* per part (parts_count), outer faces of its bricks */
+    int32_t *face_set;  /* per part: element set index or -1 */
+    char *err;
+    size_t len;
+} cti_mbuild;
+
+/* The element sets and the rigid parts' masses (model_parts.c). */
+int cti_model_parts(cti_mbuild *b);
 
 #endif
