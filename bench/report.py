@@ -185,18 +185,24 @@ def sort_key(rec):
             ALGOS.index(rec["algo"]) if rec["algo"] in ALGOS else 99)
 
 
-def parse_search(records):
-    search, other = [], []
+def split_named(records, regex):
+    """Split the records whose name matches regex (groups threads and n among
+    its named groups, which become fields) from the others."""
+    hit, rest = [], []
     for r in records:
-        m = NAME_RE.match(r["name"])
+        m = regex.match(r["name"])
         if not m:
-            other.append(r)
+            rest.append(r)
             continue
         r.update(m.groupdict())
         r["threads"] = int(r["threads"])
         r["n"] = int(r["n"])
-        search.append(r)
-    return search, other
+        hit.append(r)
+    return hit, rest
+
+
+def parse_search(records):
+    return split_named(records, NAME_RE)
 
 
 def mesh_sizes(rec, search):
@@ -544,18 +550,10 @@ def print_trade(trade, compare, out):
 def parse_cycle(other, prec):
     """Split the full contact cycle records (cycle/<family>/t<threads>/<nodes>)
     from the others; the precision is the label's prec=, else the file's."""
-    cyc, rest = [], []
-    for r in other:
-        m = CYCLE_RE.match(r["name"])
-        if not m:
-            rest.append(r)
-            continue
-        r.update(m.groupdict())
-        r["threads"] = int(r["threads"])
-        r["n"] = int(r["n"])
+    cyc, rest = split_named(other, CYCLE_RE)
+    for r in cyc:
         lm = re.match(r"prec=(\w+)", r["label"] or "")
         r["prec"] = lm.group(1) if lm else prec
-        cyc.append(r)
     return cyc, rest
 
 
