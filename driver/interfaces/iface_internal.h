@@ -150,8 +150,20 @@ int ctdi_pass_step(ctd_iface *it, ctdi_pass *p, ct_real dt, const ct_real *x,
                    const ct_real *vz, const ct_real *m, ct_real *fx, ct_real *fy,
                    ct_real *fz, ctd_iface_report *rep);
 void ctdi_pass_free(ctdi_pass *p);
+/* The per-pair stages ctdi_pass_step runs, in this order (iface_pass_force.c):
+ * the initial-penetration state (first cycle), the relative velocity at the
+ * contact point (and the segment area when want_area), the normal law with
+ * damping, friction, and the time-step limits into rep. */
+void ctdi_pass_initial_state(ctd_iface *it, ctdi_pass *p, ct_idx n);
+int ctdi_pass_kinematics(ctdi_pass *p, ct_idx n, const ct_idx *node, const ct_real *x,
+                         const ct_real *y, const ct_real *z, const ct_real *vx,
+                         const ct_real *vy, const ct_real *vz, const ct_real *m, int want_area);
+int ctdi_pass_normal_force(ctd_iface *it, ctdi_pass *p, ct_idx n, ct_real dt);
+int ctdi_pass_friction(ctd_iface *it, ctdi_pass *p, ct_idx n, ct_real dt);
+int ctdi_pass_timestep(ctd_iface *it, ctdi_pass *p, ct_idx n, const ct_real *m,
+                       ctd_iface_report *rep);
 /* The nodal contact step of the interface's node-segment passes (after
- * every pass has run; iface_pass.c): zero it->kc on the passes' nodes
+ * every pass has run; iface_pass_force.c): zero it->kc on the passes' nodes
  * (ctdi_nodal_begin, before the passes), then the minimum over those nodes
  * of sqrt(2 m / (kelem + kc)) times the damping factor into rep. */
 void ctdi_nodal_begin(ctd_iface *it);

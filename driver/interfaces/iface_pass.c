@@ -2,11 +2,11 @@
  * iface_pass.c -- one node-segment pass of an interface (TYPE3, TYPE5,
  * TYPE6, TYPE7 and TYPE24): the re-sort criterion and the search, the
  * per-pair states carried across re-sorts (friction force, initial
- * penetration, blending, Ipen_max deactivation), the narrow phase, the
- * normal law (linear with blending, TYPE7, or TYPE6's curve, whose law and
- * step live in type6.c), damping, friction, race-free assembly with the
- * shape weights (segment node i gets -h_i times the node's force) and the
- * time-step limits.
+ * penetration, blending, Ipen_max deactivation), the narrow phase, then the
+ * per-pair stages of iface_pass_force.c (normal law: linear with blending,
+ * TYPE7, or TYPE6's curve, whose law and step live in type6.c; damping;
+ * friction; time-step limits), and race-free assembly with the shape
+ * weights (segment node i gets -h_i times the node's force).
  */
 #include "iface_internal.h"
 
@@ -315,262 +315,6 @@ static int pass_search(ctd_iface *it, ctdi_pass *p, const ct_real *x, const ct_r
     return CT_OK;
 }
 
-/* Relative velocity at the contact point, its normal part, the main mass
- * at the contact point (sum h_i m_i) and, for pressure-dependent friction,
- * the segment area. */
-static int kinematics(ctdi_pass *p, ct_idx n, const ct_idx *restrict node,
-                       const ct_real *restrict x, const ct_real *restrict y,
-                       const ct_real *restrict z, const ct_real *restrict vx,
-                       const ct_real *restrict vy, const ct_real *restrict vz,
-                       const ct_real *restrict m, int want_area)
-{
-    const ct_idx *restrict s1 = p->s[0], *restrict s2 = p->s[1], *restrict s3 = p->s[2],
-                           *restrict s4 = p->s[3];
-    const ct_contact_geo *g = &p->geo;
-    ct_real *restrict area = p->r[CTDI_R_PRS];
-    int rc = ct_relative_velocity(n, node, s1, s2, s3, s4, g->h1, g->h2, g->h3, g->h4, g->nx,
-                                  g->ny, g->nz, vx, vy, vz, m, p->r[CTDI_R_VRX],
-                                  p->r[CTDI_R_VRY], p->r[CTDI_R_VRZ], p->r[CTDI_R_VN],
-                                  p->r[CTDI_R_MM]);
-    if (rc != CT_OK || !want_area)
-        return rc;
-#pragma omp parallel for schedule(static) if (n > CTDI_PAR_MIN)
-    for (ct_idx k = 0; k < n; k++) {
-        ct_idx i1 = s1[k], i2 = s2[k], i3 = s3[k], i4 = s4[k];
-        ct_real ax = x[i3] - x[i1], ay = y[i3] - y[i1], az = z[i3] - z[i1];
-        ct_real bx = x[i4] - x[i2], by = y[i4] - y[i2], bz = z[i4] - z[i2];
-        if (i4 == i3) {
-            bx = x[i3] - x[i2];
-            by = y[i3] - y[i2];
-            bz = z[i3] - z[i2];
-            ax = x[i2] - x[i1];
-            ay = y[i2] - y[i1];
-            az = z[i2] - z[i1];
-        }
-        ct_real cx = ay * bz - az * by, cy = az * bx - ax * bz, cz = ax * by - ay * bx;
-        area[k] = (ct_real)0.5 * CTI_SQRT(cx * cx + cy * cy + cz * cz);
-    }
-    return CT_OK;
-}
-
-/* Friction: mu per pair when the law needs it, the step, the total force. */
-static int friction(ctd_iface *it, ctdi_pass *p, ct_idx n, ct_real dt)
-{
-    ct_real **r = p->r;
-    ct_real **ft = p->st[p->cur];
-    const ct_contact_geo *g = &p->geo;
-    const ct_real *mu = NULL;
-    int law = it->fric_law;
-    if (law != CT_FRIC_COULOMB) {
-        ct_real *restrict spd = r[CTDI_R_SPD], *restrict prs = r[CTDI_R_PRS];
-        const ct_real *restrict rx = r[CTDI_R_VRX], *restrict ry = r[CTDI_R_VRY],
-                                *restrict rz = r[CTDI_R_VRZ], *restrict vn = r[CTDI_R_VN],
-                                *restrict nx = g->nx, *restrict ny = g->ny,
-                                *restrict nz = g->nz, *restrict fn = r[CTDI_R_FN];
-        const int usep = law == CT_FRIC_POLY || law == CT_FRIC_DARMSTAD;
-#pragma omp parallel for simd schedule(static) if (n > CTDI_PAR_MIN)
-        for (ct_idx k = 0; k < n; k++) {
-            ct_real tx = rx[k] - vn[k] * nx[k], ty = ry[k] - vn[k] * ny[k],
-                    tz = rz[k] - vn[k] * nz[k];
-            spd[k] = CTI_SQRT(tx * tx + ty * ty + tz * tz);
-            prs[k] = usep && prs[k] > 0 ? fn[k] / prs[k] : 0;
-        }
-        int rc = ct_friction_mu(n, law, it->coef, prs, spd, r[CTDI_R_MU]);
-        if (rc != CT_OK)
-            return rc;
-        mu = r[CTDI_R_MU];
-    }
-    {
-        ct_real *restrict kt = r[CTDI_R_KT];
-        const ct_real *restrict K = r[CTDI_R_K];
-        const ct_real s = it->cfg.kt_scale;
-#pragma omp parallel for simd schedule(static) if (n > CTDI_PAR_MIN)
-        for (ct_idx k = 0; k < n; k++)
-            kt[k] = s * K[k];
-    }
-    ct_real alpha = ct_filter_alpha(it->cfg.Ifiltr, it->cfg.Xfreq, dt);
-    int rc = ct_friction_step(n, g->nx, g->ny, g->nz, r[CTDI_R_VRX], r[CTDI_R_VRY],
-                              r[CTDI_R_VRZ], r[CTDI_R_FN], mu, it->coef[0], r[CTDI_R_KT], 0,
-                              dt, alpha, ft[CTDI_ST_FTX], ft[CTDI_ST_FTY], ft[CTDI_ST_FTZ],
-                              r[CTDI_R_FD]);
-    if (rc != CT_OK)
-        return rc;
-    ct_real *restrict fx = r[CTDI_R_FX], *restrict fy = r[CTDI_R_FY], *restrict fz = r[CTDI_R_FZ];
-    const ct_real *restrict tx = ft[CTDI_ST_FTX], *restrict ty = ft[CTDI_ST_FTY],
-                            *restrict tz = ft[CTDI_ST_FTZ];
-#pragma omp parallel for simd schedule(static) if (n > CTDI_PAR_MIN)
-    for (ct_idx k = 0; k < n; k++) {
-        fx[k] += tx[k];
-        fy[k] += ty[k];
-        fz[k] += tz[k];
-    }
-    return CT_OK;
-}
-
-/* Initial penetration at the first active cycle (TYPE24). */
-static void initial_state(ctd_iface *it, ctdi_pass *p, ct_idx n)
-{
-    ct_real **st = p->st[p->cur];
-    const ct_real *restrict pen = p->geo.pen;
-    ct_real *restrict pp = st[CTDI_ST_PPREV];
-    /* Start without blending: the initial state is Inacti's business. */
-    for (ct_idx k = 0; k < n; k++)
-        pp[k] = pen[k] > 0 ? pen[k] : 0;
-    if (it->cfg.Ipen0 != 0)
-        return;
-    int mode = it->cfg.Inacti != 0 ? CT_INACTI_SUBTRACT : CT_INACTI_IGNORE;
-    int nd = ct_initial_penetration(n, mode, pen, it->cfg.Ipen_max, st[CTDI_ST_P0], p->iflag);
-    if (nd > 0)
-        it->deactivated += nd;
-    ct_real *restrict act = st[CTDI_ST_ACT];
-    for (ct_idx k = 0; k < n; k++) {
-        act[k] = (ct_real)p->iflag[k];
-        if (mode == CT_INACTI_SUBTRACT && pp[k] > 0)
-            pp[k] = 0; /* q = p - p0 = 0 at the start */
-    }
-}
-
-static int normal_force(ctd_iface *it, ctdi_pass *p, ct_idx n, ct_real dt)
-{
-    ct_real **r = p->r, **st = p->st[p->cur];
-    const ct_contact_geo *g = &p->geo;
-    int rc;
-    if (p->law == CTDI_LAW_TYPE7) {
-        rc = ct_penalty_type7(n, g->pen, g->gap, r[CTDI_R_K], r[CTDI_R_FEL], r[CTDI_R_KTAN],
-                              r[CTDI_R_EN], p->iflag);
-        /* The law keeps no history, but p_prev marks the pairs that carried
-         * their node this step, so that the friction force follows the
-         * contact to the next segment (pair_select.c). */
-        const ct_real *restrict pen = g->pen;
-        ct_real *restrict pp = st[CTDI_ST_PPREV];
-#pragma omp parallel for simd schedule(static) if (n > CTDI_PAR_MIN)
-        for (ct_idx k = 0; k < n; k++)
-            pp[k] = pen[k] > 0 ? pen[k] : 0;
-    } else if (p->law == CTDI_LAW_TYPE6) {
-        rc = ctdi_type6_normal(it, p, n);
-    } else {
-        /* The blending tells a jump of the penetration from motion by
-         * |v| dt (ct_penalty_linear reads only the magnitude): the relative
-         * speed, not its normal part, bounds how fast a penetration can
-         * grow (the distance to a surface changes at most as fast as the
-         * node moves against it). The normal part alone misses the motion
-         * of a node sliding past a convex vertex or edge, where the normal
-         * turns within a step: it took that motion for a jump and cut the
-         * force (validation case g). The speed goes in the friction
-         * speed scratch, which friction() fills later. */
-        ct_real *restrict spd = r[CTDI_R_SPD];
-        const ct_real *restrict ux = r[CTDI_R_VRX], *restrict uy = r[CTDI_R_VRY],
-                                *restrict uz = r[CTDI_R_VRZ];
-#pragma omp parallel for simd schedule(static) if (n > CTDI_PAR_MIN)
-        for (ct_idx k = 0; k < n; k++)
-            spd[k] = CTI_SQRT(ux[k] * ux[k] + uy[k] * uy[k] + uz[k] * uz[k]);
-        ct_real *p0 = it->cfg.Inacti != 0 && it->cfg.Ipen0 == 0 ? st[CTDI_ST_P0] : NULL;
-        rc = ct_penalty_linear(n, g->pen, spd, r[CTDI_R_K], dt, p0, st[CTDI_ST_PPREV],
-                               st[CTDI_ST_FCAP], st[CTDI_ST_QJUMP], r[CTDI_R_FEL],
-                               r[CTDI_R_EN]);
-        const ct_real *restrict pen = g->pen, *restrict K = r[CTDI_R_K];
-        ct_real *restrict kt = r[CTDI_R_KTAN];
-#pragma omp parallel for simd schedule(static) if (n > CTDI_PAR_MIN)
-        for (ct_idx k = 0; k < n; k++)
-            kt[k] = pen[k] > 0 ? K[k] : 0;
-    }
-    if (rc != CT_OK)
-        return rc;
-    rc = ct_normal_finish(n, g->pen, r[CTDI_R_FEL], r[CTDI_R_KTAN], r[CTDI_R_VN], r[CTDI_R_MS],
-                          r[CTDI_R_MM], it->cfg.VisS, dt, g->nx, g->ny, g->nz, r[CTDI_R_FN],
-                          r[CTDI_R_FX], r[CTDI_R_FY], r[CTDI_R_FZ], r[CTDI_R_DD]);
-    if (rc != CT_OK || !(it->cfg.VisS > 0))
-        return rc;
-    /* The damper's work over the last step by the trapezoidal rule, the
-     * way the solver books every other force's work: the relative normal
-     * displacement of the step, vn dt (vn is the velocity that led to the
-     * present positions), times the mean of the damping force then and
-     * now. The kernel's -fd vn dt takes the present force alone; near the
-     * damped stability limit (omega dt of order 1) that misses the force's
-     * swing within the step and books dissipation the scheme does not do.
-     * The trapezoid may be negative there: that is what the scheme does. */
-    const ct_real *restrict fn = r[CTDI_R_FN], *restrict fel = r[CTDI_R_FEL],
-                            *restrict vn = r[CTDI_R_VN], *restrict pen = g->pen;
-    ct_real *restrict dd = r[CTDI_R_DD], *restrict fprev = st[CTDI_ST_FDAMP];
-#pragma omp parallel for simd schedule(static) if (n > CTDI_PAR_MIN)
-    for (ct_idx k = 0; k < n; k++) {
-        ct_real fd = pen[k] > 0 ? fn[k] - fel[k] : 0;
-        dd[k] = -(ct_real)0.5 * (fprev[k] + fd) * vn[k] * dt;
-        fprev[k] = fd;
-    }
-    return CT_OK;
-}
-
-/* Time-step limits over the pairs. The nodal step: each carrying pair's
- * stiffness (the linear law's K even while the pair is open, so that the
- * step does not jump back to the element step in a cycle of chatter;
- * TYPE7's tangent stiffness, K0 when open) is spread onto its nodes with
- * the weights |w| (1 on the secondary node, h_i on the segment's), summed
- * per node over the pairs and passes, and ctdi_nodal_finish takes
- * sqrt(2 m / (kelem + kc)) per node: the Gershgorin bound of the contact
- * springs on the lumped masses. A node pressed by several pairs, or loaded
- * both as a secondary node and as a segment's node (surface to surface,
- * self contact), gets the sum of its springs. */
-static int timestep(ctd_iface *it, ctdi_pass *p, ct_idx n, const ct_real *m,
-                    ctd_iface_report *rep)
-{
-    ct_real dmin;
-    ct_idx imin;
-    int rc = CT_OK;
-    if (p->law == CTDI_LAW_TYPE6) {
-        /* Rigid bodies: the curve's step on the smaller body mass. */
-        dmin = ctdi_type6_dt(it, p, m);
-        if (dmin < rep->dt_curve)
-            rep->dt_curve = dmin;
-    } else {
-        const ct_real *restrict ks =
-            p->law == CTDI_LAW_LINEAR ? p->r[CTDI_R_K] : p->r[CTDI_R_KTAN];
-        const uint8_t *restrict carry = p->carry;
-        ct_real *restrict kdt = p->r[CTDI_R_KDT];
-#pragma omp parallel for simd schedule(static) if (n > CTDI_PAR_MIN)
-        for (ct_idx k = 0; k < n; k++)
-            kdt[k] = carry[k] ? ks[k] : 0;
-        ct_asm_map map = ct_asm_map_nodeseg(n, p->pairs[p->cur].node, p->s[0], p->s[1],
-                                            p->s[2], p->s[3]);
-        for (int s = 0; s < map.nslot; s++)
-            map.sign[s] = 1;
-        const ct_real *const w[5] = {NULL, p->geo.h1, p->geo.h2, p->geo.h3, p->geo.h4};
-        rc = ct_assemble_scalar(&p->ws, it->cfg.asm_variant, &map, w, kdt, it->nnode, it->kc);
-        if (rc != CT_OK)
-            return rc;
-    }
-    if (p->law == CTDI_LAW_TYPE7) {
-        rc = ct_dt_type7_kinematic(n, p->geo.pen, p->geo.gap, p->r[CTDI_R_VN], NULL, &dmin,
-                                   &imin);
-        if (rc != CT_OK)
-            return rc;
-        if (dmin < rep->dt_kin)
-            rep->dt_kin = dmin;
-    }
-    const ct_real *restrict gap = p->geo.gap, *restrict rx = p->r[CTDI_R_VRX],
-                            *restrict ry = p->r[CTDI_R_VRY], *restrict rz = p->r[CTDI_R_VRZ],
-                            *restrict kt = p->r[CTDI_R_KTAN];
-    ct_real gmin = CT_DT_NONE, v2max = 0, kmax = 0;
-#pragma omp parallel for schedule(static) reduction(min : gmin) reduction(max : v2max, kmax) if (n > CTDI_PAR_MIN)
-    for (ct_idx k = 0; k < n; k++) {
-        if (gap[k] > 0 && gap[k] < gmin)
-            gmin = gap[k];
-        ct_real v2 = rx[k] * rx[k] + ry[k] * ry[k] + rz[k] * rz[k];
-        if (v2 > v2max)
-            v2max = v2;
-        if (kt[k] > kmax)
-            kmax = kt[k];
-    }
-    if (kmax > rep->kmax)
-        rep->kmax = kmax;
-    if (gmin < CT_DT_NONE) {
-        ct_real d = ct_dt_tunnel(gmin, CTI_SQRT(v2max));
-        if (d < rep->dt_tunnel)
-            rep->dt_tunnel = d;
-    }
-    return CT_OK;
-}
-
 int ctdi_pass_step(ctd_iface *it, ctdi_pass *p, ct_real dt, const ct_real *x,
                    const ct_real *y, const ct_real *z, const ct_real *vx, const ct_real *vy,
                    const ct_real *vz, const ct_real *m, ct_real *fx, ct_real *fy,
@@ -606,7 +350,7 @@ int ctdi_pass_step(ctd_iface *it, ctdi_pass *p, ct_real dt, const ct_real *x,
         return rc;
     ns.active = ctdi_pass_select(p, x, y, z);
     if (p->first && p->law == CTDI_LAW_LINEAR)
-        initial_state(it, p, n);
+        ctdi_pass_initial_state(it, p, n);
     p->first = 0;
     if (it->deactivated > 0) {
         ct_real *restrict pen = p->geo.pen;
@@ -617,12 +361,12 @@ int ctdi_pass_step(ctd_iface *it, ctdi_pass *p, ct_real dt, const ct_real *x,
     }
     double t2 = ctdi_wtime();
     int wa = it->fric_on && (it->fric_law == CT_FRIC_POLY || it->fric_law == CT_FRIC_DARMSTAD);
-    rc = kinematics(p, n, pp->node, x, y, z, vx, vy, vz, m, wa);
+    rc = ctdi_pass_kinematics(p, n, pp->node, x, y, z, vx, vy, vz, m, wa);
     if (rc == CT_OK)
-        rc = normal_force(it, p, n, dt);
+        rc = ctdi_pass_normal_force(it, p, n, dt);
     ct_real *fd = p->r[CTDI_R_FD];
     if (rc == CT_OK && it->fric_on)
-        rc = friction(it, p, n, dt);
+        rc = ctdi_pass_friction(it, p, n, dt);
     if (rc != CT_OK)
         return rc;
     rep->e_contact += ct_sum_ordered(n, p->r[CTDI_R_EN]) + p->e_law;
@@ -640,7 +384,7 @@ int ctdi_pass_step(ctd_iface *it, ctdi_pass *p, ct_real dt, const ct_real *x,
                      p->r[CTDI_R_FZ], it->nnode, fx, fy, fz);
     double t4 = ctdi_wtime();
     if (rc == CT_OK)
-        rc = timestep(it, p, n, m, rep);
+        rc = ctdi_pass_timestep(it, p, n, m, rep);
     double t5 = ctdi_wtime();
     rep->t[CTD_IT_SEARCH] += t1 - t0;
     rep->t[CTD_IT_NARROW] += t2 - t1;
@@ -649,62 +393,4 @@ int ctdi_pass_step(ctd_iface *it, ctdi_pass *p, ct_real dt, const ct_real *x,
     rep->ncand += n;
     rep->nactive += (ct_idx)ns.active;
     return rc;
-}
-
-void ctdi_nodal_begin(ctd_iface *it)
-{
-    if (!it->kc)
-        return;
-    for (int i = 0; i < it->npass; i++) {
-        const ctdi_pass *p = &it->pass[i];
-        ct_real *restrict kc = it->kc;
-        const ct_idx *restrict sec = p->sec, *restrict mn = p->mainn;
-#pragma omp parallel for simd schedule(static) if (p->nsec > CTDI_PAR_MIN)
-        for (ct_idx k = 0; k < p->nsec; k++)
-            kc[sec[k]] = 0;
-#pragma omp parallel for simd schedule(static) if (p->nmain > CTDI_PAR_MIN)
-        for (ct_idx k = 0; k < p->nmain; k++)
-            kc[mn[k]] = 0;
-    }
-}
-
-/* The nodal step of node i (CT_DT_NONE without contact stiffness or mass). */
-static inline double node_dt(const ct_real *kc, const ct_real *kelem, const ct_real *m, ct_idx i)
-{
-    double k = (double)kc[i] + (kelem ? (double)kelem[i] : 0);
-    return kc[i] > 0 && m[i] > 0 ? sqrt(2.0 * (double)m[i] / k) : (double)CT_DT_NONE;
-}
-
-void ctdi_nodal_finish(ctd_iface *it, const ct_real *m, ctd_iface_report *rep)
-{
-    if (!it->kc)
-        return;
-    const ct_real *kc = it->kc, *ke = it->kelem;
-    double dmin = CT_DT_NONE;
-    for (int i = 0; i < it->npass; i++) {
-        const ctdi_pass *p = &it->pass[i];
-        for (int side = 0; side < 2; side++) {
-            const ct_idx n = side ? p->nmain : p->nsec, *restrict l = side ? p->mainn : p->sec;
-            double d = CT_DT_NONE;
-#pragma omp parallel for schedule(static) reduction(min : d) if (n > CTDI_PAR_MIN)
-            for (ct_idx k = 0; k < n; k++) {
-                double v = node_dt(kc, ke, m, l[k]);
-                d = v < d ? v : d;
-            }
-            if (d < dmin) {
-                /* The first node (in this list's order) that reaches it. */
-                dmin = d;
-                for (ct_idx k = 0; k < n; k++)
-                    if (node_dt(kc, ke, m, l[k]) == d) {
-                        rep->dt_node = l[k];
-                        break;
-                    }
-            }
-        }
-    }
-    if (dmin < CT_DT_NONE) {
-        ct_real d = (ct_real)(dmin * ctdi_damped_dt_factor((double)it->cfg.VisS));
-        if (d < rep->dt_nodal)
-            rep->dt_nodal = d;
-    }
 }
