@@ -301,5 +301,9 @@ int cti_search_renumbered(ct_search *s, const ct_search_input *in, ct_pairs *out
                           int (*run)(ct_search *, const ct_search_input *, ct_pairs *),
                           int *done);
 int cti_bucket_scattered(const ct_search_input *in);
+/* 1 when the node arrays are much larger than what the interface uses
+ * (more than 4 x (secondaries + 4 x segments)): passes over all nodes would
+ * then cost more than the search (search.c). */
+int cti_search_small_share(const ct_search_input *in);
 
 #endif /* CT_INTERNAL_H */

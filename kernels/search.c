@@ -87,6 +87,11 @@ size_t ct_search_memory(const ct_search *s)
     return b;
 }
 
+int cti_search_small_share(const ct_search_input *in)
+{
+    return (int64_t)in->nnode > 4 * ((int64_t)in->nsec + 4 * (int64_t)in->nseg);
+}
+
 static inline int node_finite(const ct_search_input *in, ct_idx i)
 {
     return CTI_FABS(in->x[i]) <= CTI_HUGE && CTI_FABS(in->y[i]) <= CTI_HUGE &&
@@ -116,16 +121,20 @@ static int check_input(const ct_search_input *in)
         bad |= (uint32_t)in->sec[i] >= nn;
     if (bad)
         return CT_ERR_RANGE;
-    /* Every node the search reads finite: first all nodes in one stream
-     * (the common case ends here); only when one is not, the nodes used. */
-    const ct_real *restrict x = in->x, *restrict y = in->y, *restrict z = in->z;
-    int nonfin = 0;
+    /* Every node the search reads finite. When the interface uses a fair
+     * share of the node arrays, all nodes in one stream first (the common
+     * case ends there); otherwise (a small interface in a large model), or
+     * when a node is not finite, the nodes used, one by one. */
+    if (!cti_search_small_share(in)) {
+        const ct_real *restrict x = in->x, *restrict y = in->y, *restrict z = in->z;
+        int nonfin = 0;
 #pragma omp parallel for simd schedule(static) reduction(| : nonfin) if (in->nnode > 65536)
-    for (ct_idx i = 0; i < in->nnode; i++)
-        nonfin |= !(CTI_FABS(x[i]) <= CTI_HUGE) | !(CTI_FABS(y[i]) <= CTI_HUGE) |
-                  !(CTI_FABS(z[i]) <= CTI_HUGE);
-    if (!nonfin)
-        return CT_OK;
+        for (ct_idx i = 0; i < in->nnode; i++)
+            nonfin |= !(CTI_FABS(x[i]) <= CTI_HUGE) | !(CTI_FABS(y[i]) <= CTI_HUGE) |
+                      !(CTI_FABS(z[i]) <= CTI_HUGE);
+        if (!nonfin)
+            return CT_OK;
+    }
     for (ct_idx i = 0; i < in->nsec; i++)
         if (!node_finite(in, in->sec[i]))
             return CT_ERR_NONFINITE;
@@ -151,8 +160,11 @@ int ct_search_run(ct_search *s, const ct_search_input *in, ct_pairs *out)
     case CT_SEARCH_BSP: run = cti_search_bsp; break;
     default: return CT_ERR_ARG;
     }
-    /* Scattered numberings: the search on a renumbered copy. */
-    if (s->p.renumber > 0 || (s->p.renumber == 0 && cti_bucket_scattered(in))) {
+    /* Scattered numberings: the search on a renumbered copy (whose cost
+     * grows with all the nodes: not for a small interface in a large
+     * model, unless asked). */
+    if (s->p.renumber > 0 ||
+        (s->p.renumber == 0 && !cti_search_small_share(in) && cti_bucket_scattered(in))) {
         int done = 0;
         rc = cti_search_renumbered(s, in, out, run, &done);
         if (rc || done)

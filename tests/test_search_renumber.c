@@ -213,3 +213,81 @@ Test(search_renumber, bad_input_every_algorithm)
     ct_search *w;
     cr_assert_eq(ct_search_init(&w, &p), CT_ERR_ARG);
 }
+
+/* A small interface in a large model (node arrays far longer than what the
+ * interface uses): "auto" does not renumber (the copy's cost grows with all
+ * the nodes), a NaN in a node the interface does not use is not read, and
+ * one in a secondary is still reported. */
+Test(search_renumber, small_interface_in_large_model, .timeout = 120)
+{
+    ctd_case c;
+    ct_diag d = {0};
+    cr_assert_eq(ctd_case_make(&c, "plates", 20000, CTD_NUM_SHUFFLED, 5, &d), CT_OK, "%s", d.msg);
+    ct_search_input in;
+    ctd_case_input(&c, (ct_real)(0.4 * c.h_mean), (ct_real)(0.1 * c.h_mean), &in);
+    const ct_idx n0 = in.nnode, n = n0 + 400000;
+    ct_real *xyz[3];
+    const ct_real *src[3] = {in.x, in.y, in.z};
+    for (int a = 0; a < 3; a++) {
+        xyz[a] = ct_calloc((size_t)n, sizeof(ct_real));
+        cr_assert(xyz[a]);
+        memcpy(xyz[a], src[a], sizeof(ct_real) * (size_t)n0);
+        for (ct_idx i = n0; i < n; i++)
+            xyz[a][i] = (ct_real)(1e4 + i); /* far away, unused */
+    }
+    xyz[0][n - 7] = (ct_real)NAN; /* unused */
+    ct_search_input big = in;
+    big.nnode = n;
+    big.x = xyz[0], big.y = xyz[1], big.z = xyz[2];
+    ct_pairs ref, got;
+    ct_pairs_init(&ref, 0);
+    ct_pairs_init(&got, 0);
+    search_rn(CT_SEARCH_BUCKET, -1, &in, &ref);
+    /* Memory tells whether the copy was made (bsp: no scattered-input
+     * buffers of its own, unlike the bucket). */
+    size_t mem[2];
+    for (int r = 0; r < 2; r++) {
+        ct_search_params p = ct_search_default_params(CT_SEARCH_BSP);
+        p.renumber = r == 0 ? -1 : 0;
+        ct_search *s;
+        cr_assert_eq(ct_search_init(&s, &p), CT_OK);
+        cr_assert_eq(ct_search_run(s, &big, &got), CT_OK);
+        mem[r] = ct_search_memory(s);
+        ct_search_destroy(s);
+        cr_assert(ctt_same_pairs(&ref, &got), "renumber %d: the pairs differ", p.renumber);
+    }
+    cr_assert_lt(mem[1], mem[0] + 20 * (size_t)n, "auto renumbered a small interface (%zu vs %zu)",
+                 mem[1], mem[0]);
+    /* The same input at its own size is renumbered by "auto". */
+    {
+        ct_search_params p = ct_search_default_params(CT_SEARCH_BSP);
+        ct_search *s;
+        size_t m_off;
+        p.renumber = -1;
+        cr_assert_eq(ct_search_init(&s, &p), CT_OK);
+        cr_assert_eq(ct_search_run(s, &in, &got), CT_OK);
+        m_off = ct_search_memory(s);
+        ct_search_destroy(s);
+        p.renumber = 0;
+        cr_assert_eq(ct_search_init(&s, &p), CT_OK);
+        cr_assert_eq(ct_search_run(s, &in, &got), CT_OK);
+        cr_assert_gt(ct_search_memory(s), m_off + 40 * (size_t)n0);
+        ct_search_destroy(s);
+    }
+    xyz[2][in.sec[17]] = (ct_real)INFINITY;
+    for (int alg = 0; alg < CT_SEARCH_NALGO; alg++) {
+        if (alg == CT_SEARCH_DIRECT)
+            continue; /* 20000 x 20000 pairs: too slow for a bad-input check */
+        ct_search_params p = ct_search_default_params((ct_search_algo)alg);
+        ct_search *s;
+        cr_assert_eq(ct_search_init(&s, &p), CT_OK);
+        cr_assert_eq(ct_search_run(s, &big, &got), CT_ERR_NONFINITE, "%s",
+                     ct_search_algo_name(alg));
+        ct_search_destroy(s);
+    }
+    for (int a = 0; a < 3; a++)
+        ct_free(xyz[a]);
+    ct_pairs_destroy(&ref);
+    ct_pairs_destroy(&got);
+    ctd_case_destroy(&c);
+}
