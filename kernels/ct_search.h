@@ -92,7 +92,7 @@ typedef struct ct_search_params {
      * 4 nseg): the copy's cost grows with nnode), 1 always, -1 never. The search then runs on a renumbered copy (nodes
      * by grid cell, segments by their first corner, secondaries by number)
      * and its pairs are mapped back: the same canonical list, bit for bit,
-     * for about 100 bytes per node of workspace. */
+     * for about 240 bytes of workspace per secondary on two plates. */
     int renumber;
 } ct_search_params;
 

@@ -23,11 +23,11 @@
  * (a stable sort has one result), so nothing depends on the thread count.
  *
  * The copy costs per node 3 numbers (Q, key, rank) and 7 coordinates (the
- * new x, y, z, and x y z 0 packed by the sort),
- * per segment 10 numbers, per secondary 3 numbers and 2 offsets, plus the
- * inner pair list and the counting sorts' counters (at most CTI_RN_MAXBLK
- * blocks of one counter per 8 nodes): O(N), about 130 bytes per secondary
- * on two plates.
+ * new x, y, z, and x y z 0 packed by the sort), per segment 10 numbers,
+ * per secondary 3 numbers and 2 offsets, plus the inner pair list and the
+ * counting sorts' counters (at most CTI_RN_MAXBLK blocks of one counter per
+ * 8 nodes): O(N), about 240 bytes per secondary on two plates (two mesh
+ * nodes and one segment per secondary; measured with contact search).
  *
  * Cases left to the plain search, which handles or reports them: a
  * secondary listed twice, an empty input.
