@@ -147,26 +147,43 @@ static int rn_grow(cti_renum *r, size_t n, size_t m, size_t s, size_t c)
     return ok ? CT_OK : CT_ERR_NOMEM;
 }
 
-/* Stable counting sort of the items 0 .. n-1 by key[i] in [0, nkey): ord[k]
- * is the k-th item in key order, ties in index order. nb blocks of
- * consecutive items count in their own counters (nb x stride, stride >=
- * nkey); a stable sort has one result, whatever nb. */
-static void rn_sort(ct_idx n, const ct_idx *restrict key, int64_t nkey, int nb, size_t stride,
-                    ct_idx *restrict cnt, ct_idx *restrict ord)
+/* Items [*lo, *hi) of block b of nb over n items. */
+static inline void rn_block(ct_idx n, int nb, int b, ct_idx *lo, ct_idx *hi)
+{
+    *lo = (ct_idx)((int64_t)n * b / nb);
+    *hi = (ct_idx)((int64_t)n * (b + 1) / nb);
+}
+
+/* The counting pass of a stable counting sort of the items 0 .. n-1 by
+ * key[i] in [0, nkey): nb blocks of consecutive items count in their own
+ * counters (nb x stride, stride >= nkey), which then hold each block's
+ * first slot per key (cti_bucket_offsets). */
+static void rn_count(ct_idx n, const ct_idx *restrict key, int64_t nkey, int nb, size_t stride,
+                     ct_idx *restrict cnt)
 {
 #pragma omp parallel for schedule(static)
     for (int b = 0; b < nb; b++) {
         ct_idx *restrict c = cnt + (size_t)b * stride;
         memset(c, 0, (size_t)nkey * sizeof *c);
-        const ct_idx lo = (ct_idx)((int64_t)n * b / nb), hi = (ct_idx)((int64_t)n * (b + 1) / nb);
+        ct_idx lo, hi;
+        rn_block(n, nb, b, &lo, &hi);
         for (ct_idx i = lo; i < hi; i++)
             c[key[i]]++;
     }
     cti_bucket_offsets(cnt, nb, stride, nkey, NULL);
+}
+
+/* The whole sort: ord[k] is the k-th item in key order, ties in index
+ * order (a stable sort has one result, whatever nb). */
+static void rn_sort(ct_idx n, const ct_idx *restrict key, int64_t nkey, int nb, size_t stride,
+                    ct_idx *restrict cnt, ct_idx *restrict ord)
+{
+    rn_count(n, key, nkey, nb, stride, cnt);
 #pragma omp parallel for schedule(static)
     for (int b = 0; b < nb; b++) {
         ct_idx *restrict c = cnt + (size_t)b * stride;
-        const ct_idx lo = (ct_idx)((int64_t)n * b / nb), hi = (ct_idx)((int64_t)n * (b + 1) / nb);
+        ct_idx lo, hi;
+        rn_block(n, nb, b, &lo, &hi);
         for (ct_idx i = lo; i < hi; i++)
             ord[c[key[i]]++] = i;
     }
@@ -216,19 +233,12 @@ static void rn_nodes(cti_renum *r, const ct_search_input *in, int nb, size_t str
      * a last pass unpacks in sequence. */
     ct_idx *restrict cnt = r->cnt, *restrict Q = r->Q;
     ct_real *restrict w4 = r->w4;
+    rn_count(nn, key, ncell + 1, nb, stride, cnt);
 #pragma omp parallel for schedule(static)
     for (int b = 0; b < nb; b++) {
         ct_idx *restrict c = cnt + (size_t)b * stride;
-        memset(c, 0, (size_t)(ncell + 1) * sizeof *c);
-        const ct_idx lo_ = (ct_idx)((int64_t)nn * b / nb), hi_ = (ct_idx)((int64_t)nn * (b + 1) / nb);
-        for (ct_idx i = lo_; i < hi_; i++)
-            c[key[i]]++;
-    }
-    cti_bucket_offsets(cnt, nb, stride, ncell + 1, NULL);
-#pragma omp parallel for schedule(static)
-    for (int b = 0; b < nb; b++) {
-        ct_idx *restrict c = cnt + (size_t)b * stride;
-        const ct_idx lo_ = (ct_idx)((int64_t)nn * b / nb), hi_ = (ct_idx)((int64_t)nn * (b + 1) / nb);
+        ct_idx lo_, hi_;
+        rn_block(nn, nb, b, &lo_, &hi_);
         for (ct_idx i = lo_; i < hi_; i++) {
             const ct_idx k = c[key[i]]++;
             Q[i] = k;
