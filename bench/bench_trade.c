@@ -23,6 +23,12 @@
  *             amortised ns per node per step; accuracy the pairs within
  *             the gap missing from the stored candidates (must be 0);
  *             x_pairs_per_node, x_resorts_per_100.
+ *  renumber   "off" and "auto" (ct_search_params.renumber) for the bucket
+ *             and bsp searches on shuffled plates (RN_TARGET secondaries,
+ *             static, gap 0.3 h + margin 0.2 h): cost ns per node per
+ *             search; accuracy the pairs that differ from the bucket
+ *             search with renumbering off (must be 0: the renumbering
+ *             returns the same list, bit for bit).
  *  quad       4tri, newton, closed on the candidate pairs of the static
  *             sheet (the crumpled case, ~2 10^4 nodes, seed 12345, not
  *             moved; bucket candidates at gap 0.3 h + margin 0.2 h;
@@ -399,6 +405,9 @@ static void bm_trade(gb_state *st, void *arg)
     case K_MARGIN:
         ctbt_bm_margin(st, d);
         break;
+    case K_RENUM:
+        ctbt_bm_renumber(st, d);
+        break;
     case K_QUAD:
         ctbt_bm_quad(st, d);
         break;
@@ -458,6 +467,12 @@ int ctb_trade_register(const ctb_search_config *c)
         snprintf(name, sizeof name, "margin/%gh", ctbt_margins[i]);
         ADD(K_MARGIN, i, 0);
     }
+    for (int a = CT_SEARCH_BUCKET; a <= CT_SEARCH_BSP; a++)
+        for (int r = 0; r < 2; r++) {
+            snprintf(name, sizeof name, "renumber/%s@%s", r ? "auto" : "off",
+                     ct_search_algo_name((ct_search_algo)a));
+            ADD(K_RENUM, a, r);
+        }
     for (int v = 0; v < 2; v++)
         for (int q = 0; q < CT_QUAD_NMETHOD; q++) {
             snprintf(name, sizeof name, "quad/%s@%s", ct_quad_method_name((ct_quad_method)q),
@@ -488,6 +503,7 @@ void ctb_trade_cleanup(void)
     for (int i = 0; i < MV_NSCENE; i++)
         mv_free(&mvs[i]);
     sc_free(&sc);
+    ctbt_rn_free();
     ctbt_wq_free();
     ctbt_as_free();
     while (descs) {

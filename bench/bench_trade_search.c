@@ -1,7 +1,8 @@
 /*
  * bench_trade_search.c -- the search-side knobs of the speed/accuracy trade
  * (see bench_trade.c for what each measures): the search algorithm, the
- * search filter and the re-sort margin, all on the moving scenes.
+ * search filter and the re-sort margin, all on the moving scenes, and the
+ * renumbering of scattered inputs on shuffled plates.
  */
 #include <math.h>
 #include <stdio.h>
@@ -262,4 +263,120 @@ void ctbt_bm_margin(gb_state *st, const tdesc *d)
              (long)m->c.sec.n, m->maxstep, ctbt_cfg.max_threads);
     ctbt_label(st, "margin", name, "amortised ns/node per step",
                "pairs within the gap missing from the candidates (summed over the steps)", note);
+}
+
+/* ---- Knob: renumbering of scattered inputs ------------------------------- */
+
+/* Shuffled plates and the reference pairs (bucket, renumbering off), built
+ * on first use. */
+static struct {
+    int state; /* 0: not built, 1: ready, -1: failed */
+    char err[256];
+    ctd_case c;
+    ct_search_input in;
+    ct_pairs ref;
+} rn;
+
+void ctbt_rn_free(void)
+{
+    if (rn.state == 0)
+        return;
+    ct_pairs_destroy(&rn.ref);
+    ctd_case_destroy(&rn.c);
+    memset(&rn, 0, sizeof rn);
+}
+
+static int rn_run(ct_search_algo a, int renumber, const ct_search_input *in, ct_search **s,
+                  ct_pairs *out)
+{
+    ct_search_params p = ct_search_default_params(a);
+    p.renumber = renumber;
+    int rc = ct_search_init(s, &p);
+    return rc == CT_OK ? ct_search_run(*s, in, out) : rc;
+}
+
+/* Pairs of a not in b plus pairs of b not in a (both canonical). */
+static int64_t rn_differ(const ct_pairs *a, const ct_pairs *b)
+{
+    int64_t d = 0;
+    ct_idx i = 0, j = 0;
+    while (i < a->n || j < b->n) {
+        int c;
+        if (i == a->n)
+            c = 1;
+        else if (j == b->n)
+            c = -1;
+        else
+            c = a->node[i] != b->node[j] ? (a->node[i] < b->node[j] ? -1 : 1)
+                : a->seg[i] != b->seg[j] ? (a->seg[i] < b->seg[j] ? -1 : 1)
+                                         : 0;
+        d += c != 0;
+        i += c <= 0;
+        j += c >= 0;
+    }
+    return d;
+}
+
+void ctbt_bm_renumber(gb_state *st, const tdesc *d)
+{
+    ctb_bind_threads(ctbt_cfg.bind, ctbt_cfg.max_threads, NULL, 0);
+    if (rn.state == 0) {
+        ct_diag dg = {0};
+        rn.state = -1;
+        int rc = ctd_case_make(&rn.c, "plates", RN_TARGET, CTD_NUM_SHUFFLED, 3, &dg);
+        ct_search *s = NULL;
+        if (rc == CT_OK) {
+            ctd_case_input(&rn.c, (ct_real)(TR_GAP * rn.c.h_mean),
+                           (ct_real)(TR_MARGIN * rn.c.h_mean), &rn.in);
+            rc = ct_pairs_init(&rn.ref, 0);
+            if (rc == CT_OK)
+                rc = rn_run(CT_SEARCH_BUCKET, -1, &rn.in, &s, &rn.ref);
+            ct_search_destroy(s);
+        }
+        if (rc == CT_OK)
+            rn.state = 1;
+        else
+            snprintf(rn.err, sizeof rn.err, "renumbering case: %.200s",
+                     dg.msg[0] ? dg.msg : ct_strerror(rc));
+    }
+    if (rn.state < 0) {
+        gb_skip_with_error(st, rn.err);
+        return;
+    }
+    const ct_search_algo a = (ct_search_algo)d->sub;
+    const int renumber = d->variant ? 0 : -1;
+    char name[64];
+    snprintf(name, sizeof name, "%s@%s", d->variant ? "auto" : "off", ct_search_algo_name(a));
+    ct_search *s = NULL;
+    ct_pairs out;
+    memset(&out, 0, sizeof out);
+    int rc = ct_pairs_init(&out, 0);
+    if (rc == CT_OK)
+        rc = rn_run(a, renumber, &rn.in, &s, &out); /* also the untimed warm-up */
+    const int64_t differ = rc == CT_OK ? rn_differ(&out, &rn.ref) : 0;
+    const double mem = (double)ct_search_memory(s);
+    int64_t it = 0;
+    double t0 = ctbt_now_s();
+    while (rc == CT_OK && gb_keep_running(st)) {
+        rc = ct_search_run(s, &rn.in, &out);
+        it++;
+    }
+    double dt = ctbt_now_s() - t0;
+    ct_search_destroy(s);
+    ct_pairs_destroy(&out);
+    if (rc != CT_OK) {
+        ctbt_set_skip(st, name, rc);
+        return;
+    }
+    const double nsec = rn.c.sec.n;
+    gb_set_counter(st, "cost", it ? dt * 1e9 / ((double)it * nsec) : 0, GB_PLAIN);
+    gb_set_counter(st, "accuracy", (double)differ, GB_PLAIN);
+    gb_set_counter(st, "x_bytes_per_node", mem / nsec, GB_PLAIN);
+    char note[300];
+    snprintf(note, sizeof note,
+             "plates, shuffled numbering, %ld secondary nodes, gap 0.3 h + margin 0.2 h, %d "
+             "threads",
+             (long)rn.c.sec.n, ctbt_cfg.max_threads);
+    ctbt_label(st, "renumber", name, "ns/node per search",
+               "pairs differing from the bucket search with renumbering off", note);
 }

@@ -86,8 +86,8 @@ KERNEL_GROUPS = ["narrow", "force", "prepare", "assemble"]
 TRADE_RE = re.compile(
     r"^trade/(?P<knob>[^/]+)/(?P<setting>[^/]+)(?:/iterations:\d+)?"
     r"(?:/(?:real_time|manual_time))?$")
-TRADE_KNOBS = ["search", "filter", "margin", "quad", "precision", "assembly", "stiffness",
-               "safety"]
+TRADE_KNOBS = ["search", "filter", "margin", "renumber", "quad", "precision", "assembly",
+               "stiffness", "safety"]
 COUNTERS += ["cost", "accuracy"]
 # The full contact cycle (bench_cycle.c); its ns_* counters are ns per node
 # per cycle, wall time.
