@@ -89,7 +89,9 @@ typedef struct ct_search_params {
     /* bucket and bsp: 0 (default) renumber the input spatially when its
      * numbering is scattered (segment corners far apart in number) and the
      * interface uses a fair share of the node arrays (nnode <= 4 x (nsec +
-     * 4 nseg): the copy's cost grows with nnode), 1 always, -1 never. The
+     * 4 nseg): the copy's cost grows with nnode), for the bucket only from
+     * 2^19 nodes (below, its own scattered path is as fast); 1 always, -1
+     * never. The
      * search then runs on a renumbered copy (nodes by grid cell, segments
      * by their first corner, secondaries by number) and its pairs are
      * mapped back: the same canonical list, bit for bit, for about 240
