@@ -139,14 +139,15 @@ static int check_input(const ct_search_input *in)
         if (!nonfin)
             return CT_OK;
     }
+    int used = 0;
+#pragma omp parallel for schedule(static) reduction(| : used) if (in->nsec > 65536)
     for (ct_idx i = 0; i < in->nsec; i++)
-        if (!node_finite(in, in->sec[i]))
-            return CT_ERR_NONFINITE;
+        used |= !node_finite(in, in->sec[i]);
+#pragma omp parallel for schedule(static) reduction(| : used) if (in->nseg > 16384)
     for (ct_idx j = 0; j < in->nseg; j++)
-        if (!node_finite(in, in->n1[j]) || !node_finite(in, in->n2[j]) ||
-            !node_finite(in, in->n3[j]) || !node_finite(in, in->n4[j]))
-            return CT_ERR_NONFINITE;
-    return CT_OK;
+        used |= !node_finite(in, in->n1[j]) | !node_finite(in, in->n2[j]) |
+                !node_finite(in, in->n3[j]) | !node_finite(in, in->n4[j]);
+    return used ? CT_ERR_NONFINITE : CT_OK;
 }
 
 int ct_search_run(ct_search *s, const ct_search_input *in, ct_pairs *out)
