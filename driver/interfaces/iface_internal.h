@@ -123,6 +123,21 @@ static inline int ctdi_var_gap(const ctd_iface_cfg *c)
 /* Wall clock (omp_get_wtime when OpenMP is on). */
 double ctdi_wtime(void);
 
+/* Fold a pass's largest contact stiffness, smallest gap (CT_DT_NONE: no
+ * pair) and largest squared relative speed into the report: rep->kmax and
+ * the tunnelling limit rep->dt_tunnel (ct_dt_tunnel). */
+static inline void ctdi_report_limits(ctd_iface_report *rep, ct_real kmax, ct_real gmin,
+                                      ct_real v2max)
+{
+    if (kmax > rep->kmax)
+        rep->kmax = kmax;
+    if (gmin < CT_DT_NONE) {
+        ct_real d = ct_dt_tunnel(gmin, (ct_real)sqrt((double)v2max));
+        if (d < rep->dt_tunnel)
+            rep->dt_tunnel = d;
+    }
+}
+
 /* Sorted unique copy of the concatenation of up to 6 index lists (NULL
  * lists skipped); *out is ct_calloc'ed (at least one element). Returns the
  * count, or a negative CT_ERR_*; indices outside [0, nnode) give

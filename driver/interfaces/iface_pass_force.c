@@ -259,13 +259,7 @@ int ctdi_pass_timestep(ctd_iface *it, ctdi_pass *p, ct_idx n, const ct_real *m,
         if (kt[k] > kmax)
             kmax = kt[k];
     }
-    if (kmax > rep->kmax)
-        rep->kmax = kmax;
-    if (gmin < CT_DT_NONE) {
-        ct_real d = ct_dt_tunnel(gmin, CTI_SQRT(v2max));
-        if (d < rep->dt_tunnel)
-            rep->dt_tunnel = d;
-    }
+    ctdi_report_limits(rep, kmax, gmin, v2max);
     return CT_OK;
 }
 

@@ -429,13 +429,7 @@ int ctdi_type11_step(ctd_iface *it, ct_real dt, const ct_real *x, const ct_real 
         if (kt[k] > kmax)
             kmax = kt[k];
     }
-    if (kmax > rep->kmax)
-        rep->kmax = kmax;
-    if (gmin < CT_DT_NONE) {
-        ct_real d = ct_dt_tunnel(gmin, CTI_SQRT(v2max));
-        if (d < rep->dt_tunnel)
-            rep->dt_tunnel = d;
-    }
+    ctdi_report_limits(rep, kmax, gmin, v2max);
     double t5 = ctdi_wtime();
     rep->t[CTD_IT_SEARCH] += t1 - t0;
     rep->t[CTD_IT_NARROW] += t2 - t1;
