@@ -1,0 +1,79 @@
+/*
+ * test_elements_shell.h -- helpers shared by the shell tests
+ * (test_elements_shell.c: membrane and bending; test_elements_shell_dynamics.c:
+ * dynamics, threads, errors): plate meshes, the shell on them, forces, and
+ * the node arrays of a run.
+ */
+#ifndef TEST_ELEMENTS_SHELL_H
+#define TEST_ELEMENTS_SHELL_H
+
+#include <math.h>
+#include <string.h>
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+#include "elements/shell.h"
+#include "meshgen.h"
+#include "test_util.h"
+
+/* A plate mesh of nx x ny quads of size hx x hy from the origin. */
+static inline void plate(ct_mesh *m, int nx, int ny, double hx, double hy)
+{
+    const double o[3] = {0, 0, 0};
+    cr_assert_eq(ctd_plate(m, nx, ny, hx, hy, o, 0), CT_OK);
+}
+
+static inline void shell_on(ctd_shell *s, const ct_mesh *m, double E, double nu, double rho,
+                     double t)
+{
+    cr_assert_eq(ctd_shell_init(s, m->nodes.n, m->nodes.x, m->nodes.y, m->nodes.z, m->nseg,
+                                m->n1, m->n2, m->n3, m->n4, NULL, E, nu, rho, t),
+                 CT_OK);
+}
+
+/* Forces at (x, y, z), zeroed first. */
+static inline double forces(ctd_shell *s, const ct_real *x, const ct_real *y, const ct_real *z,
+                     ct_real *fx, ct_real *fy, ct_real *fz)
+{
+    double e = 0;
+    memset(fx, 0, sizeof(ct_real) * (size_t)s->nnode);
+    memset(fy, 0, sizeof(ct_real) * (size_t)s->nnode);
+    memset(fz, 0, sizeof(ct_real) * (size_t)s->nnode);
+    cr_assert_eq(ctd_shell_forces(s, x, y, z, fx, fy, fz, &e), CT_OK);
+    return e;
+}
+
+typedef struct work {
+    ct_real *x, *y, *z, *fx, *fy, *fz, *vx, *vy, *vz, *m;
+} work;
+
+static inline void work_init(work *w, ct_idx n)
+{
+    ct_real **a[] = {&w->x, &w->y, &w->z, &w->fx, &w->fy, &w->fz, &w->vx, &w->vy, &w->vz, &w->m};
+    for (int k = 0; k < 10; k++) {
+        *a[k] = ct_calloc((size_t)n, sizeof(ct_real));
+        cr_assert_not_null(*a[k]);
+    }
+}
+
+static inline void work_free(work *w)
+{
+    ct_real *a[] = {w->x, w->y, w->z, w->fx, w->fy, w->fz, w->vx, w->vy, w->vz, w->m};
+    for (int k = 0; k < 10; k++)
+        ct_free(a[k]);
+}
+
+/* A curved reference (part of a cylinder), so hinges have theta0 != 0. */
+static inline void curved(ct_mesh *m, int nx, int ny, double h, double R)
+{
+    plate(m, nx, ny, h, h);
+    for (ct_idx i = 0; i < m->nodes.n; i++) {
+        double s = m->nodes.x[i];
+        m->nodes.x[i] = (ct_real)(R * sin(s / R));
+        m->nodes.z[i] = (ct_real)(R * (1 - cos(s / R)));
+    }
+}
+
+#endif /* TEST_ELEMENTS_SHELL_H */
