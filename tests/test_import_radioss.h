@@ -1,0 +1,38 @@
+/*
+ * test_import_radioss.h -- helpers shared by the Radioss reader tests
+ * (test_import_radioss.c, test_import_radioss_bricks.c).
+ */
+#ifndef TEST_IMPORT_RADIOSS_H
+#define TEST_IMPORT_RADIOSS_H
+
+#include <stdio.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "import_radioss.h"
+#include "test_util.h"
+
+/* tests/data/radioss/NAME, found from this file's path. */
+static inline void data_path(char *buf, size_t n, const char *name)
+{
+    const char *f = __FILE__, *slash = strrchr(f, '/');
+    if (slash)
+        snprintf(buf, n, "%.*s/data/radioss/%s", (int)(slash - f), f, name);
+    else
+        snprintf(buf, n, "data/radioss/%s", name);
+}
+
+static inline void load(const char *path, ctd_deck *d)
+{
+    ct_diag g;
+    memset(&g, 0, sizeof g);
+    int rc = ctd_deck_read(path, d, &g);
+    cr_assert_eq(rc, CT_OK, "%s: %s (%s)", path, g.msg, ct_strerror(rc));
+}
+
+static inline void tmp_path(char *buf, size_t n, const char *name)
+{
+    snprintf(buf, n, "/tmp/ct_import_%ld_%s", (long)getpid(), name);
+}
+
+#endif /* TEST_IMPORT_RADIOSS_H */
