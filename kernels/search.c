@@ -145,8 +145,8 @@ static int check_input(const ct_search_input *in)
         used |= !node_finite(in, in->sec[i]);
 #pragma omp parallel for schedule(static) reduction(| : used) if (in->nseg > 16384)
     for (ct_idx j = 0; j < in->nseg; j++)
-        used |= !node_finite(in, in->n1[j]) | !node_finite(in, in->n2[j]) |
-                !node_finite(in, in->n3[j]) | !node_finite(in, in->n4[j]);
+        used |= !node_finite(in, in->n1[j]) || !node_finite(in, in->n2[j]) ||
+                !node_finite(in, in->n3[j]) || !node_finite(in, in->n4[j]);
     return used ? CT_ERR_NONFINITE : CT_OK;
 }
 
