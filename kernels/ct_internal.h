@@ -159,8 +159,17 @@ typedef struct cti_pair_batch {
     ct_idx node[CTI_PAIR_BATCH], seg[CTI_PAIR_BATCH];
     cti_lane ok[CTI_PAIR_BATCH];
     int n;
+    int skip;        /* batches still to run without the corner step */
     int64_t nscalar; /* pairs left to the one-pair predicate, summed */
 } cti_pair_batch;
+
+/* An empty batch (its coordinates are loaded later). */
+static inline void cti_pair_batch_init(cti_pair_batch *pb)
+{
+    pb->n = 0;
+    pb->skip = 0;
+    pb->nscalar = 0;
+}
 
 /* Load the coordinates of the batch's pairs: the corners by the segments'
  * node indices, or (_rec) from 12-value corner records per segment. The

@@ -6,13 +6,14 @@
  * cases cost little:
  *  1. the node is outside the segment's box inflated by d   -> no;
  *  2. the Euclidean distance to the segment's box exceeds d -> no;
+ *  2b. a corner is within d                                  -> yes;
  *  3. the node lies over the segment, within d of every corner's height
  *     (the prism test below)                                -> yes;
  *  4. a point of an edge the node is outside of is within d -> yes;
  *  4b. a lower bound of the hull distance, from the slab of the corners'
  *     heights and the planes through the edges, exceeds d    -> no;
  *  5. otherwise the exact distance to the convex hull of the corners.
- * Steps 3 and 4 only accept, and only when a point of the hull is truly
+ * Steps 2b, 3 and 4 only accept, and only when a point of the hull is truly
  * within d (up to rounding); step 4b only rejects, and only when every
  * point of the hull is farther than d: they are shortcuts, not
  * approximations. On a smooth surface they decide almost every pair
@@ -226,6 +227,8 @@ PRED_NOINLINE static int may_touch_past_box(const ct_real p[3], const ct_real a[
                                             const ct_real e[3], ct_real d2)
 {
     const cti_pv P = pv_of(p), A = pv_of(a), B = pv_of(b), C = pv_of(c), E = pv_of(e);
+    if (cti_step_corners(P, A, B, C, E, d2))
+        return 1;
     /* Step 3, then step 4: the edges lie in the hull. On a flat convex quad
      * the nearest hull point of an outside p is on an edge p is outside of;
      * the other edges belong to the faces step 5 tests. */

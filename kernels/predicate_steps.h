@@ -70,6 +70,19 @@ static inline ct_real cti_step_box(cti_pv p, cti_pv a, cti_pv b, cti_pv c, cti_p
     return out ? -1 : box2;
 }
 
+/* Step 2b: 1 when a corner is within d of p (then the hull is too). The
+ * cheapest accept: on a mesh whose elements are small against d (a graded
+ * mesh's fine region, a folded sheet) it decides most kept pairs. */
+static inline cti_lane cti_step_corners(cti_pv p, cti_pv a, cti_pv b, cti_pv c, cti_pv e,
+                                        ct_real d2)
+{
+    cti_pv pa = cti_pv_sub(p, a), pb = cti_pv_sub(p, b), pc = cti_pv_sub(p, c),
+           pe = cti_pv_sub(p, e);
+    const cti_lane ca = cti_pv_dot(pa, pa) <= d2, cb = cti_pv_dot(pb, pb) <= d2;
+    const cti_lane cc = cti_pv_dot(pc, pc) <= d2, ce = cti_pv_dot(pe, pe) <= d2;
+    return (ca | cb) | (cc | ce);
+}
+
 /* What the prism test finds: accept (1 when p lies over the segment within
  * d of every corner's height); the four edge sides s0..s3 (which count only
  * when ok: otherwise p is taken to be outside every edge); and, for the reject step, n (the

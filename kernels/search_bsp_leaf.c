@@ -185,8 +185,7 @@ void cti_bsp_leaf(bsp_ctx *c, ct_idx n0, ct_idx n1, const ct_idx *restrict segs,
     const int batch = in->filter != CT_FILTER_BOX;
     cti_pair_batch pb;
     ct_idx bpos[CTI_PAIR_BATCH], last = -1;
-    pb.n = 0;
-    pb.nscalar = 0;
+    cti_pair_batch_init(&pb);
     for (ct_idx k = n0; k < n1; k++) {
         if (len + (size_t)pb.n + (size_t)ns > col->cap[t]) {
             col->len[t] = len;

@@ -210,8 +210,7 @@ int cti_bucket_query_direct(const bk_state *st, const ct_search_input *in, const
         cti_pair_batch pb;
         ct_idx bpos[CTI_PAIR_BATCH];
         bk_sink sink = {&w, bpos, in, NULL, 0, -1};
-        pb.n = 0;
-        pb.nscalar = 0;
+        cti_pair_batch_init(&pb);
         ct_idx lo = (ct_idx)((int64_t)nsec * b / nb);
         ct_idx hi = (ct_idx)((int64_t)nsec * (b + 1) / nb);
         for (ct_idx i = lo; i < hi; i++) {
@@ -283,8 +282,7 @@ int cti_bucket_query_cells(const bk_state *st, const ct_search_input *in, int nb
         cti_pair_batch pb;
         ct_idx bpos[CTI_PAIR_BATCH];
         bk_sink sink = {NULL, bpos, in, col, t, -1};
-        pb.n = 0;
-        pb.nscalar = 0;
+        cti_pair_batch_init(&pb);
         (void)ent, (void)fbox, (void)box, (void)srec, (void)n1, (void)n2, (void)n3, (void)n4;
         (void)boxf, (void)pfc;
         for (ct_idx q = lo; q < hi; q++) {

@@ -317,8 +317,7 @@ int cti_search_topo(ct_search *s, const ct_search_input *in, ct_pairs *out)
         size_t len = col->len[t];
         cti_pair_batch pb;
         ct_idx bpos[CTI_PAIR_BATCH], last = -1;
-        pb.n = 0;
-        pb.nscalar = 0;
+        cti_pair_batch_init(&pb);
 #pragma omp for schedule(static)
         for (ct_idx i = 0; i < in->nsec; i++) {
             ct_idx m = st->closest[i];

@@ -115,11 +115,10 @@ static void make_point(int where, const double c[4][3], double d, double p[3])
     }
 }
 
-/* Runs n pairs (points p[k], segments c[k]) through the batch and compares
- * each answer with ct_pair_may_touch; returns the pairs the batch left to
- * the one-pair predicate. */
-static int64_t check_batch(int n, const double (*p)[3], const double (*c)[4][3], double d,
-                           int *accepted)
+/* One run of the batch on n pairs, starting with `skip` batches' worth of
+ * the corner step left out; compares every answer with ct_pair_may_touch. */
+static int64_t check_batch_mode(int n, const double (*p)[3], const double (*c)[4][3],
+                                double d, int *accepted, int skip, int *skip_after)
 {
     /* The coordinates live in node arrays, as in a search: node 5k is the
      * point, nodes 5k+1..5k+4 the corners of segment k. */
@@ -127,8 +126,9 @@ static int64_t check_batch(int n, const double (*p)[3], const double (*c)[4][3],
     static ct_idx n1[CTI_PAIR_BATCH], n2[CTI_PAIR_BATCH], n3[CTI_PAIR_BATCH],
         n4[CTI_PAIR_BATCH];
     cti_pair_batch b;
+    cti_pair_batch_init(&b);
+    b.skip = skip;
     b.n = n;
-    b.nscalar = 0;
     for (int k = 0; k < n; k++) {
         x[5 * k] = (ct_real)p[k][0], y[5 * k] = (ct_real)p[k][1], z[5 * k] = (ct_real)p[k][2];
         for (int v = 0; v < 4; v++) {
@@ -154,7 +154,37 @@ static int64_t check_batch(int n, const double (*p)[3], const double (*c)[4][3],
                      k, (int)b.ok[k], one, (double)P[0], (double)P[1], (double)P[2], d);
         *accepted += one;
     }
+    *skip_after = b.skip;
     return b.nscalar;
+}
+
+/* Runs n pairs (points p[k], segments c[k]) through the batch and compares
+ * each answer with ct_pair_may_touch; returns the pairs the batch left to
+ * the one-pair predicate. The batch runs twice: with the corner step (as a
+ * fresh batch does) and without it (as after a batch where it left most
+ * lanes open); both must give the one-pair answers. *skip_after gets the
+ * first run's skip count (0: the corner step stays on). */
+static int64_t check_batch_skip(int n, const double (*p)[3], const double (*c)[4][3],
+                                double d, int *accepted, int *skip_after)
+{
+    int64_t first = 0;
+    for (int mode = 0; mode < 2; mode++) {
+        int acc = 0, skip;
+        int64_t sc = check_batch_mode(n, p, c, d, &acc, mode ? 3 : 0, &skip);
+        if (mode == 0) {
+            first = sc;
+            *accepted += acc;
+            if (skip_after)
+                *skip_after = skip;
+        }
+    }
+    return first;
+}
+
+static int64_t check_batch(int n, const double (*p)[3], const double (*c)[4][3], double d,
+                           int *accepted)
+{
+    return check_batch_skip(n, p, c, d, accepted, NULL);
 }
 
 Test(predicate_batch, matches_one_pair_predicate_on_awkward_pairs)
@@ -211,6 +241,51 @@ Test(predicate_batch, smooth_pairs_decided_in_lanes)
     cr_assert_gt(accepted, 0);
     cr_assert_lt(accepted, total);
     cr_assert_eq(scalar, 0, "%lld smooth pairs left to the one-pair predicate", (long long)scalar);
+}
+
+/* The corner step's switch. Segments small against d (a graded mesh's fine
+ * region): most pairs have a corner within d, the costly steps run on the
+ * few left, packed, and the step stays on. Segments large against d (the
+ * plates): no corner is within d, and the next batches leave the step out.
+ * Either way every answer is the one-pair answer (check_batch_skip runs
+ * both ways), and the smooth pairs never reach the one-pair predicate. */
+Test(predicate_batch, corner_step_on_fine_segments_off_on_coarse)
+{
+    static double p[CTI_PAIR_BATCH][3], c[CTI_PAIR_BATCH][4][3];
+    for (int fine = 0; fine < 2; fine++) {
+        int64_t scalar = 0;
+        int accepted = 0, total = 0, on = 0;
+        for (int b = 0; b < 50; b++) {
+            const double h = fine ? 0.05 : 1.0, d = 0.5;
+            for (int k = 0; k < CTI_PAIR_BATCH; k++) {
+                double ox = h * (double)(k % 8) - 4 * h, oy = h * (double)((k / 8) % 8) - 4 * h;
+                double sq[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+                for (int v = 0; v < 4; v++) {
+                    c[k][v][0] = ox + h * sq[v][0];
+                    c[k][v][1] = oy + h * sq[v][1];
+                    c[k][v][2] = 0;
+                }
+                /* Fine: within about d of the patch; coarse: over the
+                 * segment's middle at 0.3, as the plates' nodes are (every
+                 * corner then farther than d). */
+                p[k][0] = fine ? d * (2 * urand() - 1) : ox + h * (0.3 + 0.4 * urand());
+                p[k][1] = fine ? d * (2 * urand() - 1) : oy + h * (0.3 + 0.4 * urand());
+                p[k][2] = fine ? 0.6 * d * (2 * urand() - 1) : 0.3;
+            }
+            int skip = -1;
+            scalar += check_batch_skip(CTI_PAIR_BATCH, (const double(*)[3])p,
+                                       (const double(*)[4][3])c, 0.5, &accepted, &skip);
+            on += skip == 0;
+            total += CTI_PAIR_BATCH;
+        }
+        cr_assert_gt(accepted, total / 4, "fine %d: %d of %d accepted", fine, accepted, total);
+        cr_assert_eq(scalar, 0, "fine %d: %lld pairs left to the one-pair predicate", fine,
+                     (long long)scalar);
+        if (fine)
+            cr_assert_eq(on, 50, "fine segments: the corner step was dropped %d times", 50 - on);
+        else
+            cr_assert_eq(on, 0, "coarse segments: the corner step was kept %d times", on);
+    }
 }
 
 /* Coordinates that are not finite: the lane defers to the one-pair
