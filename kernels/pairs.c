@@ -115,6 +115,21 @@ int cti_collect_room(cti_collect *c, int t, size_t extra)
     return CT_OK;
 }
 
+/* The first node i in [0, n] whose first pair is at or after q (off is
+ * nondecreasing, off[n] = the total). */
+static ct_idx collect_first_at(const int64_t *off, ct_idx n, int64_t q)
+{
+    ct_idx a = 0, b = n;
+    while (a < b) {
+        ct_idx m = a + (b - a) / 2;
+        if (off[m] < q)
+            a = m + 1;
+        else
+            b = m;
+    }
+    return a;
+}
+
 int cti_collect_finish(cti_collect *c, const ct_idx *sec, ct_pairs *out)
 {
     if (c->err)
@@ -126,16 +141,28 @@ int cti_collect_finish(cti_collect *c, const ct_idx *sec, ct_pairs *out)
     if (rc)
         return rc;
     ct_idx *restrict on = out->node, *restrict os = out->seg;
-#pragma omp parallel for schedule(static)
-    for (ct_idx i = 0; i < c->nsec; i++) {
-        ct_idx n = c->count[i];
-        if (n == 0)
-            continue;
-        int64_t o = c->off[i];
-        const ct_idx *src = c->buf[c->owner[i]] + c->start[i];
-        for (ct_idx k = 0; k < n; k++) {
-            on[o + k] = sec[i];
-            os[o + k] = src[k];
+    const int64_t *restrict off = c->off;
+    const ct_idx nsec = c->nsec;
+    /* Each thread writes an equal share of the pairs, not of the nodes: on
+     * a graded mesh the pairs per node vary tenfold along the numbering.
+     * Its nodes are those whose first pair falls in its share (found by
+     * bisection of the offsets); every pair is written once, at the same
+     * place, whatever the thread count. */
+#pragma omp parallel
+    {
+        const int nt = cti_team_size(), t = cti_thread_id();
+        ct_idx lo = collect_first_at(off, nsec, total * t / nt);
+        ct_idx hi = collect_first_at(off, nsec, total * (t + 1) / nt);
+        for (ct_idx i = lo; i < hi; i++) {
+            ct_idx n = c->count[i];
+            if (n == 0)
+                continue;
+            int64_t o = off[i];
+            const ct_idx *src = c->buf[c->owner[i]] + c->start[i];
+            for (ct_idx k = 0; k < n; k++) {
+                on[o + k] = sec[i];
+                os[o + k] = src[k];
+            }
         }
     }
     out->n = (ct_idx)total;
