@@ -107,14 +107,10 @@ PB_SCALAR static int pb_compact(cti_pair_batch *restrict b, int *restrict idx)
 }
 
 /* Stage 1 of cti_pair_batch_test, every lane: the box rejects (steps 1
- * and 2) and, when `corners`, a corner within d accepts (step 2b). ok[k] =
- * 0 reject, 1 accept, 2 undecided, 3 not finite (undecided to the end).
- * Returns the number of lanes undecided. Leaving step 2b out changes no
- * answer: steps 2b, 3 and 4 only accept and no reject comes between them,
- * so a pair 2b would accept is accepted by 3, 4 or the one-pair predicate,
- * which runs 2b. Called with a constant `corners`, so it compiles twice. */
-static inline cti_lane pb_stage1(cti_pair_batch *restrict b, ct_real d, ct_real d2,
-                                 const int corners)
+ * and 2) and a corner within d accepts (step 2b). ok[k] = 0 reject,
+ * 1 accept, 2 undecided, 3 not finite (undecided to the end). Returns the
+ * number of lanes undecided. */
+static cti_lane pb_stage1(cti_pair_batch *restrict b, ct_real d, ct_real d2)
 {
     const int n = b->n;
     cti_lane *restrict ok = b->ok;
@@ -137,7 +133,7 @@ static inline cti_lane pb_stage1(cti_pair_batch *restrict b, ct_real d, ct_real 
                             ((E.x - E.x) + (E.y - E.y) + (E.z - E.z));
         const ct_real box2 = cti_step_box(P, A, B, C, E, d);
         const cti_lane reject = (box2 < 0) | (box2 > d2);
-        const cti_lane accept = corners ? cti_step_corners(P, A, B, C, E, d2) : 0;
+        const cti_lane accept = cti_step_corners(P, A, B, C, E, d2);
         /* In integer operations (selects between truth values of different
          * origins do not vectorise): (reject - 1) is 0 or all ones. */
         const cti_lane nf = !(fin == 0);
@@ -146,6 +142,53 @@ static inline cti_lane pb_stage1(cti_pair_batch *restrict b, ct_real d, ct_real 
         nund += r >> 1;
     }
     return nund;
+}
+
+/* Steps 1 to 4 in one vector loop, without step 2b, then the one-pair
+ * predicate on the lanes left: for batches where few corners are within d.
+ * Leaving step 2b out changes no answer: steps 2b, 3 and 4 only accept and
+ * no reject comes between them, so a pair 2b would accept is accepted by
+ * 3, 4 or the one-pair predicate, which runs 2b. */
+static void pb_one_stage(cti_pair_batch *restrict b, ct_real d, ct_real d2)
+{
+    const int n = b->n;
+    cti_lane *restrict ok = b->ok;
+    const ct_real *restrict px = b->px, *restrict py = b->py, *restrict pz = b->pz;
+    const ct_real *restrict ax = b->ax, *restrict ay = b->ay, *restrict az = b->az;
+    const ct_real *restrict bx = b->bx, *restrict by = b->by, *restrict bz = b->bz;
+    const ct_real *restrict cx = b->cx, *restrict cy = b->cy, *restrict cz = b->cz;
+    const ct_real *restrict ex = b->ex, *restrict ey = b->ey, *restrict ez = b->ez;
+    cti_lane undecided = 0;
+#pragma omp simd reduction(| : undecided)
+    for (int k = 0; k < n; k++) {
+        const cti_pv P = {px[k], py[k], pz[k]}, A = {ax[k], ay[k], az[k]},
+                     B = {bx[k], by[k], bz[k]}, C = {cx[k], cy[k], cz[k]},
+                     E = {ex[k], ey[k], ez[k]};
+        const ct_real fin = ((P.x - P.x) + (P.y - P.y) + (P.z - P.z)) +
+                            ((A.x - A.x) + (A.y - A.y) + (A.z - A.z)) +
+                            ((B.x - B.x) + (B.y - B.y) + (B.z - B.z)) +
+                            ((C.x - C.x) + (C.y - C.y) + (C.z - C.z)) +
+                            ((E.x - E.x) + (E.y - E.y) + (E.z - E.z));
+        const ct_real box2 = cti_step_box(P, A, B, C, E, d);
+        const cti_lane reject = (box2 < 0) | (box2 > d2);
+        const cti_prism q = cti_step_prism(P, A, B, C, E, d2);
+        const cti_lane accept = q.accept | cti_step_edges(P, A, B, C, E, d2, q);
+        const cti_lane nf = !(fin == 0);
+        const cti_lane r = ((reject - 1) & (2 - accept)) | (nf << 1);
+        ok[k] = r;
+        undecided |= r >> 1;
+    }
+    if (!undecided)
+        return;
+    for (int k = 0; k < n; k++) {
+        if (ok[k] < PB_UNDECIDED)
+            continue;
+        b->nscalar++;
+        const ct_real p[3] = {px[k], py[k], pz[k]}, a[3] = {ax[k], ay[k], az[k]},
+                      bb[3] = {bx[k], by[k], bz[k]}, c[3] = {cx[k], cy[k], cz[k]},
+                      e[3] = {ex[k], ey[k], ez[k]};
+        ok[k] = ct_pair_may_touch(p, a, bb, c, e, d);
+    }
 }
 
 void cti_pair_batch_test(cti_pair_batch *restrict b, ct_real d)
@@ -158,13 +201,17 @@ void cti_pair_batch_test(cti_pair_batch *restrict b, ct_real d)
     ct_real *restrict bx = b->bx, *restrict by = b->by, *restrict bz = b->bz;
     ct_real *restrict cx = b->cx, *restrict cy = b->cy, *restrict cz = b->cz;
     ct_real *restrict ex = b->ex, *restrict ey = b->ey, *restrict ez = b->ez;
-    /* Stage 1. Step 2b pays only where it lets stage 2 run on few lanes;
-     * where it leaves most lanes undecided (no corner within d: elements
-     * large against d), it is left out of the next PB_SKIP batches. */
-    const cti_lane nund = b->skip > 0 ? pb_stage1(b, d, d2, 0) : pb_stage1(b, d, d2, 1);
-    if (b->skip > 0)
+    /* Step 2b pays only where it lets stage 2 run on few lanes; where it
+     * leaves most lanes undecided (no corner within d: elements large
+     * against d), the next PB_SKIP batches run steps 1 to 4 in one loop
+     * without it, as one stage. */
+    if (b->skip > 0) {
         b->skip--;
-    else if (2 * nund > n)
+        pb_one_stage(b, d, d2);
+        return;
+    }
+    const cti_lane nund = pb_stage1(b, d, d2);
+    if (2 * nund > n)
         b->skip = PB_SKIP;
     if (!nund)
         return;

@@ -160,9 +160,10 @@ static int64_t check_batch_mode(int n, const double (*p)[3], const double (*c)[4
 
 /* Runs n pairs (points p[k], segments c[k]) through the batch and compares
  * each answer with ct_pair_may_touch; returns the pairs the batch left to
- * the one-pair predicate. The batch runs twice: with the corner step (as a
- * fresh batch does) and without it (as after a batch where it left most
- * lanes open); both must give the one-pair answers. *skip_after gets the
+ * the one-pair predicate (the larger count of two runs). The batch runs
+ * twice: with the corner step (as a fresh batch does) and without it (as
+ * after a batch where it left most lanes open, one stage); both must give
+ * the one-pair answers. *skip_after gets the
  * first run's skip count (0: the corner step stays on). */
 static int64_t check_batch_skip(int n, const double (*p)[3], const double (*c)[4][3],
                                 double d, int *accepted, int *skip_after)
@@ -171,8 +172,8 @@ static int64_t check_batch_skip(int n, const double (*p)[3], const double (*c)[4
     for (int mode = 0; mode < 2; mode++) {
         int acc = 0, skip;
         int64_t sc = check_batch_mode(n, p, c, d, &acc, mode ? 3 : 0, &skip);
+        first = sc > first ? sc : first;
         if (mode == 0) {
-            first = sc;
             *accepted += acc;
             if (skip_after)
                 *skip_after = skip;
