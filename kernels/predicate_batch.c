@@ -110,7 +110,7 @@ PB_SCALAR static int pb_compact(cti_pair_batch *restrict b, int *restrict idx)
  * and 2) and a corner within d accepts (step 2b). ok[k] = 0 reject,
  * 1 accept, 2 undecided, 3 not finite (undecided to the end). Returns the
  * number of lanes undecided. */
-static cti_lane pb_stage1(cti_pair_batch *restrict b, ct_real d, ct_real d2)
+__attribute__((noinline)) static cti_lane pb_stage1(cti_pair_batch *restrict b, ct_real d, ct_real d2)
 {
     const int n = b->n;
     cti_lane *restrict ok = b->ok;
@@ -149,7 +149,7 @@ static cti_lane pb_stage1(cti_pair_batch *restrict b, ct_real d, ct_real d2)
  * Leaving step 2b out changes no answer: steps 2b, 3 and 4 only accept and
  * no reject comes between them, so a pair 2b would accept is accepted by
  * 3, 4 or the one-pair predicate, which runs 2b. */
-static void pb_one_stage(cti_pair_batch *restrict b, ct_real d, ct_real d2)
+__attribute__((noinline)) static void pb_one_stage(cti_pair_batch *restrict b, ct_real d, ct_real d2)
 {
     const int n = b->n;
     cti_lane *restrict ok = b->ok;

@@ -12,29 +12,39 @@
 
 #include "ct_internal.h"
 
+/* Always inlined: a step called from a vector loop must be inlined for the
+ * loop to vectorise, and clang keeps a static function out of line once a
+ * file calls it from two loops (then fails the build under -Werror, since
+ * the loops ask for SIMD). */
+#if defined(__GNUC__)
+#define CTI_STEP static inline __attribute__((always_inline))
+#else
+#define CTI_STEP static inline
+#endif
+
 /* A point or vector, passed by value (the compiler splits it into
  * scalars, in a vector loop into lanes). */
 typedef struct cti_pv {
     ct_real x, y, z;
 } cti_pv;
 
-static inline cti_pv cti_pv_sub(cti_pv a, cti_pv b)
+CTI_STEP cti_pv cti_pv_sub(cti_pv a, cti_pv b)
 {
     cti_pv r = {a.x - b.x, a.y - b.y, a.z - b.z};
     return r;
 }
 
-static inline ct_real cti_pv_dot(cti_pv a, cti_pv b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+CTI_STEP ct_real cti_pv_dot(cti_pv a, cti_pv b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 
 /* (u x v) . w */
-static inline ct_real cti_pv_triple(cti_pv u, cti_pv v, cti_pv w)
+CTI_STEP ct_real cti_pv_triple(cti_pv u, cti_pv v, cti_pv w)
 {
     return w.x * (u.y * v.z - u.z * v.y) + w.y * (u.z * v.x - u.x * v.z) +
            w.z * (u.x * v.y - u.y * v.x);
 }
 
 /* Squared distance from p to the segment a b. */
-static inline ct_real cti_step_edge2(cti_pv p, cti_pv a, cti_pv b)
+CTI_STEP ct_real cti_step_edge2(cti_pv p, cti_pv a, cti_pv b)
 {
     cti_pv ab = cti_pv_sub(b, a), ap = cti_pv_sub(p, a);
     ct_real l2 = cti_pv_dot(ab, ab);
@@ -48,7 +58,7 @@ static inline ct_real cti_step_edge2(cti_pv p, cti_pv a, cti_pv b)
 /* One axis of steps 1 and 2: the box [lo, hi] of the four corners'
  * coordinates; *out set when v is outside it inflated by d; returns the
  * squared distance from v to it. */
-static inline ct_real cti_step_axis(ct_real v, ct_real a, ct_real b, ct_real c, ct_real e,
+CTI_STEP ct_real cti_step_axis(ct_real v, ct_real a, ct_real b, ct_real c, ct_real e,
                                     ct_real d, cti_lane *out)
 {
     ct_real lo = CTI_MIN(CTI_MIN(a, b), CTI_MIN(c, e));
@@ -60,7 +70,7 @@ static inline ct_real cti_step_axis(ct_real v, ct_real a, ct_real b, ct_real c, 
 
 /* Steps 1 and 2: the squared Euclidean distance from p to the corners' box,
  * or -1 when p is outside the box inflated by d (then surely farther). */
-static inline ct_real cti_step_box(cti_pv p, cti_pv a, cti_pv b, cti_pv c, cti_pv e, ct_real d)
+CTI_STEP ct_real cti_step_box(cti_pv p, cti_pv a, cti_pv b, cti_pv c, cti_pv e, ct_real d)
 {
     cti_lane out = 0;
     ct_real bx = cti_step_axis(p.x, a.x, b.x, c.x, e.x, d, &out);
@@ -73,7 +83,7 @@ static inline ct_real cti_step_box(cti_pv p, cti_pv a, cti_pv b, cti_pv c, cti_p
 /* Step 2b: 1 when a corner is within d of p (then the hull is too). The
  * cheapest accept: on a mesh whose elements are small against d (a graded
  * mesh's fine region, a folded sheet) it decides most kept pairs. */
-static inline cti_lane cti_step_corners(cti_pv p, cti_pv a, cti_pv b, cti_pv c, cti_pv e,
+CTI_STEP cti_lane cti_step_corners(cti_pv p, cti_pv a, cti_pv b, cti_pv c, cti_pv e,
                                         ct_real d2)
 {
     cti_pv pa = cti_pv_sub(p, a), pb = cti_pv_sub(p, b), pc = cti_pv_sub(p, c),
@@ -98,7 +108,7 @@ typedef struct cti_prism {
 } cti_prism;
 
 /* Step 3, the prism test (the argument is at its use in predicate.c). */
-static inline cti_prism cti_step_prism(cti_pv p, cti_pv a, cti_pv b, cti_pv c, cti_pv e,
+CTI_STEP cti_prism cti_step_prism(cti_pv p, cti_pv a, cti_pv b, cti_pv c, cti_pv e,
                                        ct_real d2)
 {
     cti_prism q;
@@ -129,7 +139,7 @@ static inline cti_prism cti_step_prism(cti_pv p, cti_pv a, cti_pv b, cti_pv c, c
 /* Step 4: 1 when a point of an edge that p is outside of (side < 0) is
  * within d. All four edges are measured (no early exit, so that the step
  * runs in vector lanes); the answer is the same. */
-static inline cti_lane cti_step_edges(cti_pv p, cti_pv a, cti_pv b, cti_pv c, cti_pv e, ct_real d2,
+CTI_STEP cti_lane cti_step_edges(cti_pv p, cti_pv a, cti_pv b, cti_pv c, cti_pv e, ct_real d2,
                                  const cti_prism q)
 {
     const cti_lane all = q.ok - 1; /* all ones when n is not usable */
