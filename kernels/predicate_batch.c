@@ -106,11 +106,12 @@ PB_SCALAR static int pb_compact(cti_pair_batch *restrict b, int *restrict idx)
     return m;
 }
 
-/* Stage 1 of cti_pair_batch_test, every lane: the box rejects (steps 1
- * and 2) and a corner within d accepts (step 2b). ok[k] = 0 reject,
- * 1 accept, 2 undecided, 3 not finite (undecided to the end). Returns the
- * number of lanes undecided. */
-__attribute__((noinline)) static cti_lane pb_stage1(cti_pair_batch *restrict b, ct_real d, ct_real d2)
+/* Steps 1 and 2 reject, on every lane; what accepts is step 2b (`one` =
+ * 0: stage 1 of two) or steps 3 and 4 (`one` = 1: the one-stage test).
+ * ok[k] = 0 reject, 1 accept, 2 undecided, 3 not finite (undecided to the
+ * end). Returns the number of lanes undecided. Called with a constant
+ * `one`, so it compiles as two loops. */
+CTI_STEP cti_lane pb_open(cti_pair_batch *restrict b, ct_real d, ct_real d2, const int one)
 {
     const int n = b->n;
     cti_lane *restrict ok = b->ok;
@@ -133,7 +134,13 @@ __attribute__((noinline)) static cti_lane pb_stage1(cti_pair_batch *restrict b, 
                             ((E.x - E.x) + (E.y - E.y) + (E.z - E.z));
         const ct_real box2 = cti_step_box(P, A, B, C, E, d);
         const cti_lane reject = (box2 < 0) | (box2 > d2);
-        const cti_lane accept = cti_step_corners(P, A, B, C, E, d2);
+        cti_lane accept;
+        if (one) {
+            const cti_prism q = cti_step_prism(P, A, B, C, E, d2);
+            accept = q.accept | cti_step_edges(P, A, B, C, E, d2, q);
+        } else {
+            accept = cti_step_corners(P, A, B, C, E, d2);
+        }
         /* In integer operations (selects between truth values of different
          * origins do not vectorise): (reject - 1) is 0 or all ones. */
         const cti_lane nf = !(fin == 0);
@@ -144,51 +151,42 @@ __attribute__((noinline)) static cti_lane pb_stage1(cti_pair_batch *restrict b, 
     return nund;
 }
 
+/* The one-pair predicate for every lane of the arrays still undecided in
+ * o[0..m-1]; lane k of the arrays is lane idx[k] of the batch (idx NULL:
+ * k), whose ok it sets. */
+static void pb_one_pair(cti_pair_batch *restrict b, const cti_lane *o, const int *idx, int m,
+                        ct_real d)
+{
+    for (int k = 0; k < m; k++) {
+        if (o[k] < PB_UNDECIDED)
+            continue;
+        b->nscalar++;
+        const ct_real p[3] = {b->px[k], b->py[k], b->pz[k]},
+                      a[3] = {b->ax[k], b->ay[k], b->az[k]},
+                      bb[3] = {b->bx[k], b->by[k], b->bz[k]},
+                      c[3] = {b->cx[k], b->cy[k], b->cz[k]},
+                      e[3] = {b->ex[k], b->ey[k], b->ez[k]};
+        b->ok[idx ? idx[k] : k] = ct_pair_may_touch(p, a, bb, c, e, d);
+    }
+}
+
+/* Stage 1 of the two-stage test (the box and the corners). */
+__attribute__((noinline)) static cti_lane pb_stage1(cti_pair_batch *restrict b, ct_real d,
+                                                    ct_real d2)
+{
+    return pb_open(b, d, d2, 0);
+}
+
 /* Steps 1 to 4 in one vector loop, without step 2b, then the one-pair
  * predicate on the lanes left: for batches where few corners are within d.
  * Leaving step 2b out changes no answer: steps 2b, 3 and 4 only accept and
  * no reject comes between them, so a pair 2b would accept is accepted by
  * 3, 4 or the one-pair predicate, which runs 2b. */
-__attribute__((noinline)) static void pb_one_stage(cti_pair_batch *restrict b, ct_real d, ct_real d2)
+__attribute__((noinline)) static void pb_one_stage(cti_pair_batch *restrict b, ct_real d,
+                                                   ct_real d2)
 {
-    const int n = b->n;
-    cti_lane *restrict ok = b->ok;
-    const ct_real *restrict px = b->px, *restrict py = b->py, *restrict pz = b->pz;
-    const ct_real *restrict ax = b->ax, *restrict ay = b->ay, *restrict az = b->az;
-    const ct_real *restrict bx = b->bx, *restrict by = b->by, *restrict bz = b->bz;
-    const ct_real *restrict cx = b->cx, *restrict cy = b->cy, *restrict cz = b->cz;
-    const ct_real *restrict ex = b->ex, *restrict ey = b->ey, *restrict ez = b->ez;
-    cti_lane undecided = 0;
-#pragma omp simd reduction(| : undecided)
-    for (int k = 0; k < n; k++) {
-        const cti_pv P = {px[k], py[k], pz[k]}, A = {ax[k], ay[k], az[k]},
-                     B = {bx[k], by[k], bz[k]}, C = {cx[k], cy[k], cz[k]},
-                     E = {ex[k], ey[k], ez[k]};
-        const ct_real fin = ((P.x - P.x) + (P.y - P.y) + (P.z - P.z)) +
-                            ((A.x - A.x) + (A.y - A.y) + (A.z - A.z)) +
-                            ((B.x - B.x) + (B.y - B.y) + (B.z - B.z)) +
-                            ((C.x - C.x) + (C.y - C.y) + (C.z - C.z)) +
-                            ((E.x - E.x) + (E.y - E.y) + (E.z - E.z));
-        const ct_real box2 = cti_step_box(P, A, B, C, E, d);
-        const cti_lane reject = (box2 < 0) | (box2 > d2);
-        const cti_prism q = cti_step_prism(P, A, B, C, E, d2);
-        const cti_lane accept = q.accept | cti_step_edges(P, A, B, C, E, d2, q);
-        const cti_lane nf = !(fin == 0);
-        const cti_lane r = ((reject - 1) & (2 - accept)) | (nf << 1);
-        ok[k] = r;
-        undecided |= r >> 1;
-    }
-    if (!undecided)
-        return;
-    for (int k = 0; k < n; k++) {
-        if (ok[k] < PB_UNDECIDED)
-            continue;
-        b->nscalar++;
-        const ct_real p[3] = {px[k], py[k], pz[k]}, a[3] = {ax[k], ay[k], az[k]},
-                      bb[3] = {bx[k], by[k], bz[k]}, c[3] = {cx[k], cy[k], cz[k]},
-                      e[3] = {ex[k], ey[k], ez[k]};
-        ok[k] = ct_pair_may_touch(p, a, bb, c, e, d);
-    }
+    if (pb_open(b, d, d2, 1))
+        pb_one_pair(b, b->ok, NULL, b->n, d);
 }
 
 void cti_pair_batch_test(cti_pair_batch *restrict b, ct_real d)
@@ -249,18 +247,8 @@ void cti_pair_batch_test(cti_pair_batch *restrict b, ct_real d)
     if (!left)
         return;
     /* Stage 3: what the lanes left undecided, and every lane with a
-     * coordinate that is not finite, goes to the one-pair predicate (lane
-     * k of the arrays is lane idx[k] of the batch when they were packed). */
-    for (int k = 0; k < m; k++) {
-        if (o[k] < PB_UNDECIDED)
-            continue;
-        const int l = o == okc ? idx[k] : k;
-        b->nscalar++;
-        const ct_real p[3] = {px[k], py[k], pz[k]}, a[3] = {ax[k], ay[k], az[k]},
-                      bb[3] = {bx[k], by[k], bz[k]}, c[3] = {cx[k], cy[k], cz[k]},
-                      e[3] = {ex[k], ey[k], ez[k]};
-        ok[l] = ct_pair_may_touch(p, a, bb, c, e, d);
-    }
+     * coordinate that is not finite, goes to the one-pair predicate. */
+    pb_one_pair(b, o, o == okc ? idx : NULL, m, d);
 }
 
 void cti_pair_batch_decide(cti_pair_batch *restrict pb, const ct_search_input *in,
