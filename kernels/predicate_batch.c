@@ -12,8 +12,10 @@
  *  2. decide, in SIMD lanes and without branches, in two stages: first
  *     steps 1 and 2 (the box) reject and step 2b (a corner) accepts, then,
  *     on the lanes left (packed to the front when they are few), step 3
- *     (the prism) and step 4 (the edges) accept; a lane they leave
- *     undecided, or with a coordinate that is not finite, goes to
+ *     (the prism) and step 4 (the edges) accept; after a batch where step
+ *     2b left most lanes open, the next PB_SKIP batches run steps 1, 3 and
+ *     4 in one loop instead; a lane they leave undecided, or with a
+ *     coordinate that is not finite, goes to
  *  3. the one-pair predicate, ct_pair_may_touch, on that pair alone.
  * Steps 1 to 4 are the inline functions of predicate_steps.h, the very ones
  * ct_pair_may_touch runs, on the same values: each lane's answer is the
@@ -21,7 +23,7 @@
  * On smooth surfaces the lanes decide every pair (steps 1 to 4). On the
  * graded mesh (10^5) the corners accept 76 % of the candidates and the box
  * rejects 14 %, so the costly second stage runs on a tenth of them; on the
- * plates no corner is within d and it runs on three quarters, in place.
+ * plates no corner is within d, and the batches run as one stage.
  *
  * Threads: a batch belongs to one thread (it lives on that thread's stack)
  * and is appended to that thread's own output (a query block's buffer or
@@ -33,7 +35,9 @@
 /* The answer of a lane that the vector loop leaves to ct_pair_may_touch. */
 enum { PB_UNDECIDED = 2 };
 
-/* Batches run without step 2b after one where it left most lanes open. */
+/* Batches run as one stage, without step 2b, after one where step 2b left
+ * most lanes open. The switch changes no answer (see pb_one_stage), so it
+ * may follow each thread's own batches. */
 enum { PB_SKIP = 15 };
 
 /* Scalar loads on purpose: the compilers would otherwise vectorise these
