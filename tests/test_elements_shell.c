@@ -297,18 +297,10 @@ Test(elements_shell, cantilever_tip_deflection)
     const double D = E * t * t * t / (12 * (1 - nu * nu));
     const double delta = 1e-3 * L, P = 3 * D * wdt * delta / (L * L * L);
     ct_mesh m;
-    plate(&m, nx, ny, L / nx, wdt / ny);
     ctd_shell s;
-    shell_on(&s, &m, E, nu, rho, t);
     work w;
-    work_init(&w, m.nodes.n);
-    ctd_shell_masses(&s, w.m);
+    plate_at_rest(&m, &s, &w, nx, ny, L / nx, wdt / ny, E, nu, rho, t);
     const ct_idx n = m.nodes.n;
-    for (ct_idx i = 0; i < n; i++) {
-        w.x[i] = m.nodes.x[i];
-        w.y[i] = m.nodes.y[i];
-        w.z[i] = m.nodes.z[i];
-    }
     double dt = 0.9 * ctd_shell_dt(&s);
     double w1 = 1.875104 * 1.875104 * sqrt(D / (rho * t)) / (L * L), c = 2 * w1;
     long nstep = (long)(8 / (w1 * dt)) + 1;

@@ -65,6 +65,22 @@ static inline void work_free(work *w)
         ct_free(a[k]);
 }
 
+/* The flat nx x ny plate of cells hx x hy as shells, with its work arrays:
+ * lumped masses in w->m, positions at the reference, velocities zero. */
+static inline void plate_at_rest(ct_mesh *m, ctd_shell *s, work *w, int nx, int ny, double hx,
+                                 double hy, double E, double nu, double rho, double t)
+{
+    plate(m, nx, ny, hx, hy);
+    shell_on(s, m, E, nu, rho, t);
+    work_init(w, m->nodes.n);
+    ctd_shell_masses(s, w->m);
+    for (ct_idx i = 0; i < m->nodes.n; i++) {
+        w->x[i] = m->nodes.x[i];
+        w->y[i] = m->nodes.y[i];
+        w->z[i] = m->nodes.z[i];
+    }
+}
+
 /* A curved reference (part of a cylinder), so hinges have theta0 != 0. */
 static inline void curved(ct_mesh *m, int nx, int ny, double h, double R)
 {

@@ -17,19 +17,12 @@ Test(elements_shell, energy_conservation_free_plate)
     const int nc = ctt_checking() ? 8 : 12;
     const double E = 1e4, nu = 0.3, rho = 1.0, t = 0.02, v0 = 0.6;
     ct_mesh m;
-    plate(&m, nc, nc, 1.0 / nc, 1.0 / nc);
     ctd_shell s;
-    shell_on(&s, &m, E, nu, rho, t);
     work w;
-    work_init(&w, m.nodes.n);
-    ctd_shell_masses(&s, w.m);
+    plate_at_rest(&m, &s, &w, nc, nc, 1.0 / nc, 1.0 / nc, E, nu, rho, t);
     const ct_idx n = m.nodes.n;
-    for (ct_idx i = 0; i < n; i++) {
-        w.x[i] = m.nodes.x[i];
-        w.y[i] = m.nodes.y[i];
-        w.z[i] = m.nodes.z[i];
+    for (ct_idx i = 0; i < n; i++)
         w.vz[i] = (ct_real)(v0 * cos(M_PI * m.nodes.x[i]) * cos(M_PI * m.nodes.y[i]));
-    }
     double p0[3] = {0, 0, 0}, e0 = 0;
     for (ct_idx i = 0; i < n; i++) {
         p0[2] += w.m[i] * w.vz[i];
@@ -163,18 +156,10 @@ Test(elements_shell, fold_180_and_release)
     const double L = 1.0, wdt = L / 12, t = 0.05, E = 1e4, nu = 0.3, rho = 1.0;
     const double D = E * t * t * t / (12 * (1 - nu * nu));
     ct_mesh m;
-    plate(&m, nx, ny, L / nx, wdt / ny);
     ctd_shell s;
-    shell_on(&s, &m, E, nu, rho, t);
-    const ct_idx n = m.nodes.n;
     work w;
-    work_init(&w, n);
-    ctd_shell_masses(&s, w.m);
-    for (ct_idx i = 0; i < n; i++) {
-        w.x[i] = m.nodes.x[i];
-        w.y[i] = m.nodes.y[i];
-        w.z[i] = m.nodes.z[i];
-    }
+    plate_at_rest(&m, &s, &w, nx, ny, L / nx, wdt / ny, E, nu, rho, t);
+    const ct_idx n = m.nodes.n;
     double dt = 0.9 * ctd_shell_dt(&s);
     double w1 = 1.875104 * 1.875104 * sqrt(D / (rho * t)) / (L * L), T1 = 2 * M_PI / w1;
     long nramp = (long)(2 * T1 / dt), nrel = (long)(T1 / dt);
