@@ -381,6 +381,12 @@ void ctbt_set_skip(gb_state *st, const char *what, int rc)
     gb_skip_with_error(st, msg);
 }
 
+void ctbt_cost_accuracy(gb_state *st, double dt, int64_t it, double n, double accuracy)
+{
+    gb_set_counter(st, "cost", it ? dt * 1e9 / ((double)it * n) : 0, GB_PLAIN);
+    gb_set_counter(st, "accuracy", accuracy, GB_PLAIN);
+}
+
 void ctbt_label(gb_state *st, const char *knob, const char *setting, const char *cost,
                 const char *acc, const char *note)
 {

@@ -91,6 +91,10 @@ movecase *ctbt_mv_get(int scene);
 double ctbt_mv_ref_pairs(const movecase *m);
 statcase *ctbt_sc_get(void);
 void ctbt_set_skip(gb_state *st, const char *what, int rc);
+/* The two counters of every trade row: cost, ns per item over `it` timed
+ * repetitions of `dt` seconds in all (n items each), and the accuracy
+ * figure. */
+void ctbt_cost_accuracy(gb_state *st, double dt, int64_t it, double n, double accuracy);
 void ctbt_label(gb_state *st, const char *knob, const char *setting, const char *cost,
                 const char *acc, const char *note);
 void ctbt_wq_free(void);

@@ -162,8 +162,7 @@ void ctbt_bm_quad(gb_state *st, const tdesc *d)
         ctbt_set_skip(st, name, rc);
         return;
     }
-    gb_set_counter(st, "cost", it ? dt * 1e9 / ((double)it * npair) : 0, GB_PLAIN);
-    gb_set_counter(st, "accuracy", emax, GB_PLAIN);
+    ctbt_cost_accuracy(st, dt, it, (double)npair, emax);
     gb_set_counter(st, "x_mean_err", cnt ? esum / (double)cnt : 0, GB_PLAIN);
     gb_set_counter(st, "x_active", (double)ns.active / (double)(npair ? npair : 1), GB_PLAIN);
     if (meth == CT_QUAD_NEWTON)
@@ -358,8 +357,7 @@ void ctbt_bm_asm(gb_state *st, const tdesc *d)
         return;
     }
     char key[48], note[300];
-    gb_set_counter(st, "cost", it ? dt * 1e9 / ((double)it * as.npair) : 0, GB_PLAIN);
-    gb_set_counter(st, "accuracy", fmax > 0 ? dmax / fmax : 0, GB_PLAIN);
+    ctbt_cost_accuracy(st, dt, it, (double)as.npair, fmax > 0 ? dmax / fmax : 0);
     snprintf(key, sizeof key, "x_bitwise_1v%d", ctbt_cfg.max_threads);
     gb_set_counter(st, key, same, GB_PLAIN);
     if (d->sub == ASM_COLOUR || d->sub == ASM_COLOUR_B1)

@@ -62,8 +62,7 @@ void ctbt_bm_search(gb_state *st, const tdesc *d)
         return;
     }
     double nsec = m->c.sec.n;
-    gb_set_counter(st, "cost", it ? dt * 1e9 / ((double)it * nsec) : 0, GB_PLAIN);
-    gb_set_counter(st, "accuracy", (double)miss, GB_PLAIN);
+    ctbt_cost_accuracy(st, dt, it, (double)nsec, (double)miss);
     gb_set_counter(st, "x_extra", (double)extra, GB_PLAIN);
     gb_set_counter(st, "x_ref_pairs_per_node", ctbt_mv_ref_pairs(m) / (MV_STEPS * nsec), GB_PLAIN);
     gb_set_counter(st, "x_pairs_per_node", (double)found / (MV_STEPS * nsec), GB_PLAIN);
@@ -250,8 +249,7 @@ void ctbt_bm_margin(gb_state *st, const tdesc *d)
         return;
     }
     double nsec = m->c.sec.n;
-    gb_set_counter(st, "cost", it ? dt * 1e9 / ((double)it * nsec) : 0, GB_PLAIN);
-    gb_set_counter(st, "accuracy", (double)miss, GB_PLAIN);
+    ctbt_cost_accuracy(st, dt, it, (double)nsec, (double)miss);
     gb_set_counter(st, "x_pairs_per_node", pairs / (MV_STEPS * nsec), GB_PLAIN);
     gb_set_counter(st, "x_resorts_per_100", 100.0 * (double)resorts / (MV_STEPS - 1),
                    GB_PLAIN);
@@ -369,8 +367,7 @@ void ctbt_bm_renumber(gb_state *st, const tdesc *d)
         return;
     }
     const double nsec = rn.c.sec.n;
-    gb_set_counter(st, "cost", it ? dt * 1e9 / ((double)it * nsec) : 0, GB_PLAIN);
-    gb_set_counter(st, "accuracy", (double)differ, GB_PLAIN);
+    ctbt_cost_accuracy(st, dt, it, (double)nsec, (double)differ);
     gb_set_counter(st, "x_bytes_per_node", mem / nsec, GB_PLAIN);
     char note[300];
     snprintf(note, sizeof note,
