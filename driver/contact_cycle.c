@@ -3,76 +3,7 @@
  * (see contact_cycle.h): search with the re-sort criterion, narrow phase,
  * force, assembly, time step, each phase timed.
  */
-#include "contact_cycle.h"
-
-#include <math.h>
-#include <stdlib.h>
-#include <string.h>
-
-#ifdef _OPENMP
-#include <omp.h>
-static double wtime(void) { return omp_get_wtime(); }
-#else
-#include <time.h>
-static double wtime(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
-#endif
-
-/* Pairs per block of the fused narrow/force/step pass (phase_pairs): a
- * multiple of the kernels' own blocks (64 for the narrow phase, 2048 for
- * the normal force and friction), so each kernel sees the block boundaries
- * a whole-list call would. Measured on the folded sheet, 10^6 nodes: 2048,
- * 4096 and 8192 within 5 % of each other (4096 best by a little); 512 and
- * 256 slower, by the kernels' fixed cost per call. */
-#define CY_BLOCK 4096
-
-/* One block's results of the fused pass. */
-typedef struct cy_block {
-    int rc, rc_kin, rc_nod;  /* the first failing kernel; the step kernels' codes */
-    int64_t active;          /* pairs with p > 0 */
-    ct_real dt_kin, dt_nod;  /* the block's smallest limits */
-    ct_idx i_kin, i_nod;     /* their pairs (global indices; -1: none) */
-    double t[3];             /* seconds in narrow phase, force, step */
-} cy_block;
-
-/* Per-pair real arrays of the force phase. */
-enum { R_VRX, R_VRY, R_VRZ, R_VN, R_FEL, R_KTAN, R_FN, R_FX, R_FY, R_FZ, R_MS, R_K0, R_N };
-
-struct ctd_cycle {
-    ctd_cycle_params p;
-    /* The interface (borrowed arrays). */
-    ct_idx nnode, nsec, nmain, nseg;
-    const ct_real *m;
-    const ct_idx *sec, *mainn, *n1, *n2, *n3, *n4;
-    int self;
-    /* Search. */
-    ct_search *search;
-    int need_sort;
-    ct_real *x0, *y0, *z0; /* positions at the last sort */
-    /* Pair lists and friction histories, double-buffered: `cur` is the
-     * current one, 1 - cur the previous one (the source of the remap). */
-    int cur;
-    ct_pairs pairs[2];
-    ct_real *ft[2][3];
-    size_t capft[2];
-    /* Single-buffered per-pair arrays (capacity cap). */
-    size_t cap;
-    ct_idx *s[4], *old_of_new;
-    ct_real *g[13];
-    uint8_t *flag;
-    int32_t *flag7;
-    ct_real *r[R_N];
-    ct_contact_geo geo;
-    cy_block *blk; /* (cap + CY_BLOCK - 1) / CY_BLOCK records */
-    /* Assembly. */
-    ct_assemble_ws ws;
-    int ws_ready;
-    ctd_cycle_stats st;
-};
+#include "contact_cycle_internal.h"
 
 ctd_cycle_params ctd_cycle_default_params(double h)
 {
@@ -101,17 +32,15 @@ static void free_pair_arrays(ctd_cycle *cy)
     for (int i = 0; i < 13; i++)
         ct_free(cy->g[i]);
     ct_free(cy->flag);
-    ct_free(cy->flag7);
-    for (int i = 0; i < R_N; i++)
-        ct_free(cy->r[i]);
+    for (int i = 0; i < 3; i++)
+        ct_free(cy->fp[i]);
     free(cy->blk);
     cy->blk = NULL;
     memset(cy->s, 0, sizeof cy->s);
     cy->old_of_new = NULL;
     memset(cy->g, 0, sizeof cy->g);
     cy->flag = NULL;
-    cy->flag7 = NULL;
-    memset(cy->r, 0, sizeof cy->r);
+    memset(cy->fp, 0, sizeof cy->fp);
     cy->cap = 0;
 }
 
@@ -130,9 +59,8 @@ static int grow_pair_arrays(ctd_cycle *cy, size_t n, int exact)
     for (int i = 0; i < 13; i++)
         ok &= (cy->g[i] = ct_calloc(c, sizeof(ct_real))) != NULL;
     ok &= (cy->flag = ct_calloc(c, 1)) != NULL;
-    ok &= (cy->flag7 = ct_calloc(c, sizeof(int32_t))) != NULL;
-    for (int i = 0; i < R_N; i++)
-        ok &= (cy->r[i] = ct_calloc(c, sizeof(ct_real))) != NULL;
+    for (int i = 0; i < 3; i++)
+        ok &= (cy->fp[i] = ct_calloc(c, sizeof(ct_real))) != NULL;
     ok &= (cy->blk = calloc((c + CY_BLOCK - 1) / CY_BLOCK, sizeof *cy->blk)) != NULL;
     if (!ok) {
         free_pair_arrays(cy);
@@ -213,6 +141,8 @@ int ctd_cycle_init(ctd_cycle **out, const ctd_cycle_params *p, ct_idx nnode, con
         rc = grow_ft(cy, 1, 0, 1);
     if (rc == CT_OK)
         rc = grow_pair_arrays(cy, 0, 1);
+    if (rc == CT_OK)
+        rc = cti_cycle_scratch_grow(cy, cti_cycle_max_threads());
     if (rc == CT_OK) {
         rc = ct_assemble_ws_init(&cy->ws);
         cy->ws_ready = rc == CT_OK;
@@ -240,6 +170,7 @@ void ctd_cycle_destroy(ctd_cycle *cy)
     ct_free(cy->y0);
     ct_free(cy->z0);
     free_pair_arrays(cy);
+    cti_cycle_scratch_free(cy);
     if (cy->ws_ready)
         ct_assemble_ws_destroy(&cy->ws);
     free(cy);
@@ -278,11 +209,17 @@ const ct_pairs *ctd_cycle_pairs(const ctd_cycle *cy) { return &cy->pairs[cy->cur
 
 const ct_contact_geo *ctd_cycle_geo(const ctd_cycle *cy) { return &cy->geo; }
 
+const ct_real *ctd_cycle_friction(const ctd_cycle *cy, int axis)
+{
+    return axis >= 0 && axis < 3 ? cy->ft[cy->cur][axis] : NULL;
+}
+
 size_t ctd_cycle_memory(const ctd_cycle *cy)
 {
-    size_t per = 5 * sizeof(ct_idx) + 13 * sizeof(ct_real) + 1 + sizeof(int32_t) +
-                 R_N * sizeof(ct_real);
+    size_t per = 5 * sizeof(ct_idx) + 13 * sizeof(ct_real) + 1 + 3 * sizeof(ct_real);
     size_t b = cy->cap * per + (cy->capft[0] + cy->capft[1]) * 3 * sizeof(ct_real);
+    b += (size_t)cy->nscr * CY_BLOCK *
+         (CS_NREAL * sizeof(ct_real) + CS_NIDX * sizeof(ct_idx) + sizeof(int32_t));
     b += (cy->cap + CY_BLOCK - 1) / CY_BLOCK * sizeof(cy_block);
     b += ((size_t)cy->pairs[0].cap + (size_t)cy->pairs[1].cap) * 2 * sizeof(ct_idx);
     b += 3 * (size_t)cy->nnode * sizeof(ct_real);
@@ -344,16 +281,6 @@ static int phase_search(ctd_cycle *cy, const ct_real *x, const ct_real *y, const
                            cy->ft[now][1], cy->ft[now][2], cy->old_of_new, NULL);
     if (rc != CT_OK)
         return rc;
-    /* Per-pair constants: the secondary mass and the stiffness. */
-    const ct_idx *restrict nd = np->node;
-    const ct_real *restrict mass = cy->m;
-    ct_real *restrict ms = cy->r[R_MS], *restrict k0 = cy->r[R_K0];
-    const ct_real K0 = cy->p.K0;
-#pragma omp parallel for simd schedule(static)
-    for (ct_idx k = 0; k < n; k++) {
-        ms[k] = mass[nd[k]];
-        k0[k] = K0;
-    }
     /* Positions at this sort. */
     ct_real *restrict a = cy->x0, *restrict b = cy->y0, *restrict c = cy->z0;
     const ct_idx nn = cy->nnode;
@@ -374,161 +301,6 @@ static int phase_search(ctd_cycle *cy, const ct_real *x, const ct_real *y, const
     return CT_OK;
 }
 
-/* The force of pairs [k0, k1): relative velocity, normal law, damping,
- * Coulomb friction and the total pair force. Every kernel is called on the
- * block alone (below their thread-team thresholds: no team). */
-static int block_force(ctd_cycle *cy, ct_idx k0, ct_idx k1, const ct_real *vx,
-                       const ct_real *vy, const ct_real *vz, ct_real dt)
-{
-    const ct_contact_geo *g = &cy->geo;
-    ct_real *const *r = cy->r;
-    const ct_idx n = k1 - k0;
-    int rc = ct_relative_velocity(
-        n, cy->pairs[cy->cur].node + k0, cy->s[0] + k0, cy->s[1] + k0, cy->s[2] + k0,
-        cy->s[3] + k0, g->h1 + k0, g->h2 + k0, g->h3 + k0, g->h4 + k0, g->nx + k0, g->ny + k0,
-        g->nz + k0, vx, vy, vz, NULL, r[R_VRX] + k0, r[R_VRY] + k0, r[R_VRZ] + k0, r[R_VN] + k0,
-        NULL);
-    if (rc != CT_OK)
-        return rc;
-    if (cy->p.law == CTD_LAW_TYPE7) {
-        rc = ct_penalty_type7(n, g->pen + k0, g->gap + k0, r[R_K0] + k0, r[R_FEL] + k0,
-                              r[R_KTAN] + k0, NULL, cy->flag7 + k0);
-        if (rc == CT_OK)
-            rc = ct_normal_finish(n, g->pen + k0, r[R_FEL] + k0, r[R_KTAN] + k0, r[R_VN] + k0,
-                                  r[R_MS] + k0, NULL, cy->p.viss, dt, g->nx + k0, g->ny + k0,
-                                  g->nz + k0, r[R_FN] + k0, r[R_FX] + k0, r[R_FY] + k0,
-                                  r[R_FZ] + k0, NULL);
-    } else {
-        rc = ct_normal_force(n, g->pen + k0, g->nx + k0, g->ny + k0, g->nz + k0, r[R_VN] + k0,
-                             NULL, cy->p.K0, r[R_MS] + k0, NULL, cy->p.viss, dt, r[R_FX] + k0,
-                             r[R_FY] + k0, r[R_FZ] + k0, r[R_FN] + k0, NULL, NULL);
-        /* The tangent stiffness for the nodal step: K0 in contact. */
-        const ct_real *restrict pen = g->pen;
-        ct_real *restrict kt = r[R_KTAN];
-        const ct_real K0 = cy->p.K0;
-#pragma omp simd
-        for (ct_idx k = k0; k < k1; k++)
-            kt[k] = pen[k] > 0 ? K0 : 0;
-    }
-    if (rc != CT_OK || !(cy->p.mu > 0))
-        return rc;
-    ct_real *const *ft = cy->ft[cy->cur];
-    rc = ct_friction_step(n, g->nx + k0, g->ny + k0, g->nz + k0, r[R_VRX] + k0, r[R_VRY] + k0,
-                          r[R_VRZ] + k0, r[R_FN] + k0, NULL, cy->p.mu, NULL, cy->p.kt, dt, 1,
-                          ft[0] + k0, ft[1] + k0, ft[2] + k0, NULL);
-    if (rc != CT_OK)
-        return rc;
-    /* The pair force on the secondary node: normal plus tangential. */
-    ct_real *restrict fx = r[R_FX], *restrict fy = r[R_FY], *restrict fz = r[R_FZ];
-    const ct_real *restrict tx = ft[0], *restrict ty = ft[1], *restrict tz = ft[2];
-#pragma omp simd
-    for (ct_idx k = k0; k < k1; k++) {
-        fx[k] += tx[k];
-        fy[k] += ty[k];
-        fz[k] += tz[k];
-    }
-    return CT_OK;
-}
-
-/* The two step limits of pairs [k0, k1) into the block's record. */
-static void block_timestep(const ctd_cycle *cy, ct_idx k0, ct_idx k1, cy_block *b)
-{
-    const ct_idx n = k1 - k0;
-    b->rc_kin = ct_dt_type7_kinematic(n, cy->geo.pen + k0, cy->geo.gap + k0,
-                                      cy->r[R_VN] + k0, NULL, &b->dt_kin, &b->i_kin);
-    b->rc_nod = ct_dt_nodal(n, cy->pairs[cy->cur].node + k0, cy->m, NULL, cy->r[R_KTAN] + k0,
-                            NULL, &b->dt_nod, &b->i_nod);
-    b->i_kin += b->i_kin >= 0 ? k0 : 0;
-    b->i_nod += b->i_nod >= 0 ? k0 : 0;
-}
-
-/* Fold block b's limit into the running one (blocks in increasing order:
- * the first smallest wins, as in one scan). A NaN item is reported by its
- * kernel as CT_ERR_NONFINITE with its index; the first one wins. */
-static void fold_limit(int rc, ct_real d, ct_idx i, int *best_rc, ct_real *best, ct_idx *bi)
-{
-    if (*best_rc != CT_OK)
-        return;
-    if (rc != CT_OK) {
-        *best_rc = rc;
-        *best = CT_DT_NONE;
-        *bi = i;
-    } else if (i >= 0 && d < *best) {
-        *best = d;
-        *bi = i;
-    }
-}
-
-/* Narrow phase, force and time step of every pair, fused in blocks of
- * CY_BLOCK pairs so that the block's per-pair arrays stay in cache from one
- * kernel to the next (separate passes streamed about 30 arrays of the size
- * of the pair list through memory). Each kernel computes every pair alone,
- * and CY_BLOCK is a multiple of the kernels' own blocks, so the results are
- * those of whole-list calls, bit for bit. The phases are timed per block;
- * the caller shares the pass's wall time among them in proportion to the
- * sums of those times (tph: narrow, force, step). */
-static int phase_pairs(ctd_cycle *cy, ct_idx n, const ct_real *x, const ct_real *y,
-                       const ct_real *z, const ct_real *vx, const ct_real *vy,
-                       const ct_real *vz, ct_real dt, int64_t *active, double tph[3])
-{
-    const ct_pairs *pp = &cy->pairs[cy->cur];
-    const ct_idx nblk = (n + CY_BLOCK - 1) / CY_BLOCK;
-    cy_block *blk = cy->blk;
-#pragma omp parallel for schedule(static)
-    for (ct_idx bi = 0; bi < nblk; bi++) {
-        const ct_idx k0 = bi * CY_BLOCK, k1 = n - k0 < CY_BLOCK ? n : k0 + CY_BLOCK;
-        cy_block *b = &blk[bi];
-        ct_narrow_stats ns;
-        double t0 = wtime();
-        b->rc = ct_narrow_node_segment(
-            k1 - k0, pp->node + k0, pp->seg + k0, cy->n1, cy->n2, cy->n3, cy->n4, x, y, z, NULL,
-            NULL, cy->p.gap, 0, 0, cy->p.quad, cy->p.two_sided,
-            &(ct_contact_geo){cy->geo.dist + k0, cy->geo.pen + k0, cy->geo.nx + k0,
-                              cy->geo.ny + k0, cy->geo.nz + k0, cy->geo.cx + k0,
-                              cy->geo.cy + k0, cy->geo.cz + k0, cy->geo.h1 + k0,
-                              cy->geo.h2 + k0, cy->geo.h3 + k0, cy->geo.h4 + k0,
-                              cy->geo.gap + k0, cy->geo.flag + k0},
-            &ns);
-        b->active = ns.active;
-        double t1 = wtime();
-        if (b->rc == CT_OK)
-            b->rc = block_force(cy, k0, k1, vx, vy, vz, dt);
-        double t2 = wtime();
-        if (b->rc == CT_OK)
-            block_timestep(cy, k0, k1, b);
-        double t3 = wtime();
-        b->t[0] = t1 - t0;
-        b->t[1] = t2 - t1;
-        b->t[2] = t3 - t2;
-    }
-    /* In block order: the first failing kernel, the active count, the
-     * limits, and the share of each phase. */
-    int rc_kin = CT_OK, rc_nod = CT_OK;
-    ct_real dkin = CT_DT_NONE, dnod = CT_DT_NONE;
-    ct_idx ikin = -1, inod = -1;
-    double sum[3] = {0, 0, 0};
-    *active = 0;
-    for (ct_idx bi = 0; bi < nblk; bi++) {
-        const cy_block *b = &blk[bi];
-        if (b->rc != CT_OK)
-            return b->rc;
-        *active += b->active;
-        fold_limit(b->rc_kin, b->dt_kin, b->i_kin, &rc_kin, &dkin, &ikin);
-        fold_limit(b->rc_nod, b->dt_nod, b->i_nod, &rc_nod, &dnod, &inod);
-        for (int i = 0; i < 3; i++)
-            sum[i] += b->t[i];
-    }
-    for (int i = 0; i < 3; i++)
-        tph[i] = sum[i];
-    if (rc_kin != CT_OK)
-        return rc_kin;
-    cy->st.dt_kin = dkin;
-    if (rc_nod != CT_OK)
-        return rc_nod;
-    cy->st.dt_nodal = dnod;
-    return CT_OK;
-}
-
 static int phase_assemble(ctd_cycle *cy, ct_idx n, ct_real *fxn, ct_real *fyn, ct_real *fzn)
 {
     const ct_idx nn = cy->nnode;
@@ -542,8 +314,8 @@ static int phase_assemble(ctd_cycle *cy, ct_idx n, ct_real *fxn, ct_real *fyn, c
     const ct_pairs *pp = &cy->pairs[cy->cur];
     ct_asm_map map = ct_asm_map_nodeseg(n, pp->node, cy->s[0], cy->s[1], cy->s[2], cy->s[3]);
     const ct_real *const w[5] = {NULL, cy->geo.h1, cy->geo.h2, cy->geo.h3, cy->geo.h4};
-    return ct_assemble(&cy->ws, cy->p.asm_variant, &map, w, cy->r[R_FX], cy->r[R_FY],
-                       cy->r[R_FZ], nn, fxn, fyn, fzn);
+    return ct_assemble(&cy->ws, cy->p.asm_variant, &map, w, cy->fp[0], cy->fp[1],
+                       cy->fp[2], nn, fxn, fyn, fzn);
 }
 
 int ctd_cycle_step(ctd_cycle *cy, const ct_real *x, const ct_real *y, const ct_real *z,
@@ -552,10 +324,10 @@ int ctd_cycle_step(ctd_cycle *cy, const ct_real *x, const ct_real *y, const ct_r
 {
     if (!cy || !x || !y || !z || !vx || !vy || !vz || !fxn || !fyn || !fzn || !(dt >= 0))
         return CT_ERR_ARG;
-    double t0 = wtime();
+    double t0 = cti_cycle_wtime();
     int64_t nsort = cy->st.resorts;
     int rc = phase_search(cy, x, y, z);
-    double t1 = wtime();
+    double t1 = cti_cycle_wtime();
     if (cy->st.resorts != nsort)
         cy->st.t_sort += t1 - t0;
     if (rc != CT_OK) {
@@ -565,8 +337,8 @@ int ctd_cycle_step(ctd_cycle *cy, const ct_real *x, const ct_real *y, const ct_r
     ct_idx n = cy->pairs[cy->cur].n;
     int64_t active = 0;
     double tph[3] = {0, 0, 0};
-    rc = phase_pairs(cy, n, x, y, z, vx, vy, vz, dt, &active, tph);
-    double t2 = wtime();
+    rc = cti_cycle_pairs(cy, n, x, y, z, vx, vy, vz, dt, &active, tph);
+    double t2 = cti_cycle_wtime();
     /* The pass's wall time, shared among narrow phase, force and step. */
     if (rc == CT_OK) {
         double all = tph[0] + tph[1] + tph[2], w = t2 - t1;
@@ -575,7 +347,7 @@ int ctd_cycle_step(ctd_cycle *cy, const ct_real *x, const ct_real *y, const ct_r
     }
     if (rc == CT_OK)
         rc = phase_assemble(cy, n, fxn, fyn, fzn);
-    double t3 = wtime();
+    double t3 = cti_cycle_wtime();
     if (rc != CT_OK)
         return rc;
     ctd_cycle_stats *s = &cy->st;

@@ -128,6 +128,10 @@ const ct_pairs *ctd_cycle_pairs(const ctd_cycle *cy);
 /* The narrow-phase results of the last cycle (one element per candidate)
  * and the per-pair friction force history. */
 const ct_contact_geo *ctd_cycle_geo(const ctd_cycle *cy);
+/* Component axis (0, 1, 2) of the tangential friction force of each
+ * candidate after the last cycle: the history the next cycle's predictor
+ * starts from (zero for a pair out of contact). NULL for a bad axis. */
+const ct_real *ctd_cycle_friction(const ctd_cycle *cy, int axis);
 
 /* Bytes held by the interface (per-pair arrays, search and assembly
  * workspaces, positions at the last sort). */

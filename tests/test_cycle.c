@@ -326,6 +326,24 @@ Test(cycle, fused_pass_equals_whole_list_kernels)
         }
         ct_real dkin, dnod;
         whole_list_reference(&r, P, ft, f, &dkin, &dnod, ctd_cycle_geo(r.cy));
+        /* The friction history, pair by pair: the whole list's within
+         * round-off (its relative velocity sums in another order), and
+         * exactly zero out of contact. */
+        const ct_real *pen = ctd_cycle_geo(r.cy)->pen;
+        double hmag = 0, herr = 0;
+        for (int d = 0; d < 3; d++) {
+            const ct_real *h = ctd_cycle_friction(r.cy, d);
+            for (ct_idx q = 0; q < P->n; q++) {
+                if (!(pen[q] > 0))
+                    cr_assert_eq(h[q], 0, "cycle %d: pair %d out of contact keeps a history", k,
+                                 (int)q);
+                hmag = fmax(hmag, fabs((double)ft[d][q]));
+                herr = fmax(herr, fabs((double)h[q] - (double)ft[d][q]));
+            }
+        }
+        cr_assert_gt(hmag, 0, "cycle %d: no friction", k);
+        cr_assert_leq(herr, CTT_TOL(1e-12, 1e-4) * hmag, "cycle %d: friction history %g of %g", k,
+                      herr, hmag);
         double mag = 0, err = 0;
         for (int d = 0; d < 3; d++)
             for (ct_idx i = 0; i < r.n; i++) {
@@ -350,4 +368,46 @@ Test(cycle, fused_pass_equals_whole_list_kernels)
         ct_free(f[d]);
     }
     crun_free(&r);
+}
+
+/* (f) A pair that leaves contact loses its friction history: a node pressed
+ * into a quad and sliding (sticking friction) at cycle A, lifted out of the
+ * gap but kept as a candidate at cycle B (no re-sort), and put back at A's
+ * position and velocity at cycle C: at B its history is zero, and C gives
+ * A's forces bit for bit (the predictor starts from zero both times). */
+Test(cycle, friction_history_reset_out_of_contact)
+{
+    /* Nodes 0..3 the unit quad at z = 0, node 4 the secondary. */
+    ct_real x[5] = {0, 1, 1, 0, 0.5}, y[5] = {0, 0, 1, 1, 0.5}, z[5] = {0, 0, 0, 0, 0.25};
+    ct_real vx[5] = {0, 0, 0, 0, 1}, vy[5] = {0}, vz[5] = {0}, m[5] = {1, 1, 1, 1, 1};
+    ct_idx sec[1] = {4}, mainn[4] = {0, 1, 2, 3}, n1[1] = {0}, n2[1] = {1}, n3[1] = {2},
+           n4[1] = {3};
+    ctd_cycle_params p = ctd_cycle_default_params(1);
+    ctd_cycle *cy;
+    cr_assert_eq(ctd_cycle_init(&cy, &p, 5, m, 1, sec, 4, mainn, 1, n1, n2, n3, n4, 0), CT_OK);
+    ct_real fa[3][5], fb[3][5], fc[3][5];
+    const ct_real dt = (ct_real)1e-3;
+    /* A: p = 0.05 of the gap 0.3, sliding at 1 along x. */
+    cr_assert_eq(ctd_cycle_step(cy, x, y, z, vx, vy, vz, dt, fa[0], fa[1], fa[2]), CT_OK);
+    cr_assert_eq(ctd_cycle_pairs(cy)->n, 1);
+    const ct_real ha = ctd_cycle_friction(cy, 0)[0];
+    cr_assert_lt(ha, 0, "no friction force against the sliding (history %g)", (double)ha);
+    cr_assert_gt(fa[2][4], 0);
+    /* B: 0.35 above the quad, beyond the gap, within the margin. */
+    z[4] = (ct_real)0.35;
+    cr_assert_eq(ctd_cycle_step(cy, x, y, z, vx, vy, vz, dt, fb[0], fb[1], fb[2]), CT_OK);
+    cr_assert_eq(ctd_cycle_get_stats(cy)->resorts, 1, "the lift must not trigger a re-sort");
+    cr_assert_eq(ctd_cycle_pairs(cy)->n, 1);
+    for (int a = 0; a < 3; a++)
+        cr_assert_eq(ctd_cycle_friction(cy, a)[0], 0, "axis %d: history kept out of contact", a);
+    for (int a = 0; a < 3; a++)
+        for (int i = 0; i < 5; i++)
+            cr_assert_eq(fb[a][i], 0);
+    /* C: back to A. */
+    z[4] = (ct_real)0.25;
+    cr_assert_eq(ctd_cycle_step(cy, x, y, z, vx, vy, vz, dt, fc[0], fc[1], fc[2]), CT_OK);
+    cr_assert(memcmp(fa, fc, sizeof fa) == 0, "cycle C differs from cycle A");
+    cr_assert_eq(ctd_cycle_friction(cy, 0)[0], ha);
+    cr_assert_null(ctd_cycle_friction(cy, 3));
+    ctd_cycle_destroy(cy);
 }

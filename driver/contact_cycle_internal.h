@@ -1,0 +1,113 @@
+/*
+ * contact_cycle_internal.h -- what the two files of the contact cycle share:
+ * contact_cycle.c (set-up, search, assembly, the cycle) and
+ * contact_cycle_pairs.c (the fused pass over the candidate pairs: narrow
+ * phase, force, time step).
+ */
+#ifndef CTD_CONTACT_CYCLE_INTERNAL_H
+#define CTD_CONTACT_CYCLE_INTERNAL_H
+
+#include "contact_cycle.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#ifdef _OPENMP
+#include <omp.h>
+static inline double cti_cycle_wtime(void) { return omp_get_wtime(); }
+static inline int cti_cycle_max_threads(void) { return omp_get_max_threads(); }
+static inline int cti_cycle_thread(void) { return omp_get_thread_num(); }
+#else
+static inline int cti_cycle_max_threads(void) { return 1; }
+static inline int cti_cycle_thread(void) { return 0; }
+#include <time.h>
+static inline double cti_cycle_wtime(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+#endif
+
+/* Pairs per block of the fused narrow/force/step pass (phase_pairs): a
+ * multiple of the kernels' own blocks (64 for the narrow phase, 2048 for
+ * the normal force and friction), so each kernel sees the block boundaries
+ * a whole-list call would. Measured on the folded sheet, 10^6 nodes: 2048,
+ * 4096 and 8192 within 5 % of each other (4096 best by a little); 512 and
+ * 256 slower, by the kernels' fixed cost per call. */
+#define CY_BLOCK 4096
+
+/* One block's results of the fused pass. */
+typedef struct cy_block {
+    int rc, rc_kin, rc_nod;  /* the first failing kernel; the step kernels' codes */
+    int64_t active;          /* pairs with p > 0 */
+    ct_real dt_kin, dt_nod;  /* the block's smallest limits */
+    ct_idx i_kin, i_nod;     /* their pairs (global indices; -1: none) */
+    double t[3];             /* seconds in narrow phase, force, step */
+} cy_block;
+
+/*
+ * The fused pass runs the force and the step only on the block's pairs in
+ * contact (p > 0): the others have zero force, zero friction history and no
+ * step limit, which is what the kernels give them, so they are skipped
+ * (about two thirds of the candidates of the folded sheet). The block's
+ * active pairs are packed into a per-thread scratch of CY_BLOCK entries:
+ * their local indices (act), the gathered inputs and the kernels' outputs.
+ */
+enum { CS_H1, CS_H2, CS_H3, CS_H4, CS_NX, CS_NY, CS_NZ, CS_PEN, CS_GAP, CS_MS, CS_K0,
+       CS_T0, CS_T1, CS_T2, CS_VRX, CS_VRY, CS_VRZ, CS_VN, CS_FEL, CS_KTAN, CS_FN,
+       CS_FX, CS_FY, CS_FZ, CS_NREAL };
+enum { CS_ACT, CS_NODE, CS_S1, CS_S2, CS_S3, CS_S4, CS_NIDX };
+typedef struct cy_scratch {
+    ct_real *v[CS_NREAL];
+    ct_idx *i[CS_NIDX];
+    int32_t *flag7;
+    void *mem; /* the one allocation the arrays live in */
+} cy_scratch;
+
+struct ctd_cycle {
+    ctd_cycle_params p;
+    /* The interface (borrowed arrays). */
+    ct_idx nnode, nsec, nmain, nseg;
+    const ct_real *m;
+    const ct_idx *sec, *mainn, *n1, *n2, *n3, *n4;
+    int self;
+    /* Search. */
+    ct_search *search;
+    int need_sort;
+    ct_real *x0, *y0, *z0; /* positions at the last sort */
+    /* Pair lists and friction histories, double-buffered: `cur` is the
+     * current one, 1 - cur the previous one (the source of the remap). */
+    int cur;
+    ct_pairs pairs[2];
+    ct_real *ft[2][3];
+    size_t capft[2];
+    /* Single-buffered per-pair arrays (capacity cap). */
+    size_t cap;
+    ct_idx *s[4], *old_of_new;
+    ct_real *g[13];
+    uint8_t *flag;
+    ct_real *fp[3]; /* the pair force on the secondary node (assembled) */
+    ct_contact_geo geo;
+    cy_block *blk; /* (cap + CY_BLOCK - 1) / CY_BLOCK records */
+    cy_scratch *scr; /* per thread (nscr) */
+    int nscr;
+    /* Assembly. */
+    ct_assemble_ws ws;
+    int ws_ready;
+    ctd_cycle_stats st;
+};
+
+/* The fused pass over the n candidate pairs (contact_cycle_pairs.c): the
+ * active count and the seconds spent in narrow phase, force and step. */
+int cti_cycle_pairs(ctd_cycle *cy, ct_idx n, const ct_real *x, const ct_real *y,
+                    const ct_real *z, const ct_real *vx, const ct_real *vy, const ct_real *vz,
+                    ct_real dt, int64_t *active, double tph[3]);
+
+/* The per-thread scratch of the pass, for nthr threads (outside a parallel
+ * region), and its release. */
+int cti_cycle_scratch_grow(ctd_cycle *cy, int nthr);
+void cti_cycle_scratch_free(ctd_cycle *cy);
+
+#endif /* CTD_CONTACT_CYCLE_INTERNAL_H */

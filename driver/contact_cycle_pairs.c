@@ -1,0 +1,279 @@
+/*
+ * contact_cycle_pairs.c -- the fused pass of the contact cycle over the
+ * candidate pairs (see contact_cycle.h): the narrow phase of every pair,
+ * then the force and the time step of the pairs in contact.
+ *
+ * The pass runs in blocks of CY_BLOCK pairs so that a block's per-pair
+ * arrays stay in cache from one kernel to the next (separate whole-list
+ * passes streamed about 30 arrays of the size of the pair list through
+ * memory). After the narrow phase, the block's pairs in contact (p > 0) are
+ * packed into the thread's scratch, and the force and step kernels run on
+ * them alone. A pair out of contact gets from those kernels a zero force, a
+ * zero friction force and no step limit, so the pass writes exactly that
+ * for it without calling them: on the folded sheet about two candidates in
+ * three are out of contact. Every kernel computes each pair alone, so the
+ * packing changes no pair's result, and the blocks are fixed by the pair
+ * count: the results are those of whole-list calls, bit for bit, for any
+ * thread count (tests/test_cycle.c checks both).
+ */
+#include "contact_cycle_internal.h"
+
+void cti_cycle_scratch_free(ctd_cycle *cy)
+{
+    for (int t = 0; t < cy->nscr; t++)
+        ct_free(cy->scr[t].mem);
+    free(cy->scr);
+    cy->scr = NULL;
+    cy->nscr = 0;
+}
+
+int cti_cycle_scratch_grow(ctd_cycle *cy, int nthr)
+{
+    if (nthr <= cy->nscr)
+        return CT_OK;
+    cy_scratch *s = realloc(cy->scr, (size_t)nthr * sizeof *s);
+    if (!s)
+        return CT_ERR_NOMEM;
+    cy->scr = s;
+    /* Each array is a multiple of 64 bytes long, so all stay aligned. */
+    const size_t nr = CY_BLOCK * sizeof(ct_real), ni = CY_BLOCK * sizeof(ct_idx);
+    for (int t = cy->nscr; t < nthr; t++) {
+        char *m = ct_calloc(CS_NREAL * nr + CS_NIDX * ni + CY_BLOCK * sizeof(int32_t), 1);
+        if (!m)
+            return CT_ERR_NOMEM;
+        s[t].mem = m;
+        for (int a = 0; a < CS_NREAL; a++)
+            s[t].v[a] = (ct_real *)(void *)(m + (size_t)a * nr);
+        m += CS_NREAL * nr;
+        for (int a = 0; a < CS_NIDX; a++)
+            s[t].i[a] = (ct_idx *)(void *)(m + (size_t)a * ni);
+        m += CS_NIDX * ni;
+        s[t].flag7 = (int32_t *)(void *)m;
+        /* The stiffness is uniform: the TYPE7 kernel reads it per pair. */
+        for (int k = 0; k < CY_BLOCK; k++)
+            s[t].v[CS_K0][k] = cy->p.K0;
+        cy->nscr = t + 1;
+    }
+    return CT_OK;
+}
+
+/* Pack the pairs in contact of block [k0, k1) into s: their indices in the
+ * block (act) and the inputs of the force and step kernels. Returns their
+ * count. */
+static ct_idx block_pack(const ctd_cycle *cy, ct_idx k0, ct_idx k1, cy_scratch *s)
+{
+    const ct_contact_geo *g = &cy->geo;
+    const ct_real *restrict pen = g->pen + k0;
+    ct_idx *restrict act = s->i[CS_ACT];
+    ct_idx na = 0;
+    /* Every index is written, the count advances by the test: no branch. */
+    for (ct_idx k = 0; k < k1 - k0; k++) {
+        act[na] = k;
+        na += pen[k] > 0;
+    }
+    const ct_idx *restrict nd = cy->pairs[cy->cur].node + k0;
+    const ct_idx *restrict s1 = cy->s[0] + k0, *restrict s2 = cy->s[1] + k0;
+    const ct_idx *restrict s3 = cy->s[2] + k0, *restrict s4 = cy->s[3] + k0;
+    const ct_real *restrict mass = cy->m;
+    ct_idx *restrict cn = s->i[CS_NODE], *restrict c1 = s->i[CS_S1], *restrict c2 = s->i[CS_S2];
+    ct_idx *restrict c3 = s->i[CS_S3], *restrict c4 = s->i[CS_S4];
+    ct_real *const *v = s->v;
+    for (ct_idx i = 0; i < na; i++) {
+        const ct_idx k = act[i];
+        cn[i] = nd[k];
+        c1[i] = s1[k];
+        c2[i] = s2[k];
+        c3[i] = s3[k];
+        c4[i] = s4[k];
+        v[CS_MS][i] = mass[nd[k]];
+    }
+    const ct_real *const src[] = {g->h1 + k0, g->h2 + k0, g->h3 + k0, g->h4 + k0, g->nx + k0,
+                                  g->ny + k0, g->nz + k0, g->pen + k0, g->gap + k0};
+    for (int a = 0; a < 9; a++) {
+        const ct_real *restrict f = src[a];
+        ct_real *restrict t = v[CS_H1 + a];
+        for (ct_idx i = 0; i < na; i++)
+            t[i] = f[act[i]];
+    }
+    if (cy->p.mu > 0) {
+        ct_real *const *ft = cy->ft[cy->cur];
+        for (int d = 0; d < 3; d++) {
+            const ct_real *restrict f = ft[d] + k0;
+            ct_real *restrict t = v[CS_T0 + d];
+            for (ct_idx i = 0; i < na; i++)
+                t[i] = f[act[i]];
+        }
+    }
+    return na;
+}
+
+/* The force of the na packed pairs of s: relative velocity, normal law,
+ * damping, Coulomb friction. Every kernel is called on the packed pairs
+ * alone (below their thread-team thresholds: no team). */
+static int packed_force(const ctd_cycle *cy, ct_idx na, cy_scratch *s, const ct_real *vx,
+                        const ct_real *vy, const ct_real *vz, ct_real dt)
+{
+    ct_real *const *v = s->v;
+    ct_idx *const *ix = s->i;
+    int rc = ct_relative_velocity(na, ix[CS_NODE], ix[CS_S1], ix[CS_S2], ix[CS_S3], ix[CS_S4],
+                                  v[CS_H1], v[CS_H2], v[CS_H3], v[CS_H4], v[CS_NX], v[CS_NY],
+                                  v[CS_NZ], vx, vy, vz, NULL, v[CS_VRX], v[CS_VRY], v[CS_VRZ],
+                                  v[CS_VN], NULL);
+    if (rc != CT_OK)
+        return rc;
+    if (cy->p.law == CTD_LAW_TYPE7) {
+        rc = ct_penalty_type7(na, v[CS_PEN], v[CS_GAP], v[CS_K0], v[CS_FEL], v[CS_KTAN], NULL,
+                              s->flag7);
+        if (rc == CT_OK)
+            rc = ct_normal_finish(na, v[CS_PEN], v[CS_FEL], v[CS_KTAN], v[CS_VN], v[CS_MS],
+                                  NULL, cy->p.viss, dt, v[CS_NX], v[CS_NY], v[CS_NZ], v[CS_FN],
+                                  v[CS_FX], v[CS_FY], v[CS_FZ], NULL);
+    } else {
+        rc = ct_normal_force(na, v[CS_PEN], v[CS_NX], v[CS_NY], v[CS_NZ], v[CS_VN], NULL,
+                             cy->p.K0, v[CS_MS], NULL, cy->p.viss, dt, v[CS_FX], v[CS_FY],
+                             v[CS_FZ], v[CS_FN], NULL, NULL);
+        /* The tangent stiffness for the nodal step: K0, every pair is in
+         * contact. */
+        ct_real *restrict kt = v[CS_KTAN];
+        const ct_real K0 = cy->p.K0;
+        for (ct_idx i = 0; i < na; i++)
+            kt[i] = K0;
+    }
+    if (rc != CT_OK || !(cy->p.mu > 0))
+        return rc;
+    return ct_friction_step(na, v[CS_NX], v[CS_NY], v[CS_NZ], v[CS_VRX], v[CS_VRY], v[CS_VRZ],
+                            v[CS_FN], NULL, cy->p.mu, NULL, cy->p.kt, dt, 1, v[CS_T0], v[CS_T1],
+                            v[CS_T2], NULL);
+}
+
+/* Write block [k0, k1)'s pair forces (normal plus tangential) and friction
+ * histories: the packed pairs' results, zero for the others. */
+static void block_unpack(const ctd_cycle *cy, ct_idx k0, ct_idx k1, ct_idx na,
+                         const cy_scratch *s)
+{
+    const int fric = cy->p.mu > 0;
+    ct_real *const *ft = cy->ft[cy->cur];
+    const ct_idx *restrict act = s->i[CS_ACT];
+    for (int d = 0; d < 3; d++) {
+        ct_real *restrict f = cy->fp[d] + k0, *restrict h = ft[d] + k0;
+        const ct_real *restrict fn = s->v[CS_FX + d], *restrict fh = s->v[CS_T0 + d];
+        memset(f, 0, sizeof(ct_real) * (size_t)(k1 - k0));
+        if (!fric) {
+            for (ct_idx i = 0; i < na; i++)
+                f[act[i]] = fn[i];
+            continue;
+        }
+        memset(h, 0, sizeof(ct_real) * (size_t)(k1 - k0));
+        for (ct_idx i = 0; i < na; i++) {
+            f[act[i]] = fn[i] + fh[i];
+            h[act[i]] = fh[i];
+        }
+    }
+}
+
+/* The two step limits of the na packed pairs of block k0 into the block's
+ * record (indices of the whole list; packing keeps the order, so the
+ * smallest index still wins a tie). */
+static void packed_timestep(const ctd_cycle *cy, ct_idx k0, ct_idx na, const cy_scratch *s,
+                            cy_block *b)
+{
+    const ct_idx *act = s->i[CS_ACT];
+    b->rc_kin = ct_dt_type7_kinematic(na, s->v[CS_PEN], s->v[CS_GAP], s->v[CS_VN], NULL,
+                                      &b->dt_kin, &b->i_kin);
+    b->rc_nod = ct_dt_nodal(na, s->i[CS_NODE], cy->m, NULL, s->v[CS_KTAN], NULL, &b->dt_nod,
+                            &b->i_nod);
+    b->i_kin = b->i_kin >= 0 ? k0 + act[b->i_kin] : -1;
+    b->i_nod = b->i_nod >= 0 ? k0 + act[b->i_nod] : -1;
+}
+
+/* Fold block b's limit into the running one (blocks in increasing order:
+ * the first smallest wins, as in one scan). A NaN item is reported by its
+ * kernel as CT_ERR_NONFINITE with its index; the first one wins. */
+static void fold_limit(int rc, ct_real d, ct_idx i, int *best_rc, ct_real *best, ct_idx *bi)
+{
+    if (*best_rc != CT_OK)
+        return;
+    if (rc != CT_OK) {
+        *best_rc = rc;
+        *best = CT_DT_NONE;
+        *bi = i;
+    } else if (i >= 0 && d < *best) {
+        *best = d;
+        *bi = i;
+    }
+}
+
+/* The narrow phase, force and time step of every pair, fused in blocks
+ * (see the head of the file). The phases are timed per block; the caller
+ * shares the pass's wall time among them in proportion to the sums of
+ * those times (tph: narrow, force with its packing, step). */
+int cti_cycle_pairs(ctd_cycle *cy, ct_idx n, const ct_real *x, const ct_real *y,
+                    const ct_real *z, const ct_real *vx, const ct_real *vy, const ct_real *vz,
+                    ct_real dt, int64_t *active, double tph[3])
+{
+    /* A team larger than any before gets its scratch here, once. */
+    int rc = cti_cycle_scratch_grow(cy, cti_cycle_max_threads());
+    if (rc != CT_OK)
+        return rc;
+    const ct_pairs *pp = &cy->pairs[cy->cur];
+    const ct_idx nblk = (n + CY_BLOCK - 1) / CY_BLOCK;
+    cy_block *blk = cy->blk;
+#pragma omp parallel for schedule(static)
+    for (ct_idx bi = 0; bi < nblk; bi++) {
+        const ct_idx k0 = bi * CY_BLOCK, k1 = n - k0 < CY_BLOCK ? n : k0 + CY_BLOCK;
+        cy_block *b = &blk[bi];
+        cy_scratch *s = &cy->scr[cti_cycle_thread()];
+        double t0 = cti_cycle_wtime();
+        b->rc = ct_narrow_node_segment(
+            k1 - k0, pp->node + k0, pp->seg + k0, cy->n1, cy->n2, cy->n3, cy->n4, x, y, z, NULL,
+            NULL, cy->p.gap, 0, 0, cy->p.quad, cy->p.two_sided,
+            &(ct_contact_geo){cy->geo.dist + k0, cy->geo.pen + k0, cy->geo.nx + k0,
+                              cy->geo.ny + k0, cy->geo.nz + k0, cy->geo.cx + k0,
+                              cy->geo.cy + k0, cy->geo.cz + k0, cy->geo.h1 + k0,
+                              cy->geo.h2 + k0, cy->geo.h3 + k0, cy->geo.h4 + k0,
+                              cy->geo.gap + k0, cy->geo.flag + k0},
+            NULL);
+        double t1 = cti_cycle_wtime();
+        ct_idx na = 0;
+        if (b->rc == CT_OK) {
+            na = block_pack(cy, k0, k1, s);
+            b->rc = packed_force(cy, na, s, vx, vy, vz, dt);
+            if (b->rc == CT_OK)
+                block_unpack(cy, k0, k1, na, s);
+        }
+        b->active = na;
+        double t2 = cti_cycle_wtime();
+        if (b->rc == CT_OK)
+            packed_timestep(cy, k0, na, s, b);
+        double t3 = cti_cycle_wtime();
+        b->t[0] = t1 - t0;
+        b->t[1] = t2 - t1;
+        b->t[2] = t3 - t2;
+    }
+    /* In block order: the first failing kernel, the active count, the
+     * limits, and the share of each phase. */
+    int rc_kin = CT_OK, rc_nod = CT_OK;
+    ct_real dkin = CT_DT_NONE, dnod = CT_DT_NONE;
+    ct_idx ikin = -1, inod = -1;
+    double sum[3] = {0, 0, 0};
+    *active = 0;
+    for (ct_idx bi = 0; bi < nblk; bi++) {
+        const cy_block *b = &blk[bi];
+        if (b->rc != CT_OK)
+            return b->rc;
+        *active += b->active;
+        fold_limit(b->rc_kin, b->dt_kin, b->i_kin, &rc_kin, &dkin, &ikin);
+        fold_limit(b->rc_nod, b->dt_nod, b->i_nod, &rc_nod, &dnod, &inod);
+        for (int i = 0; i < 3; i++)
+            sum[i] += b->t[i];
+    }
+    for (int i = 0; i < 3; i++)
+        tph[i] = sum[i];
+    if (rc_kin != CT_OK)
+        return rc_kin;
+    cy->st.dt_kin = dkin;
+    if (rc_nod != CT_OK)
+        return rc_nod;
+    cy->st.dt_nodal = dnod;
+    return CT_OK;
+}
