@@ -45,13 +45,13 @@ static inline ct_real cti_ee_q(ct_real ux, ct_real uy, ct_real uz, ct_real vx, c
 
 /* The end points A1, A2, B1, B2 of n pairs into C (x, y, z of each in
  * turn), one scalar load and store each (kept scalar: see cti_nr_fetch). */
-CTI_NR_NOVEC static void cti_ee_fetch(const ct_idx *restrict ea, const ct_idx *restrict eb,
+CTI_NOVEC static void cti_ee_fetch(const ct_idx *restrict ea, const ct_idx *restrict eb,
                                       const ct_idx *restrict e1, const ct_idx *restrict e2,
                                       const ct_real *restrict x, const ct_real *restrict y,
                                       const ct_real *restrict z, ct_idx n,
                                       ct_real (*restrict C)[CTI_EE_BLOCK])
 {
-    CTI_NR_NOVEC_LOOP
+    CTI_NOVEC_LOOP
     for (ct_idx j = 0; j < n; j++) {
         ct_idx ia = ea[j], ib = eb[j];
         ct_idx v0 = e1[ia], v1 = e2[ia], v2 = e1[ib], v3 = e2[ib];

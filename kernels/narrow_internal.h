@@ -184,20 +184,6 @@ static inline void cti_nr_flags_out(const cti_nr_int *restrict f, uint8_t *restr
     const cti_nr_int nonfin = !(zsum_ - zsum_ == 0);                                       \
     (void)x4; (void)y4; (void)z4
 
-/* A function, and a loop in it, that the compiler must not vectorise (the
- * copy loops of cti_nr_fetch). gcc has no loop pragma for it before gcc 14,
- * so the function's optimisation options say it; clang has the pragma. */
-#if defined(__clang__)
-#define CTI_NR_NOVEC
-#define CTI_NR_NOVEC_LOOP _Pragma("clang loop vectorize(disable) interleave(disable)")
-#elif defined(__GNUC__)
-#define CTI_NR_NOVEC __attribute__((optimize("no-tree-vectorize")))
-#define CTI_NR_NOVEC_LOOP
-#else
-#define CTI_NR_NOVEC
-#define CTI_NR_NOVEC_LOOP
-#endif
-
 /* Force inlining of the larger helpers: a call left in a simd loop stops
  * its vectorisation. */
 #if defined(__GNUC__)

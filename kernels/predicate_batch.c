@@ -40,27 +40,17 @@ enum { PB_UNDECIDED = 2 };
  * may follow each thread's own batches. */
 enum { PB_SKIP = 15 };
 
-/* Scalar loads on purpose: the compilers would otherwise vectorise these
- * loops with gathers, which measured slower here (gcc: 17 % of the bucket
- * search on plates 10^6, against 14 % scalar). */
-#if defined(__clang__)
-#define PB_SCALAR
-#define PB_NOVEC _Pragma("clang loop vectorize(disable)")
-#elif defined(__GNUC__)
-#define PB_SCALAR __attribute__((optimize("no-tree-vectorize")))
-#define PB_NOVEC
-#else
-#define PB_SCALAR
-#define PB_NOVEC
-#endif
+/* The copy loops below are scalar on purpose (CTI_NOVEC): vectorised, they
+ * become gathers, which measured slower here (gcc: 17 % of the bucket search
+ * on plates 10^6, against 14 % scalar). */
 
-PB_SCALAR void cti_pair_batch_load(cti_pair_batch *restrict b, const ct_real *restrict x,
+CTI_NOVEC void cti_pair_batch_load(cti_pair_batch *restrict b, const ct_real *restrict x,
                          const ct_real *restrict y, const ct_real *restrict z,
                          const ct_idx *restrict n1, const ct_idx *restrict n2,
                          const ct_idx *restrict n3, const ct_idx *restrict n4)
 {
     const int n = b->n;
-    PB_NOVEC
+    CTI_NOVEC_LOOP
     for (int k = 0; k < n; k++) {
         const ct_idx i = b->node[k], j = b->seg[k];
         const ct_idx a = n1[j], c = n2[j], e = n3[j], f = n4[j];
@@ -72,12 +62,12 @@ PB_SCALAR void cti_pair_batch_load(cti_pair_batch *restrict b, const ct_real *re
     }
 }
 
-PB_SCALAR void cti_pair_batch_load_rec(cti_pair_batch *restrict b, const ct_real *restrict x,
+CTI_NOVEC void cti_pair_batch_load_rec(cti_pair_batch *restrict b, const ct_real *restrict x,
                              const ct_real *restrict y, const ct_real *restrict z,
                              const ct_real *restrict rec)
 {
     const int n = b->n;
-    PB_NOVEC
+    CTI_NOVEC_LOOP
     for (int k = 0; k < n; k++) {
         const ct_idx i = b->node[k];
         const ct_real *restrict r = rec + (size_t)12 * (size_t)b->seg[k];
@@ -92,10 +82,10 @@ PB_SCALAR void cti_pair_batch_load_rec(cti_pair_batch *restrict b, const ct_real
 /* Move the coordinates of the undecided lanes (ok[k] >= PB_UNDECIDED) to
  * the front of the batch's arrays, in order, and their lane numbers to idx;
  * returns how many. In place: lane k moves to m <= k. */
-PB_SCALAR static int pb_compact(cti_pair_batch *restrict b, int *restrict idx)
+CTI_NOVEC static int pb_compact(cti_pair_batch *restrict b, int *restrict idx)
 {
     int m = 0;
-    PB_NOVEC
+    CTI_NOVEC_LOOP
     for (int k = 0; k < b->n; k++) {
         if (b->ok[k] < PB_UNDECIDED)
             continue;

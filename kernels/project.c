@@ -56,7 +56,7 @@ void cti_nr_gather(const cti_nr_args *a, ct_idx k0, ct_idx n, cti_nr_blk *b)
 /* The coordinates of a block's pairs, one scalar load and store each. The
  * loops are kept scalar: vectorised, they would be the vector gathers this
  * copy exists to avoid. */
-CTI_NR_NOVEC void cti_nr_fetch(const cti_nr_args *a, ct_idx k0, ct_idx n, int quad,
+CTI_NOVEC void cti_nr_fetch(const cti_nr_args *a, ct_idx k0, ct_idx n, int quad,
                                cti_nr_blk *b)
 {
     const ct_idx *restrict node = a->node + k0, *restrict seg = a->seg + k0;
@@ -64,7 +64,7 @@ CTI_NR_NOVEC void cti_nr_fetch(const cti_nr_args *a, ct_idx k0, ct_idx n, int qu
     const ct_idx *restrict n3 = a->n3, *restrict n4 = a->n4;
     const ct_real *restrict X = a->x, *restrict Y = a->y, *restrict Z = a->z;
     if (!quad) {
-        CTI_NR_NOVEC_LOOP
+        CTI_NOVEC_LOOP
         for (ct_idx j = 0; j < n; j++) {
             ct_idx i = node[j], s = seg[j];
             ct_idx i1 = n1[s], i2 = n2[s], i3 = n3[s];
@@ -75,7 +75,7 @@ CTI_NR_NOVEC void cti_nr_fetch(const cti_nr_args *a, ct_idx k0, ct_idx n, int qu
         }
         return;
     }
-    CTI_NR_NOVEC_LOOP
+    CTI_NOVEC_LOOP
     for (ct_idx j = 0; j < n; j++) {
         ct_idx i = node[j], s = seg[j];
         ct_idx i1 = n1[s], i2 = n2[s], i3 = n3[s], i4 = n4[s];
