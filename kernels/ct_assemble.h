@@ -14,6 +14,14 @@
  * With weights summing to 1 on each side, the total force of every pair is
  * zero (and, with the weights of the contact points, so is its moment).
  *
+ * A pair whose force is exactly zero (a candidate out of contact: most of a
+ * contact cycle's list) is skipped by the serial and coloured loops: its
+ * contributions are zeros, and x + 0 == x for every x but -0, which sums
+ * that start from +0 never produce. So the skip changes no bit of the
+ * result, unless the output arrays already hold -0 or a weight is NaN or
+ * infinite (0 * inf would have made a NaN); the other variants add the
+ * zeros.
+ *
  * The slot map depends only on the pair list, so it is analysed once per
  * pair list (after each search): ct_assemble_prepare() colours the pairs or
  * builds the node->slot map the chosen variant needs, and ct_assemble() then
