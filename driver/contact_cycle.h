@@ -8,22 +8,26 @@
  *     search (ct_search_run), the assembly preparation (ct_asm_seg_slots,
  *     ct_assemble_prepare) and the friction history carried from the old
  *     pair list to the new one (ct_friction_remap);
- *  2. narrow phase (ct_narrow_node_segment);
- *  3. force: the relative velocity at the contact point, the normal law
+ *  2. narrow phase (ct_narrow_node_segment) of every candidate;
+ *  3. force, for the pairs in contact (p > 0; the others get zero force and
+ *     zero friction history): the relative velocity at the contact point, the normal law
  *     (TYPE7, ct_penalty_type7, or linear), damping and the normal force
  *     vector (ct_normal_finish / ct_normal_force), Coulomb friction
  *     (ct_friction_step), and the total pair force;
  *  4. assembly into the nodal force arrays (ct_assemble, colouring by
  *     default);
- *  5. time step: TYPE7 kinematic (ct_dt_type7_kinematic) and nodal
- *     (ct_dt_nodal with the contact tangent stiffness).
+ *  5. time step, for the pairs in contact: TYPE7 kinematic
+ *     (ct_dt_type7_kinematic) and nodal (ct_dt_nodal with the contact
+ *     tangent stiffness).
  * Each phase is timed (omp_get_wtime) and the times accumulate in the
  * interface's statistics.
  *
  * Memory: per-pair arrays are allocated at a re-sort when the pair count
  * exceeds their capacity (grown with 50% headroom) and kept; a cycle
  * without a re-sort allocates nothing, and neither does a re-sort whose
- * pairs fit. Results are bit-identical for any OMP_NUM_THREADS.
+ * pairs fit. The per-thread scratch of the force pass is allocated at
+ * creation for omp_get_max_threads() threads, and again only by a cycle
+ * run with more threads than any before. Results are bit-identical for any OMP_NUM_THREADS.
  */
 #ifndef CTD_CONTACT_CYCLE_H
 #define CTD_CONTACT_CYCLE_H
@@ -125,8 +129,7 @@ void ctd_cycle_stats_reset(ctd_cycle *cy);
 /* The current candidate pairs (valid until the next step). */
 const ct_pairs *ctd_cycle_pairs(const ctd_cycle *cy);
 
-/* The narrow-phase results of the last cycle (one element per candidate)
- * and the per-pair friction force history. */
+/* The narrow-phase results of the last cycle (one element per candidate). */
 const ct_contact_geo *ctd_cycle_geo(const ctd_cycle *cy);
 /* Component axis (0, 1, 2) of the tangential friction force of each
  * candidate after the last cycle: the history the next cycle's predictor

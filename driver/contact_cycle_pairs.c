@@ -87,6 +87,8 @@ static ct_idx block_pack(const ctd_cycle *cy, ct_idx k0, ct_idx k1, cy_scratch *
         c4[i] = s4[k];
         v[CS_MS][i] = mass[nd[k]];
     }
+    /* The nine geometry inputs, in the order of their scratch arrays. */
+    _Static_assert(CS_GAP == CS_H1 + 8, "the geometry scratch arrays must be consecutive");
     const ct_real *const src[] = {g->h1 + k0, g->h2 + k0, g->h3 + k0, g->h4 + k0, g->nx + k0,
                                   g->ny + k0, g->nz + k0, g->pen + k0, g->gap + k0};
     for (int a = 0; a < 9; a++) {

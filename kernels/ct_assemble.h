@@ -15,10 +15,11 @@
  * zero (and, with the weights of the contact points, so is its moment).
  *
  * A pair whose force is exactly zero (a candidate out of contact: most of a
- * contact cycle's list) is skipped by the serial and coloured loops: its
- * contributions are zeros, and x + 0 == x for every x but -0, which sums
- * that start from +0 never produce. So the skip changes no bit of the
- * result, unless the output arrays already hold -0 or a weight is NaN or
+ * contact cycle's list) is skipped by the serial loop and the coloured
+ * blocks (block > 1, the default; the one-pair colouring's vector loop adds
+ * them): its contributions are zeros, and x + 0 == x for every x but -0,
+ * which sums that start from +0 never produce. So the skip changes no bit of
+ * the result, unless the output arrays already hold -0 or a weight is NaN or
  * infinite (0 * inf would have made a NaN); the other variants add the
  * zeros.
  *

@@ -122,8 +122,8 @@ int ct_pair_force_linear_coulomb(
 #define CTI_RELVEL_SUB 192
 
 /* The velocities of pairs [i0, i1) (i1 - i0 <= CTI_RELVEL_SUB) into w:
- * w[3 j + c] holds component c of node j (0: the secondary node, 1..4 the
- * segment's corners), a row per pair. Scalar on purpose. */
+ * w[3 c + a][k - i0] is component a (x, y, z) of node c of pair k (c = 0:
+ * the secondary node, 1..4 the segment's corners). Scalar on purpose. */
 CTI_NOVEC static void cti_relvel_fetch(int64_t i0, int64_t i1, const ct_idx *restrict node,
                                        const ct_idx *restrict s1, const ct_idx *restrict s2,
                                        const ct_idx *restrict s3, const ct_idx *restrict s4,
