@@ -55,8 +55,9 @@ static void bsp_free(void *p)
     ct_free(st->arena);
     for (int t = 0; t < st->nthr; t++) {
         ct_free(st->stk[t].a);
+        ct_free(st->stk[t].rec);
         ct_free(st->stk[t].lb);
-        ct_free(st->stk[t].hit);
+        ct_free(st->stk[t].lid);
     }
     free(st->stk);
     free(st);
@@ -66,9 +67,10 @@ static size_t bsp_memory(const void *p)
 {
     const bsp_state *st = p;
     size_t b = st->nodecap * (3 * sizeof(bsp_f) + sizeof(ct_idx)) +
-               st->segcap * 6 * sizeof(bsp_f) + st->arenacap * sizeof(ct_idx);
+               st->segcap * BSP_REC * sizeof(bsp_f) + st->arenacap * sizeof(ct_idx);
     for (int t = 0; t < st->nthr; t++)
-        b += st->stk[t].cap * sizeof(ct_idx) + st->stk[t].lbcap * (6 * sizeof(bsp_f) + 1);
+        b += st->stk[t].cap * sizeof(ct_idx) + st->stk[t].rcap * BSP_REC * sizeof(bsp_f) +
+             st->stk[t].lbcap * (6 * sizeof(bsp_f) + sizeof(ct_idx));
     return b;
 }
 
@@ -127,12 +129,12 @@ static int bsp_prepare(ct_search *s, const ct_search_input *in, bsp_state **out)
         st->nodecap = c;
     }
     if (ns > st->segcap || !st->sb) {
-        size_t c = st->segcap * 6;
+        size_t c = st->segcap * BSP_REC;
         void *a = st->sb;
-        if (cti_grow(&a, &c, 6 * ns, sizeof(bsp_f), 0))
+        if (cti_grow(&a, &c, BSP_REC * ns, sizeof(bsp_f), 0))
             return CT_ERR_NOMEM;
         st->sb = a;
-        st->segcap = c / 6;
+        st->segcap = c / BSP_REC;
     }
     size_t want = 6 * ns + 4096;
     if (want > st->arenacap || !st->arena) {
@@ -173,52 +175,41 @@ static ct_idx bsp_split_nodes(bsp_state *st, ct_idx n0, ct_idx n1, int ax, bsp_f
     return i;
 }
 
-#if defined(__clang__)
-#define BSP_NO_VECTORIZE _Pragma("clang loop vectorize(disable)")
-#else
-#define BSP_NO_VECTORIZE
-#endif
-
-/* Stable split of a sorted segment list into the lists of the two halves
- * (written to l and r); returns the counts. */
+/* Stable split of a sorted segment list into the lists of the two halves;
+ * returns the counts. A list of numbers (segs, written to l and r) gathers
+ * one record per segment; a list of records (recs, written to lr and rr)
+ * is read with unit stride. Either way a segment costs one compare per
+ * half (rec_meets) and branch-free appends. */
 static void bsp_split_segs(const bsp_f *restrict sb, const ct_idx *restrict segs, ct_idx ns,
                            const bsp_box *bl, const bsp_box *br, ct_idx *restrict l,
                            ct_idx *restrict r, ct_idx *nl, ct_idx *nr)
 {
-    /* In chunks: the boxes are first copied with scalar loads into arrays
-     * of this chunk (gathers measured slower), the twelve comparisons of a
-     * chunk then run in SIMD lanes, and a scalar loop appends the indices.
-     * The comparisons are box_meets's, so the lists are the same. */
-    enum { CH = 256 };
-    bsp_f c0[CH], c1[CH], c2[CH], c3[CH], c4[CH], c5[CH];
-    unsigned char ml[CH], mr[CH];
-    const bsp_f bl0 = bl->lo[0], bl1 = bl->lo[1], bl2 = bl->lo[2];
-    const bsp_f bh0 = bl->hi[0], bh1 = bl->hi[1], bh2 = bl->hi[2];
-    const bsp_f rl0 = br->lo[0], rl1 = br->lo[1], rl2 = br->lo[2];
-    const bsp_f rh0 = br->hi[0], rh1 = br->hi[1], rh2 = br->hi[2];
+    const bsp_key kl = bsp_key_of(bl), kr = bsp_key_of(br);
     ct_idx a = 0, b = 0;
-    for (ct_idx q0 = 0; q0 < ns; q0 += CH) {
-        const int n = (int)CTI_MIN((ct_idx)CH, ns - q0);
-        BSP_NO_VECTORIZE
-        for (int q = 0; q < n; q++) {
-            const bsp_f *bx = sb + 6 * (size_t)segs[q0 + q];
-            c0[q] = bx[0], c1[q] = bx[1], c2[q] = bx[2];
-            c3[q] = bx[3], c4[q] = bx[4], c5[q] = bx[5];
-        }
-#pragma omp simd
-        for (int q = 0; q < n; q++) {
-            ml[q] = (unsigned char)((c0[q] <= bh0) & (c3[q] >= bl0) & (c1[q] <= bh1) &
-                                    (c4[q] >= bl1) & (c2[q] <= bh2) & (c5[q] >= bl2));
-            mr[q] = (unsigned char)((c0[q] <= rh0) & (c3[q] >= rl0) & (c1[q] <= rh1) &
-                                    (c4[q] >= rl1) & (c2[q] <= rh2) & (c5[q] >= rl2));
-        }
-        for (int q = 0; q < n; q++) {
-            ct_idx j = segs[q0 + q];
-            l[a] = j;
-            a += ml[q];
-            r[b] = j;
-            b += mr[q];
-        }
+    for (ct_idx q = 0; q < ns; q++) {
+        const ct_idx j = segs[q];
+        const bsp_f *rec = sb + BSP_REC * (size_t)j;
+        l[a] = j;
+        a += rec_meets(rec, kl);
+        r[b] = j;
+        b += rec_meets(rec, kr);
+    }
+    *nl = a;
+    *nr = b;
+}
+
+static void bsp_split_recs(const bsp_f *restrict recs, ct_idx ns, const bsp_box *bl,
+                           const bsp_box *br, bsp_f *restrict lr, bsp_f *restrict rr,
+                           ct_idx *nl, ct_idx *nr)
+{
+    const bsp_key kl = bsp_key_of(bl), kr = bsp_key_of(br);
+    ct_idx a = 0, b = 0;
+    for (ct_idx q = 0; q < ns; q++) {
+        const bsp_f *rec = recs + BSP_REC * (size_t)q;
+        memcpy(lr + BSP_REC * (size_t)a, rec, BSP_REC * sizeof *rec);
+        a += rec_meets(rec, kl);
+        memcpy(rr + BSP_REC * (size_t)b, rec, BSP_REC * sizeof *rec);
+        b += rec_meets(rec, kr);
     }
     *nl = a;
     *nr = b;
@@ -259,13 +250,21 @@ typedef struct bsp_cut {
     bsp_box bl, br;
 } bsp_cut;
 
-/* Split the box of nodes [n0, n1) with segment list segs[0..ns-1]: the
- * axes are tried from the longest until one reduces the segment count (the
- * nodes are partitioned in place, the lists written to l and r, each with
- * room for ns). Returns 1 with the split in *k, or 0 when the box must be a
- * leaf. */
+/* A box's segment list: numbers (segs, split into l and r) or records
+ * (recs, split into lr and rr), each output with room for ns. */
+typedef struct bsp_list {
+    const ct_idx *segs;
+    ct_idx *l, *r;
+    const bsp_f *recs;
+    bsp_f *lr, *rr;
+} bsp_list;
+
+/* Split the box of nodes [n0, n1) with its list of ns segments: the axes
+ * are tried from the longest until one reduces the segment count (the
+ * nodes are partitioned in place, the two lists written). Returns 1 with
+ * the split in *k, or 0 when the box must be a leaf. */
 static int bsp_split(const bsp_ctx *c, ct_idx n0, ct_idx n1, const bsp_box *box,
-                     const ct_idx *segs, ct_idx ns, ct_idx *l, ct_idx *r, bsp_cut *k)
+                     const bsp_list *li, ct_idx ns, bsp_cut *k)
 {
     int tried = 0;
     for (;;) {
@@ -275,20 +274,24 @@ static int bsp_split(const bsp_ctx *c, ct_idx n0, ct_idx n1, const bsp_box *box,
             return 0;
         tried |= 1 << ax;
         k->m = bsp_split_nodes(c->st, n0, n1, ax, mid, &k->bl, &k->br);
-        bsp_split_segs(c->st->sb, segs, ns, &k->bl, &k->br, l, r, &k->nl, &k->nr);
+        if (li->recs)
+            bsp_split_recs(li->recs, ns, &k->bl, &k->br, li->lr, li->rr, &k->nl, &k->nr);
+        else
+            bsp_split_segs(c->st->sb, li->segs, ns, &k->bl, &k->br, li->l, li->r, &k->nl,
+                           &k->nr);
         if (!(k->nl == ns && k->nr == ns))
             return 1; /* else no reduction: try another axis */
     }
 }
 
-/* Room for n entries in a thread's stack of segment lists, keeping its
- * first `keep`; 0 (and the error flag) when it cannot grow. */
-static int bsp_stack_room(bsp_ctx *c, bsp_stack *sk, size_t n, size_t keep)
+/* Room for n entries in a thread's index scratch; 0 (and the error flag)
+ * when it cannot grow. */
+static int bsp_stack_room(bsp_ctx *c, bsp_stack *sk, size_t n)
 {
     if (n <= sk->cap)
         return 1;
     void *p = sk->a;
-    if (cti_grow(&p, &sk->cap, n, sizeof(ct_idx), keep) != CT_OK) {
+    if (cti_grow(&p, &sk->cap, n, sizeof(ct_idx), 0) != CT_OK) {
 #pragma omp atomic write
         c->err = CT_ERR_NOMEM;
         return 0;
@@ -297,31 +300,48 @@ static int bsp_stack_room(bsp_ctx *c, bsp_stack *sk, size_t n, size_t keep)
     return 1;
 }
 
-/* Subtree below the task cutoff, on this thread: the segment list is at
- * offset `off` of this thread's stack and `base` is the stack's first free
- * entry (lists of the enclosing boxes live below it). */
+/* Room for n records in a thread's record stack, keeping its first `keep`;
+ * 0 (and the error flag) when it cannot grow. */
+static int bsp_rec_room(bsp_ctx *c, bsp_stack *sk, size_t n, size_t keep)
+{
+    if (n <= sk->rcap)
+        return 1;
+    void *p = sk->rec;
+    if (cti_grow(&p, &sk->rcap, n, BSP_REC * sizeof(bsp_f), keep) != CT_OK) {
+#pragma omp atomic write
+        c->err = CT_ERR_NOMEM;
+        return 0;
+    }
+    sk->rec = p;
+    return 1;
+}
+
+/* Subtree below the task cutoff, on this thread: the segment list is ns
+ * records at offset `off` of this thread's record stack and `base` is the
+ * stack's first free record (lists of the enclosing boxes live below it).
+ * A split writes the left list at base and the right one at base + ns, so
+ * neither moves. */
 static void bsp_serial(bsp_ctx *c, bsp_stack *sk, ct_idx n0, ct_idx n1, const bsp_box *box,
                        size_t off, ct_idx ns, size_t base, int depth)
 {
     if (n1 <= n0 || ns == 0)
         return;
     if (bsp_is_leaf(c, n1 - n0, ns, depth)) {
-        cti_bsp_leaf(c, n0, n1, sk->a + off, ns);
+        cti_bsp_leaf_rec(c, n0, n1, sk->rec + BSP_REC * off, ns);
         return;
     }
-    if (!bsp_stack_room(c, sk, base + 2 * (size_t)ns, base))
+    if (!bsp_rec_room(c, sk, base + 2 * (size_t)ns, base))
         return;
-    ct_idx *l = sk->a + base;
+    bsp_f *l = sk->rec + BSP_REC * base;
+    bsp_list li = {NULL, NULL, NULL, sk->rec + BSP_REC * off, l, l + BSP_REC * (size_t)ns};
     bsp_cut k;
-    if (!bsp_split(c, n0, n1, box, sk->a + off, ns, l, l + ns, &k)) {
-        cti_bsp_leaf(c, n0, n1, sk->a + off, ns);
+    if (!bsp_split(c, n0, n1, box, &li, ns, &k)) {
+        cti_bsp_leaf_rec(c, n0, n1, sk->rec + BSP_REC * off, ns);
         return;
     }
-    /* Pack the right list after the left one. */
-    memmove(l + k.nl, l + ns, (size_t)k.nr * sizeof *l);
-    size_t nb = base + (size_t)k.nl + (size_t)k.nr;
+    size_t nb = base + (size_t)ns + (size_t)k.nr;
     bsp_serial(c, sk, n0, k.m, &k.bl, base, k.nl, nb, depth + 1);
-    bsp_serial(c, sk, k.m, n1, &k.br, base + (size_t)k.nl, k.nr, nb, depth + 1);
+    bsp_serial(c, sk, k.m, n1, &k.br, base + (size_t)ns, k.nr, nb, depth + 1);
 }
 
 /* Room for n entries in the shared arena, or NULL (and the overflow flag). */
@@ -349,11 +369,14 @@ static void bsp_task(bsp_ctx *c, ct_idx n0, ct_idx n1, bsp_box box, const ct_idx
     if (n1 <= n0 || ns == 0)
         return;
     if ((int64_t)(n1 - n0) + ns < c->task_min) {
-        /* Run the subtree here: copy the list to this thread's stack. */
+        /* Run the subtree here, on its list as records in this thread's
+         * record stack. */
         bsp_stack *sk = &c->st->stk[cti_thread_id()];
-        if (!bsp_stack_room(c, sk, (size_t)ns, 0))
+        if (!bsp_rec_room(c, sk, (size_t)ns, 0))
             return;
-        memcpy(sk->a, segs, (size_t)ns * sizeof *segs);
+        const bsp_f *restrict sb = c->st->sb;
+        for (ct_idx q = 0; q < ns; q++)
+            bsp_rec_put(sk->rec + BSP_REC * (size_t)q, sb + BSP_REC * (size_t)segs[q], segs[q]);
         bsp_serial(c, sk, n0, n1, &box, 0, ns, (size_t)ns, depth);
         return;
     }
@@ -364,10 +387,11 @@ static void bsp_task(bsp_ctx *c, ct_idx n0, ct_idx n1, bsp_box box, const ct_idx
     /* Split into this thread's stack (no task switch can happen until the
      * lists are copied), then move the exact lists into the shared arena. */
     bsp_stack *sk = &c->st->stk[cti_thread_id()];
-    if (!bsp_stack_room(c, sk, 2 * (size_t)ns, 0))
+    if (!bsp_stack_room(c, sk, 2 * (size_t)ns))
         return;
+    bsp_list li = {segs, sk->a, sk->a + ns, NULL, NULL, NULL};
     bsp_cut k;
-    if (!bsp_split(c, n0, n1, &box, segs, ns, sk->a, sk->a + ns, &k)) {
+    if (!bsp_split(c, n0, n1, &box, &li, ns, &k)) {
         cti_bsp_leaf(c, n0, n1, segs, ns);
         return;
     }
@@ -429,12 +453,13 @@ int cti_search_bsp(ct_search *s, const ct_search_input *in, ct_pairs *out)
         ct_idx *segs = st->arena;
         ct_idx nroot = 0;
         if (nkeep > 0) {
+            const bsp_key kroot = bsp_key_of(&root);
             int64_t *sc = st->blk + BSP_BLOCKS + 1;
 #pragma omp parallel for schedule(static)
             for (int b = 0; b < BSP_BLOCKS; b++) {
                 int64_t lo = b * sbl, hi = CTI_MIN((int64_t)nseg, lo + sbl), n = 0;
                 for (int64_t j = lo; j < hi; j++)
-                    n += box_meets(st->sb + 6 * j, &root);
+                    n += rec_meets(st->sb + BSP_REC * j, kroot);
                 sc[b] = n;
             }
             int64_t r2 = 0;
@@ -455,7 +480,7 @@ int cti_search_bsp(ct_search *s, const ct_search_input *in, ct_pairs *out)
             for (int b = 0; b < BSP_BLOCKS; b++) {
                 int64_t lo = b * sbl, hi = CTI_MIN((int64_t)nseg, lo + sbl), o = sc[b];
                 for (int64_t j = lo; j < hi; j++)
-                    if (box_meets(st->sb + 6 * j, &root))
+                    if (rec_meets(st->sb + BSP_REC * j, kroot))
                         segs[o++] = (ct_idx)j;
             }
             st->arenatop = nroot;

@@ -9,6 +9,10 @@
 
 #include "ct_internal.h"
 
+#if defined(__AVX__)
+#include <immintrin.h>
+#endif
+
 #define BSP_MAX_DEPTH 96
 
 /*
@@ -44,22 +48,33 @@ typedef struct bsp_box {
     bsp_f lo[3], hi[3];
 } bsp_box;
 
-/* A thread's private stack of segment lists (offsets, not pointers, since
- * it may move when it grows). Padded so two threads never share a line. */
+/* A thread's private scratch:
+ *  - a: the two index lists of a split above the task cutoff, before they
+ *    move to the shared arena;
+ *  - rec: the segment lists of the subtree it runs below the cutoff, as
+ *    records (BSP_REC floats, the segment's number in lane 3), so that a
+ *    split and a leaf read their list with unit stride instead of
+ *    gathering one record per index; offsets, not pointers, since it may
+ *    move when it grows (rcap in records);
+ *  - lb, lid: a leaf's segment boxes (6 arrays, upper bounds negated as in
+ *    the records) and numbers, of lbcap, a multiple of 8. */
 typedef struct bsp_stack {
     ct_idx *a;
     size_t cap;
-    bsp_f *lb;       /* a leaf's segment boxes, 6 arrays of lbcap */
-    unsigned char *hit; /* a node's box-test results, lbcap + 8 */
+    bsp_f *rec;
+    size_t rcap;
+    bsp_f *lb;
+    ct_idx *lid;
     size_t lbcap;
-    char pad[64 - 2 * sizeof(size_t) - 3 * sizeof(void *)];
+    char pad[64 - 3 * sizeof(size_t) - 4 * sizeof(void *)];
 } bsp_stack;
+_Static_assert(sizeof(bsp_stack) % 64 == 0, "a thread's scratch fills whole cache lines");
 
 typedef struct bsp_state {
     size_t nodecap, segcap, arenacap;
     bsp_f *nx, *ny, *nz; /* coordinates of the nodes in tree order */
     ct_idx *nid;           /* their positions in in->sec */
-    bsp_f *sb;           /* per segment: inflated box lo[3], hi[3] */
+    bsp_f *sb;           /* per segment: inflated box, a BSP_REC record */
     ct_idx *arena;         /* segment lists of the boxes above the cutoff */
     int64_t arenatop;
     int nthr;
@@ -79,12 +94,55 @@ typedef struct bsp_ctx {
     int overflow; /* the shared arena was too small */
 } bsp_ctx;
 
-static inline int box_meets(const bsp_f *restrict b, const bsp_box *restrict x)
+/* A segment's inflated box is one 32-byte record of 8 floats,
+ * lo[0..2], 0, -hi[0..2], 0: with the key of a box x, (x.hi[0..2], +inf,
+ * -x.lo[0..2], +inf), the segment meets x exactly when every lane of the
+ * record is <= the key's (negation is exact; lanes 3 and 7 are not
+ * compared), one 8-lane compare. NaN bounds never reach a record (they become
+ * infinite). */
+#define BSP_REC 8
+
+_Static_assert(sizeof(ct_idx) == sizeof(bsp_f), "a segment number fits a record's lane 3");
+
+/* A list record: segment j's record with j's bits in lane 3. */
+static inline void bsp_rec_put(bsp_f *restrict dst, const bsp_f *restrict sbrec, ct_idx j)
+{
+    memcpy(dst, sbrec, BSP_REC * sizeof *dst);
+    memcpy(dst + 3, &j, sizeof j);
+}
+
+static inline ct_idx bsp_rec_id(const bsp_f *r)
+{
+    ct_idx j;
+    memcpy(&j, r + 3, sizeof j);
+    return j;
+}
+
+#if defined(__AVX__)
+typedef __m256 bsp_key;
+static inline bsp_key bsp_key_of(const bsp_box *x)
+{
+    return _mm256_setr_ps(x->hi[0], x->hi[1], x->hi[2], (bsp_f)INFINITY, -x->lo[0], -x->lo[1],
+                          -x->lo[2], (bsp_f)INFINITY);
+}
+static inline int rec_meets(const bsp_f *restrict r, bsp_key k)
+{
+    /* Lane 3 of a list record holds a number, not a bound: left out. */
+    return (_mm256_movemask_ps(_mm256_cmp_ps(_mm256_load_ps(r), k, _CMP_LE_OQ)) & 0x77) == 0x77;
+}
+#else
+typedef bsp_box bsp_key;
+static inline bsp_key bsp_key_of(const bsp_box *x)
+{
+    return *x;
+}
+static inline int rec_meets(const bsp_f *restrict r, bsp_key k)
 {
     /* Bitwise and: no branch to mispredict. */
-    return (b[0] <= x->hi[0]) & (b[3] >= x->lo[0]) & (b[1] <= x->hi[1]) & (b[4] >= x->lo[1]) &
-           (b[2] <= x->hi[2]) & (b[5] >= x->lo[2]);
+    return (r[0] <= k.hi[0]) & (r[1] <= k.hi[1]) & (r[2] <= k.hi[2]) & (r[4] <= -k.lo[0]) &
+           (r[5] <= -k.lo[1]) & (r[6] <= -k.lo[2]);
 }
+#endif
 
 static inline void box_empty(bsp_box *b)
 {
@@ -144,7 +202,9 @@ static inline void box_add(bsp_box *b, bsp_f x, bsp_f y, bsp_f z)
 ct_idx cti_bsp_tree_coords(bsp_ctx *c, bsp_box *root);
 
 /* Test every node of [n0, n1) of the tree order against the sorted segment
- * list segs[0..ns-1] and collect the pairs (search_bsp_leaf.c). */
+ * list of ns segments and collect the pairs (search_bsp_leaf.c): a list of
+ * numbers segs, or (cti_bsp_leaf_rec) a list of records. */
 void cti_bsp_leaf(bsp_ctx *c, ct_idx n0, ct_idx n1, const ct_idx *restrict segs, ct_idx ns);
+void cti_bsp_leaf_rec(bsp_ctx *c, ct_idx n0, ct_idx n1, const bsp_f *restrict recs, ct_idx ns);
 
 #endif /* CT_SEARCH_BSP_INTERNAL_H */

@@ -7,7 +7,8 @@
 
 #include "search_bsp_internal.h"
 
-/* Inflated, slightly widened segment boxes in tree coordinates. The bounds
+/* Inflated, slightly widened segment boxes in tree coordinates, as records
+ * (search_bsp_internal.h: lo, 0, -hi, 0). The bounds
  * are computed as the predicate computes them, then shifted by the origin
  * and rounded outward to float; a NaN bound becomes infinite so such a
  * segment reaches every leaf and the predicate decides. */
@@ -28,9 +29,12 @@ static void bsp_seg_boxes(const ct_search_input *in, ct_real d, const double o[3
             ct_real l = lo - d, h = hi + d;
             l -= w * (CTI_FABS(lo) + d);
             h += w * (CTI_FABS(hi) + d);
-            sb[6 * (size_t)j + k] = l == l ? bsp_down((double)l - o[k]) : -(bsp_f)INFINITY;
-            sb[6 * (size_t)j + 3 + k] = h == h ? bsp_up((double)h - o[k]) : (bsp_f)INFINITY;
+            bsp_f *r = sb + BSP_REC * (size_t)j;
+            r[k] = l == l ? bsp_down((double)l - o[k]) : -(bsp_f)INFINITY;
+            r[4 + k] = -(h == h ? bsp_up((double)h - o[k]) : (bsp_f)INFINITY);
         }
+        sb[BSP_REC * (size_t)j + 3] = 0;
+        sb[BSP_REC * (size_t)j + 7] = 0;
     }
 }
 
@@ -60,9 +64,9 @@ ct_idx cti_bsp_tree_coords(bsp_ctx *c, bsp_box *root)
         box_empty(&ub[b]);
         int64_t lo = b * sbl, hi = CTI_MIN((int64_t)nseg, lo + sbl);
         for (int64_t j = lo; j < hi; j++) {
-            const bsp_f *q = st->sb + 6 * j;
+            const bsp_f *q = st->sb + BSP_REC * j;
             box_add(&ub[b], q[0], q[1], q[2]);
-            box_add(&ub[b], q[3], q[4], q[5]);
+            box_add(&ub[b], -q[4], -q[5], -q[6]);
         }
     }
     bsp_box u;
@@ -125,59 +129,104 @@ ct_idx cti_bsp_tree_coords(bsp_ctx *c, bsp_box *root)
     return nkeep;
 }
 
-/* Test every node of [n0, n1) against the sorted segment list. The
- * segment boxes are gathered into arrays so the box test of one node
- * against all segments is a vector loop; the few that pass go to the shared
- * predicate in increasing segment order. A node's candidates go straight
- * into this thread's collector buffer; the shared length is written once
- * per leaf. */
-void cti_bsp_leaf(bsp_ctx *c, ct_idx n0, ct_idx n1, const ct_idx *restrict segs, ct_idx ns)
+/* Room for a leaf of ns segments in this thread's leaf scratch; 0 (and the
+ * error flag) when it cannot grow. */
+static int bsp_leaf_room(bsp_ctx *c, bsp_stack *sk, ct_idx ns)
+{
+    if ((size_t)ns + 8 <= sk->lbcap)
+        return 1;
+    size_t cap = ((size_t)ns + (size_t)ns / 2 + 64) & ~(size_t)7;
+    bsp_f *lb = ct_calloc(6 * cap, sizeof *lb);
+    ct_idx *lid = ct_calloc(cap, sizeof *lid);
+    if (!lb || !lid) {
+        ct_free(lb);
+        ct_free(lid);
+#pragma omp atomic write
+        c->err = CT_ERR_NOMEM;
+        return 0;
+    }
+    ct_free(sk->lb);
+    ct_free(sk->lid);
+    sk->lb = lb;
+    sk->lid = lid;
+    sk->lbcap = cap;
+    return 1;
+}
+
+/* The box test of a node (px, py, pz) against 8 segments of a leaf, from
+ * box q of the leaf's arrays (l0.. lower bounds, m0.. negated upper
+ * bounds): bit e of the result is set when the node is in box q + e. With
+ * AVX, six 8-lane compares and a mask. */
+#if defined(__AVX__)
+typedef struct bsp_pt {
+    __m256 x, y, z, mx, my, mz;
+} bsp_pt;
+static inline bsp_pt bsp_pt_of(bsp_f px, bsp_f py, bsp_f pz)
+{
+    bsp_pt p = {_mm256_set1_ps(px),  _mm256_set1_ps(py),  _mm256_set1_ps(pz),
+                _mm256_set1_ps(-px), _mm256_set1_ps(-py), _mm256_set1_ps(-pz)};
+    return p;
+}
+static inline unsigned bsp_leaf_mask8(const bsp_f *restrict l0, const bsp_f *restrict l1,
+                                      const bsp_f *restrict l2, const bsp_f *restrict m0,
+                                      const bsp_f *restrict m1, const bsp_f *restrict m2,
+                                      const bsp_pt *p)
+{
+    __m256 c = _mm256_cmp_ps(_mm256_load_ps(l0), p->x, _CMP_LE_OQ);
+    c = _mm256_and_ps(c, _mm256_cmp_ps(_mm256_load_ps(m0), p->mx, _CMP_LE_OQ));
+    c = _mm256_and_ps(c, _mm256_cmp_ps(_mm256_load_ps(l1), p->y, _CMP_LE_OQ));
+    c = _mm256_and_ps(c, _mm256_cmp_ps(_mm256_load_ps(m1), p->my, _CMP_LE_OQ));
+    c = _mm256_and_ps(c, _mm256_cmp_ps(_mm256_load_ps(l2), p->z, _CMP_LE_OQ));
+    c = _mm256_and_ps(c, _mm256_cmp_ps(_mm256_load_ps(m2), p->mz, _CMP_LE_OQ));
+    return (unsigned)_mm256_movemask_ps(c);
+}
+#else
+typedef struct bsp_pt {
+    bsp_f x, y, z, mx, my, mz;
+} bsp_pt;
+static inline bsp_pt bsp_pt_of(bsp_f px, bsp_f py, bsp_f pz)
+{
+    bsp_pt p = {px, py, pz, -px, -py, -pz};
+    return p;
+}
+static inline unsigned bsp_leaf_mask8(const bsp_f *restrict l0, const bsp_f *restrict l1,
+                                      const bsp_f *restrict l2, const bsp_f *restrict m0,
+                                      const bsp_f *restrict m1, const bsp_f *restrict m2,
+                                      const bsp_pt *p)
+{
+    unsigned m = 0;
+    for (int e = 0; e < 8; e++)
+        m |= (unsigned)((l0[e] <= p->x) & (m0[e] <= p->mx) & (l1[e] <= p->y) &
+                        (m1[e] <= p->my) & (l2[e] <= p->z) & (m2[e] <= p->mz))
+             << e;
+    return m;
+}
+#endif
+
+/* Test every node of [n0, n1) against the ns segments whose boxes are in
+ * this thread's leaf scratch (sk->lb, lbcap apart; upper bounds negated as
+ * in the records) and numbers in segs, in increasing order. The box test of
+ * one node against all segments is a vector loop; the few that pass go to
+ * the shared predicate in increasing segment order. A node's candidates go
+ * straight into this thread's collector buffer; the shared length is
+ * written once per leaf. */
+static void bsp_leaf_scan(bsp_ctx *c, bsp_stack *sk, ct_idx n0, ct_idx n1,
+                          const ct_idx *restrict segs, ct_idx ns)
 {
     const ct_search_input *in = c->in;
     const bsp_state *st = c->st;
     cti_collect *col = c->col;
     const int t = cti_thread_id();
-    bsp_stack *sk = &st->stk[t];
-    if ((size_t)ns + 16 > sk->lbcap) {
-        size_t cap = (size_t)ns + (size_t)ns / 2 + 64;
-        bsp_f *lb = ct_calloc(6 * cap, sizeof *lb);
-        unsigned char *hit = ct_calloc(cap + 8, 1);
-        if (!lb || !hit) {
-            ct_free(lb);
-            ct_free(hit);
-#pragma omp atomic write
-            c->err = CT_ERR_NOMEM;
-            return;
-        }
-        ct_free(sk->lb);
-        ct_free(sk->hit);
-        sk->lb = lb;
-        sk->hit = hit;
-        sk->lbcap = cap;
-    }
     const size_t w = sk->lbcap;
     bsp_f *restrict l0 = sk->lb, *restrict l1 = l0 + w, *restrict l2 = l1 + w;
-    bsp_f *restrict h0 = l2 + w, *restrict h1 = h0 + w, *restrict h2 = h1 + w;
-    unsigned char *restrict hit = sk->hit;
-    const bsp_f *restrict sb = st->sb;
-    for (ct_idx q = 0; q < ns; q++) {
-        const bsp_f *b = sb + 6 * (size_t)segs[q];
-        l0[q] = b[0];
-        l1[q] = b[1];
-        l2[q] = b[2];
-        h0[q] = b[3];
-        h1[q] = b[4];
-        h2[q] = b[5];
-    }
-    /* Pad to a multiple of 16 with empty boxes so the vector loop has no
-     * scalar remainder (the capacity is at least ns + 16). */
-    const ct_idx ns16 = (ns + 15) & ~(ct_idx)15;
-    for (ct_idx q = ns; q < ns16; q++) {
+    bsp_f *restrict m0 = l2 + w, *restrict m1 = m0 + w, *restrict m2 = m1 + w;
+    /* Pad to a multiple of 8 with empty boxes (the capacity is at least
+     * ns + 8). */
+    const ct_idx ns8 = (ns + 7) & ~(ct_idx)7;
+    for (ct_idx q = ns; q < ns8; q++) {
         l0[q] = l1[q] = l2[q] = (bsp_f)INFINITY;
-        h0[q] = h1[q] = h2[q] = -(bsp_f)INFINITY;
+        m0[q] = m1[q] = m2[q] = (bsp_f)INFINITY;
     }
-    for (ct_idx q = ns16; q < ns16 + 8; q++)
-        hit[q] = 0;
     const ct_real *restrict x = in->x, *restrict y = in->y, *restrict z = in->z;
     size_t len = col->len[t];
     /* Hull filter: the candidates that pass the box test go through the
@@ -186,30 +235,31 @@ void cti_bsp_leaf(bsp_ctx *c, ct_idx n0, ct_idx n1, const ct_idx *restrict segs,
     cti_pair_batch pb;
     ct_idx bpos[CTI_PAIR_BATCH], last = -1;
     cti_pair_batch_init(&pb);
+    /* The leaf's node numbers, in chunks, each gathered in a loop of its
+     * own: their loads are independent there and overlap (read one per
+     * node in the loop below, each was a cache miss in the way of the
+     * next node). */
+    enum { CHUNK = 64 };
+    ct_idx lnode[CHUNK];
     for (ct_idx k = n0; k < n1; k++) {
+        if ((k - n0) % CHUNK == 0) {
+            const ct_idx kend = CTI_MIN(n1, k + CHUNK);
+            for (ct_idx e = k; e < kend; e++)
+                lnode[e - k] = in->sec[st->nid[e]];
+        }
         if (len + (size_t)pb.n + (size_t)ns > col->cap[t]) {
             col->len[t] = len;
             if (cti_collect_room(col, t, (size_t)pb.n + (size_t)ns) != CT_OK)
                 return;
         }
         ct_idx *restrict buf = col->buf[t];
-        const bsp_f px = st->nx[k], py = st->ny[k], pz = st->nz[k];
-        const ct_idx pos = st->nid[k], node = in->sec[pos];
-        /* Sixteen lanes at a time with a constant trip count: a loop over
-         * ns16 left most leaves (a few dozen segments) to gcc's scalar
-         * epilogue. */
-        for (ct_idx q0 = 0; q0 < ns16; q0 += 16) {
-#pragma omp simd
-            for (ct_idx q = q0; q < q0 + 16; q++)
-                hit[q] = (unsigned char)((px >= l0[q]) & (px <= h0[q]) & (py >= l1[q]) &
-                                         (py <= h1[q]) & (pz >= l2[q]) & (pz <= h2[q]));
-        }
+        const bsp_pt pt = bsp_pt_of(st->nx[k], st->ny[k], st->nz[k]);
+        const ct_idx pos = st->nid[k], node = lnode[(k - n0) % CHUNK];
         size_t start = len;
-        for (ct_idx q0 = 0; q0 < ns16; q0 += 8) {
-            uint64_t m;
-            memcpy(&m, hit + q0, sizeof m);
+        for (ct_idx q0 = 0; q0 < ns8; q0 += 8) {
+            unsigned m = bsp_leaf_mask8(l0 + q0, l1 + q0, l2 + q0, m0 + q0, m1 + q0, m2 + q0, &pt);
             while (m) {
-                ct_idx q = q0 + (ct_idx)(__builtin_ctzll(m) >> 3);
+                ct_idx q = q0 + (ct_idx)__builtin_ctz(m);
                 m &= m - 1;
                 ct_idx j = segs[q];
                 if (batch) {
@@ -231,4 +281,43 @@ void cti_bsp_leaf(bsp_ctx *c, ct_idx n0, ct_idx n1, const ct_idx *restrict segs,
     if (pb.n > 0)
         cti_pair_batch_collect(&pb, bpos, in, NULL, c->d, col, t, &len, &last);
     col->len[t] = len;
+}
+
+/* The leaf of a list of numbers: their records are gathered. */
+void cti_bsp_leaf(bsp_ctx *c, ct_idx n0, ct_idx n1, const ct_idx *restrict segs, ct_idx ns)
+{
+    bsp_stack *sk = &c->st->stk[cti_thread_id()];
+    if (!bsp_leaf_room(c, sk, ns))
+        return;
+    const size_t w = sk->lbcap;
+    bsp_f *restrict lb = sk->lb;
+    const bsp_f *restrict sb = c->st->sb;
+    for (ct_idx q = 0; q < ns; q++) {
+        const bsp_f *b = sb + BSP_REC * (size_t)segs[q];
+        for (int e = 0; e < 3; e++) {
+            lb[e * w + (size_t)q] = b[e];
+            lb[(3 + e) * w + (size_t)q] = b[4 + e];
+        }
+    }
+    bsp_leaf_scan(c, sk, n0, n1, segs, ns);
+}
+
+/* The leaf of a list of records: read with unit stride, numbers from lane 3. */
+void cti_bsp_leaf_rec(bsp_ctx *c, ct_idx n0, ct_idx n1, const bsp_f *restrict recs, ct_idx ns)
+{
+    bsp_stack *sk = &c->st->stk[cti_thread_id()];
+    if (!bsp_leaf_room(c, sk, ns))
+        return;
+    const size_t w = sk->lbcap;
+    bsp_f *restrict lb = sk->lb;
+    ct_idx *restrict lid = sk->lid;
+    for (ct_idx q = 0; q < ns; q++) {
+        const bsp_f *b = recs + BSP_REC * (size_t)q;
+        for (int e = 0; e < 3; e++) {
+            lb[e * w + (size_t)q] = b[e];
+            lb[(3 + e) * w + (size_t)q] = b[4 + e];
+        }
+        lid[q] = bsp_rec_id(b);
+    }
+    bsp_leaf_scan(c, sk, n0, n1, lid, ns);
 }
