@@ -49,14 +49,14 @@ static inline int cti_team_size(void) { return 1; }
  * smallest negative subnormal. */
 static inline float cti_next_down_f(float f)
 {
-    if (f == -INFINITY)
-        return f;
-    if (f == 0)
-        return -0x1p-149f;
+    /* Selects, not branches: a caller rounding bounds outward decides at
+     * random whether to step at all, and a branch there mispredicts. */
     uint32_t u;
     memcpy(&u, &f, sizeof u);
-    u = f > 0 ? u - 1 : u + 1;
-    memcpy(&f, &u, sizeof f);
+    uint32_t r = f > 0 ? u - 1 : u + 1;     /* away from +0 on the bits */
+    r = (u & 0x7fffffffu) == 0 ? 0x80000001u : r; /* +-0 -> -0x1p-149 */
+    r = f == -INFINITY ? u : r;
+    memcpy(&f, &r, sizeof f);
     return f;
 }
 

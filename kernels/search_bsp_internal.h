@@ -28,14 +28,14 @@ typedef float bsp_f;
 
 static inline bsp_f bsp_down(double v)
 {
-    bsp_f f = (bsp_f)v;
-    return (double)f > v ? cti_next_down_f(f) : f;
+    bsp_f f = (bsp_f)v, d = cti_next_down_f(f);
+    return (double)f > v ? d : f;
 }
 
 static inline bsp_f bsp_up(double v)
 {
-    bsp_f f = (bsp_f)v;
-    return (double)f < v ? cti_next_up_f(f) : f;
+    bsp_f f = (bsp_f)v, u = cti_next_up_f(f);
+    return (double)f < v ? u : f;
 }
 
 /* Blocks of the deterministic per-block loops over nodes and segments. */

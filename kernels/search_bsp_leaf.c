@@ -12,29 +12,63 @@
  * are computed as the predicate computes them, then shifted by the origin
  * and rounded outward to float; a NaN bound becomes infinite so such a
  * segment reaches every leaf and the predicate decides. */
+/* The coordinates of the corners of segments [j0, j0 + n), n <= 64:
+ * c[axis][corner][segment]. */
+CTI_NOVEC static void bsp_fetch_corners(const ct_search_input *in, ct_idx j0, int n,
+                                        ct_real c[3][4][64])
+{
+    const ct_real *restrict x = in->x, *restrict y = in->y, *restrict z = in->z;
+    const ct_idx *const cn[4] = {in->n1 + j0, in->n2 + j0, in->n3 + j0, in->n4 + j0};
+    CTI_NOVEC_LOOP
+    for (int q = 0; q < n; q++) {
+        for (int e = 0; e < 4; e++) {
+            const ct_idx i = cn[e][q];
+            c[0][e][q] = x[i];
+            c[1][e][q] = y[i];
+            c[2][e][q] = z[i];
+        }
+    }
+}
+
 static void bsp_seg_boxes(const ct_search_input *in, ct_real d, const double o[3],
                           bsp_f *restrict sb)
 {
-    const ct_real *restrict x = in->x, *restrict y = in->y, *restrict z = in->z;
     const ct_real w = 8 * CTI_EPS;
+    const ct_idx nseg = in->nseg;
+    /* In blocks: the corners are first copied with scalar loads (gathers
+     * are slow here), then the bounds of a block are computed in SIMD
+     * lanes, axis by axis, and stored as records. */
+    enum { B = 64 };
+    const ct_idx nblk = (nseg + B - 1) / B;
 #pragma omp parallel for schedule(static)
-    for (ct_idx j = 0; j < in->nseg; j++) {
-        const ct_real *cc[3] = {x, y, z};
-        ct_idx i1 = in->n1[j], i2 = in->n2[j], i3 = in->n3[j], i4 = in->n4[j];
+    for (ct_idx bi = 0; bi < nblk; bi++) {
+        const ct_idx j0 = bi * B;
+        const int n = (int)CTI_MIN((ct_idx)B, nseg - j0);
+        _Alignas(64) ct_real cr[3][4][B];
+        _Alignas(64) bsp_f lo_[3][B], hi_[3][B];
+        bsp_fetch_corners(in, j0, n, cr);
         for (int k = 0; k < 3; k++) {
-            const ct_real *v = cc[k];
-            ct_real a = v[i1], b = v[i2], e = v[i3], f = v[i4];
-            ct_real lo = CTI_MIN(CTI_MIN(a, b), CTI_MIN(e, f));
-            ct_real hi = CTI_MAX(CTI_MAX(a, b), CTI_MAX(e, f));
-            ct_real l = lo - d, h = hi + d;
-            l -= w * (CTI_FABS(lo) + d);
-            h += w * (CTI_FABS(hi) + d);
-            bsp_f *r = sb + BSP_REC * (size_t)j;
-            r[k] = l == l ? bsp_down((double)l - o[k]) : -(bsp_f)INFINITY;
-            r[4 + k] = -(h == h ? bsp_up((double)h - o[k]) : (bsp_f)INFINITY);
+            const double ok = o[k];
+            const ct_real *restrict ca = cr[k][0], *restrict cb = cr[k][1];
+            const ct_real *restrict ce = cr[k][2], *restrict cf = cr[k][3];
+            bsp_f *restrict lk = lo_[k], *restrict hk = hi_[k];
+#pragma omp simd
+            for (int q = 0; q < n; q++) {
+                ct_real a = ca[q], b = cb[q], e = ce[q], f = cf[q];
+                ct_real lo = CTI_MIN(CTI_MIN(a, b), CTI_MIN(e, f));
+                ct_real hi = CTI_MAX(CTI_MAX(a, b), CTI_MAX(e, f));
+                ct_real l = lo - d, h = hi + d;
+                l -= w * (CTI_FABS(lo) + d);
+                h += w * (CTI_FABS(hi) + d);
+                lk[q] = l == l ? bsp_down((double)l - ok) : -(bsp_f)INFINITY;
+                hk[q] = -(h == h ? bsp_up((double)h - ok) : (bsp_f)INFINITY);
+            }
         }
-        sb[BSP_REC * (size_t)j + 3] = 0;
-        sb[BSP_REC * (size_t)j + 7] = 0;
+        for (int q = 0; q < n; q++) {
+            bsp_f *r = sb + BSP_REC * (size_t)(j0 + q);
+            r[0] = lo_[0][q], r[1] = lo_[1][q], r[2] = lo_[2][q], r[3] = 0;
+            r[4] = hi_[0][q], r[5] = hi_[1][q], r[6] = hi_[2][q], r[7] = 0;
+        }
     }
 }
 
