@@ -26,12 +26,10 @@ static inline float bk_float_out(ct_real v, int round_down)
 {
     float f = (float)v;
 #ifndef CT_SINGLE
-    /* Both neighbours, then selects (the step is taken at random). */
-    const float d = cti_next_down_f(f), u = cti_next_up_f(f);
-    if (round_down)
-        f = (ct_real)f > v ? d : f;
-    else
-        f = (ct_real)f < v ? u : f;
+    if (round_down && (ct_real)f > v)
+        f = cti_next_down_f(f);
+    if (!round_down && (ct_real)f < v)
+        f = cti_next_up_f(f);
 #else
     (void)round_down;
 #endif
