@@ -317,22 +317,26 @@ static void bsp_leaf_scan(bsp_ctx *c, bsp_stack *sk, ct_idx n0, ct_idx n1,
     col->len[t] = len;
 }
 
+/* Segment record b into slot q of this thread's leaf arrays. */
+static inline void bsp_leaf_put(bsp_stack *sk, ct_idx q, const bsp_f *restrict b)
+{
+    bsp_f *restrict lb = sk->lb;
+    const size_t w = sk->lbcap;
+    for (int e = 0; e < 3; e++) {
+        lb[e * w + (size_t)q] = b[e];
+        lb[(3 + e) * w + (size_t)q] = b[4 + e];
+    }
+}
+
 /* The leaf of a list of numbers: their records are gathered. */
 void cti_bsp_leaf(bsp_ctx *c, ct_idx n0, ct_idx n1, const ct_idx *restrict segs, ct_idx ns)
 {
     bsp_stack *sk = &c->st->stk[cti_thread_id()];
     if (!bsp_leaf_room(c, sk, ns))
         return;
-    const size_t w = sk->lbcap;
-    bsp_f *restrict lb = sk->lb;
     const bsp_f *restrict sb = c->st->sb;
-    for (ct_idx q = 0; q < ns; q++) {
-        const bsp_f *b = sb + BSP_REC * (size_t)segs[q];
-        for (int e = 0; e < 3; e++) {
-            lb[e * w + (size_t)q] = b[e];
-            lb[(3 + e) * w + (size_t)q] = b[4 + e];
-        }
-    }
+    for (ct_idx q = 0; q < ns; q++)
+        bsp_leaf_put(sk, q, sb + BSP_REC * (size_t)segs[q]);
     bsp_leaf_scan(c, sk, n0, n1, segs, ns);
 }
 
@@ -342,15 +346,10 @@ void cti_bsp_leaf_rec(bsp_ctx *c, ct_idx n0, ct_idx n1, const bsp_f *restrict re
     bsp_stack *sk = &c->st->stk[cti_thread_id()];
     if (!bsp_leaf_room(c, sk, ns))
         return;
-    const size_t w = sk->lbcap;
-    bsp_f *restrict lb = sk->lb;
     ct_idx *restrict lid = sk->lid;
     for (ct_idx q = 0; q < ns; q++) {
         const bsp_f *b = recs + BSP_REC * (size_t)q;
-        for (int e = 0; e < 3; e++) {
-            lb[e * w + (size_t)q] = b[e];
-            lb[(3 + e) * w + (size_t)q] = b[4 + e];
-        }
+        bsp_leaf_put(sk, q, b);
         lid[q] = bsp_rec_id(b);
     }
     bsp_leaf_scan(c, sk, n0, n1, lid, ns);
