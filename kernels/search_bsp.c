@@ -34,9 +34,11 @@
  * Parallelism: OpenMP tasks. Boxes above a size cutoff partition their
  * nodes in place and write their children's segment lists into a shared
  * arena by an atomic bump (the arena grows and the search is redone if it
- * overflows: only on the first calls). Below the cutoff a task runs its
- * whole subtree on one thread with a private stack of segment lists.
- * Every buffer is kept in the workspace between calls.
+ * overflows: only on the first calls); those lists hold segment numbers.
+ * Below the cutoff a task runs its whole subtree on one thread with a
+ * private stack of lists of segment records (search_bsp_internal.h), which
+ * its splits and leaves read with unit stride. Every buffer is kept in the
+ * workspace between calls.
  */
 #include <stdlib.h>
 
