@@ -7,7 +7,9 @@
  * two halves at the middle of the nodes' tight bounding box along its
  * longest side (a flat sheet has no extent across itself, so X, Y, Z in turn
  * would waste every third split; the longest side always halves the
- * occupied space). Nodes go left (coordinate below the pivot) or right; a
+ * occupied space). A box above the task cutoff is split at the sampled
+ * median of its nodes instead, so that the tasks' work is halved too
+ * (bsp_sample_median). Nodes go left (coordinate below the pivot) or right; a
  * segment goes to every half whose nodes' tight box meets the segment's box
  * inflated by gap + margin, so a segment astride the pivot goes to both and
  * one far from every node of a half goes to neither. A box stops splitting
