@@ -319,36 +319,36 @@ static int bsp_split(const bsp_ctx *c, ct_idx n0, ct_idx n1, const bsp_box *box,
     }
 }
 
-/* Room for n entries in a thread's index scratch; 0 (and the error flag)
- * when it cannot grow. */
-static int bsp_stack_room(bsp_ctx *c, bsp_stack *sk, size_t n)
+/* Room for n elements of `size` bytes in the buffer *p of capacity *cap,
+ * keeping its first `keep`; 0 (and the error flag) when it cannot grow. */
+static int bsp_room(bsp_ctx *c, void **p, size_t *cap, size_t n, size_t size, size_t keep)
 {
-    if (n <= sk->cap)
+    if (n <= *cap)
         return 1;
-    void *p = sk->a;
-    if (cti_grow(&p, &sk->cap, n, sizeof(ct_idx), 0) != CT_OK) {
+    if (cti_grow(p, cap, n, size, keep) != CT_OK) {
 #pragma omp atomic write
         c->err = CT_ERR_NOMEM;
         return 0;
     }
-    sk->a = p;
     return 1;
 }
 
-/* Room for n records in a thread's record stack, keeping its first `keep`;
- * 0 (and the error flag) when it cannot grow. */
+/* Room for n numbers in a thread's index scratch. */
+static int bsp_stack_room(bsp_ctx *c, bsp_stack *sk, size_t n)
+{
+    void *p = sk->a;
+    const int ok = bsp_room(c, &p, &sk->cap, n, sizeof(ct_idx), 0);
+    sk->a = p;
+    return ok;
+}
+
+/* Room for n records in a thread's record stack, keeping its first `keep`. */
 static int bsp_rec_room(bsp_ctx *c, bsp_stack *sk, size_t n, size_t keep)
 {
-    if (n <= sk->rcap)
-        return 1;
     void *p = sk->rec;
-    if (cti_grow(&p, &sk->rcap, n, BSP_REC * sizeof(bsp_f), keep) != CT_OK) {
-#pragma omp atomic write
-        c->err = CT_ERR_NOMEM;
-        return 0;
-    }
+    const int ok = bsp_room(c, &p, &sk->rcap, n, BSP_REC * sizeof(bsp_f), keep);
     sk->rec = p;
-    return 1;
+    return ok;
 }
 
 /* Subtree below the task cutoff, on this thread: the segment list is ns
