@@ -48,6 +48,7 @@ typedef struct search_opts {
     ct_search_filter filter;
     int check; /* 0: no direct reference, even when affordable */
     int renumber; /* ct_search_params.renumber: 0 auto, 1 on, -1 off */
+    int dense;    /* ct_search_params.dense: 0 auto, 1 on, -1 off */
 } search_opts;
 
 static void usage_search(FILE *f)
@@ -56,6 +57,7 @@ static void usage_search(FILE *f)
                "                      [--numbering natural|shuffled|sfc] [--gap G] [--margin M]\n"
                "                      [--filter hull|box] [--repeat R] [--seed S] [--threads T]\n"
                "                      [--check auto|off] [--renumber auto|on|off]\n"
+               "                      [--dense auto|on|off]\n"
                "Runs each search on a synthetic case, checks its pair set against the direct\n"
                "search (when affordable; --check off skips it, for timing runs) and prints\n"
                "the median time per secondary node.\n"
@@ -151,6 +153,7 @@ static int run_search(const search_opts *o)
             continue;
         ct_search_params p = ct_search_default_params((ct_search_algo)a);
         p.renumber = o->renumber;
+        p.dense = o->dense;
         ct_search *s;
         if ((rc = ct_search_init(&s, &p)) != CT_OK)
             goto done;
@@ -228,7 +231,7 @@ static int parse_dbl(const char *s, double *v)
 
 static int cmd_search(int argc, char **argv)
 {
-    search_opts o = {"plates", 100000, -1, CTD_NUM_NATURAL, -1, -1, 5, 1, CT_FILTER_HULL, 1, 0};
+    search_opts o = {"plates", 100000, -1, CTD_NUM_NATURAL, -1, -1, 5, 1, CT_FILTER_HULL, 1, 0, 0};
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         int64_t iv;
@@ -289,6 +292,12 @@ static int cmd_search(int argc, char **argv)
                 return EXIT_USAGE;
             }
             o.renumber = !strcmp(v, "on") ? 1 : !strcmp(v, "off") ? -1 : 0;
+        } else if (!strcmp(a, "--dense")) {
+            if (strcmp(v, "auto") && strcmp(v, "on") && strcmp(v, "off")) {
+                fprintf(stderr, "contact search: --dense expects auto, on or off, got '%s'\n", v);
+                return EXIT_USAGE;
+            }
+            o.dense = !strcmp(v, "on") ? 1 : !strcmp(v, "off") ? -1 : 0;
         } else if (!strcmp(a, "--repeat")) {
             if (parse_i64(v, &iv) || iv < 1 || iv > 1000) {
                 fprintf(stderr, "contact search: --repeat expects 1..1000, got '%s'\n", v);
@@ -324,10 +333,10 @@ static int cmd_demo(void)
     printf("\nContact search comparison: every search is checked pair for pair against\n"
            "the direct (all pairs) search; times are medians of 5 runs.\n\n");
     search_opts cases[] = {
-        {"folded", 20000, -1, CTD_NUM_NATURAL, -1, -1, 5, 1, CT_FILTER_HULL, 1, 0},
-        {"plates", 100000, -1, CTD_NUM_NATURAL, -1, -1, 5, 1, CT_FILTER_HULL, 1, 0},
-        {"plates", 100000, -1, CTD_NUM_SHUFFLED, -1, -1, 5, 1, CT_FILTER_HULL, 1, 0},
-        {"graded", 50000, -1, CTD_NUM_NATURAL, -1, -1, 5, 1, CT_FILTER_HULL, 1, 0},
+        {"folded", 20000, -1, CTD_NUM_NATURAL, -1, -1, 5, 1, CT_FILTER_HULL, 1, 0, 0},
+        {"plates", 100000, -1, CTD_NUM_NATURAL, -1, -1, 5, 1, CT_FILTER_HULL, 1, 0, 0},
+        {"plates", 100000, -1, CTD_NUM_SHUFFLED, -1, -1, 5, 1, CT_FILTER_HULL, 1, 0, 0},
+        {"graded", 50000, -1, CTD_NUM_NATURAL, -1, -1, 5, 1, CT_FILTER_HULL, 1, 0, 0},
     };
     int worst = 0;
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {

@@ -55,17 +55,43 @@ CTI_STEP ct_real cti_step_edge2(cti_pv p, cti_pv a, cti_pv b)
     return cti_pv_dot(r, r);
 }
 
+/* One axis of steps 1 and 2, from the bounds of the corners' box: lo, hi,
+ * and lod = lo - d, hid = hi + d; *out set when v is outside [lod, hid];
+ * returns the squared distance from v to [lo, hi]. */
+CTI_STEP ct_real cti_step_axis_lh(ct_real v, ct_real lo, ct_real hi, ct_real lod, ct_real hid,
+                                  cti_lane *out)
+{
+    *out |= (v < lod) | (v > hid);
+    ct_real ex = v < lo ? lo - v : (v > hi ? v - hi : 0);
+    return ex * ex;
+}
+
+/* The bounds [lo, hi] of the four corners' coordinates on one axis. */
+CTI_STEP ct_real cti_step_lo(ct_real a, ct_real b, ct_real c, ct_real e)
+{
+    return CTI_MIN(CTI_MIN(a, b), CTI_MIN(c, e));
+}
+
+CTI_STEP ct_real cti_step_hi(ct_real a, ct_real b, ct_real c, ct_real e)
+{
+    return CTI_MAX(CTI_MAX(a, b), CTI_MAX(c, e));
+}
+
 /* One axis of steps 1 and 2: the box [lo, hi] of the four corners'
  * coordinates; *out set when v is outside it inflated by d; returns the
  * squared distance from v to it. */
 CTI_STEP ct_real cti_step_axis(ct_real v, ct_real a, ct_real b, ct_real c, ct_real e,
                                     ct_real d, cti_lane *out)
 {
-    ct_real lo = CTI_MIN(CTI_MIN(a, b), CTI_MIN(c, e));
-    ct_real hi = CTI_MAX(CTI_MAX(a, b), CTI_MAX(c, e));
-    *out |= (v < lo - d) | (v > hi + d);
-    ct_real ex = v < lo ? lo - v : (v > hi ? v - hi : 0);
-    return ex * ex;
+    ct_real lo = cti_step_lo(a, b, c, e), hi = cti_step_hi(a, b, c, e);
+    return cti_step_axis_lh(v, lo, hi, lo - d, hi + d, out);
+}
+
+/* The three axes' squared distances into the result of steps 1 and 2. */
+CTI_STEP ct_real cti_step_box_sum(ct_real bx, ct_real by, ct_real bz, cti_lane out)
+{
+    ct_real box2 = (bx + by) + bz;
+    return out ? -1 : box2;
 }
 
 /* Steps 1 and 2: the squared Euclidean distance from p to the corners' box,
@@ -76,8 +102,7 @@ CTI_STEP ct_real cti_step_box(cti_pv p, cti_pv a, cti_pv b, cti_pv c, cti_pv e, 
     ct_real bx = cti_step_axis(p.x, a.x, b.x, c.x, e.x, d, &out);
     ct_real by = cti_step_axis(p.y, a.y, b.y, c.y, e.y, d, &out);
     ct_real bz = cti_step_axis(p.z, a.z, b.z, c.z, e.z, d, &out);
-    ct_real box2 = (bx + by) + bz;
-    return out ? -1 : box2;
+    return cti_step_box_sum(bx, by, bz, out);
 }
 
 /* Step 2b: 1 when a corner is within d of p (then the hull is too). The

@@ -62,6 +62,9 @@ static void bsp_free(void *p)
         ct_free(st->stk[t].rec);
         ct_free(st->stk[t].lb);
         ct_free(st->stk[t].lid);
+        ct_free(st->stk[t].lc);
+        ct_free(st->stk[t].lcn);
+        ct_free(st->stk[t].lr);
     }
     free(st->stk);
     free(st);
@@ -74,7 +77,9 @@ static size_t bsp_memory(const void *p)
                st->segcap * BSP_REC * sizeof(bsp_f) + st->arenacap * sizeof(ct_idx);
     for (int t = 0; t < st->nthr; t++)
         b += st->stk[t].cap * sizeof(ct_idx) + st->stk[t].rcap * BSP_REC * sizeof(bsp_f) +
-             st->stk[t].lbcap * (6 * sizeof(bsp_f) + sizeof(ct_idx));
+             st->stk[t].lbcap *
+                 (6 * sizeof(bsp_f) + 5 * sizeof(ct_idx) + BSP_LC * sizeof(ct_real)) +
+             st->stk[t].lrcap;
     return b;
 }
 
@@ -462,6 +467,7 @@ int cti_search_bsp(ct_search *s, const ct_search_input *in, ct_pairs *out)
     c.d = in->gap + in->margin;
     c.minbox = (bsp_f)(s->p.min_box > 0 ? s->p.min_box : (double)c.d);
     c.leaf = s->p.leaf_size > 0 ? s->p.leaf_size : 32;
+    c.dense = s->p.dense;
     const ct_idx nsec = in->nsec, nseg = in->nseg;
     const int nt = cti_num_threads();
     /* Subtrees of at most this many nodes + segments run on one thread:

@@ -57,7 +57,14 @@ typedef struct bsp_box {
  *    gathering one record per index; offsets, not pointers, since it may
  *    move when it grows (rcap in records);
  *  - lb, lid: a leaf's segment boxes (6 arrays, upper bounds negated as in
- *    the records) and numbers, of lbcap, a multiple of 8. */
+ *    the records) and numbers, of lbcap, a multiple of 8;
+ *  - lc, lcn: a dense leaf's segments' corners and box bounds (BSP_LC
+ *    arrays of lbcap, search_bsp_dense.c) and their node numbers (4 arrays
+ *    of lbcap);
+ *  - lr, lrcap: a dense leaf's answers, a byte per node and 8 segments. */
+/* Arrays of a dense leaf's corner scratch (search_bsp_dense.c). */
+#define BSP_LC 25
+
 typedef struct bsp_stack {
     ct_idx *a;
     size_t cap;
@@ -65,8 +72,12 @@ typedef struct bsp_stack {
     size_t rcap;
     bsp_f *lb;
     ct_idx *lid;
+    ct_real *lc;
+    ct_idx *lcn;
     size_t lbcap;
-    char pad[64 - 3 * sizeof(size_t) - 4 * sizeof(void *)];
+    uint8_t *lr;
+    size_t lrcap;
+    char pad[128 - 4 * sizeof(size_t) - 7 * sizeof(void *)];
 } bsp_stack;
 _Static_assert(sizeof(bsp_stack) % 64 == 0, "a thread's scratch fills whole cache lines");
 
@@ -90,6 +101,7 @@ typedef struct bsp_ctx {
     bsp_f minbox;
     double o[3]; /* origin of the tree coordinates */
     int64_t leaf, task_min;
+    int dense;    /* ct_search_params.dense */
     int err;      /* CT_ERR_NOMEM when a buffer could not grow */
     int overflow; /* the shared arena was too small */
 } bsp_ctx;
@@ -195,6 +207,56 @@ static inline void box_add(bsp_box *b, bsp_f x, bsp_f y, bsp_f z)
     b->hi[2] = z > b->hi[2] ? z : b->hi[2];
 }
 
+/* The box test of a node (px, py, pz) against 8 segments of a leaf, from
+ * box q of the leaf's arrays (l0.. lower bounds, m0.. negated upper
+ * bounds): bit e of the result is set when the node is in box q + e. With
+ * AVX, six 8-lane compares and a mask. */
+#if defined(__AVX__)
+typedef struct bsp_pt {
+    __m256 x, y, z, mx, my, mz;
+} bsp_pt;
+static inline bsp_pt bsp_pt_of(bsp_f px, bsp_f py, bsp_f pz)
+{
+    bsp_pt p = {_mm256_set1_ps(px),  _mm256_set1_ps(py),  _mm256_set1_ps(pz),
+                _mm256_set1_ps(-px), _mm256_set1_ps(-py), _mm256_set1_ps(-pz)};
+    return p;
+}
+static inline unsigned bsp_leaf_mask8(const bsp_f *restrict l0, const bsp_f *restrict l1,
+                                      const bsp_f *restrict l2, const bsp_f *restrict m0,
+                                      const bsp_f *restrict m1, const bsp_f *restrict m2,
+                                      const bsp_pt *p)
+{
+    __m256 c = _mm256_cmp_ps(_mm256_load_ps(l0), p->x, _CMP_LE_OQ);
+    c = _mm256_and_ps(c, _mm256_cmp_ps(_mm256_load_ps(m0), p->mx, _CMP_LE_OQ));
+    c = _mm256_and_ps(c, _mm256_cmp_ps(_mm256_load_ps(l1), p->y, _CMP_LE_OQ));
+    c = _mm256_and_ps(c, _mm256_cmp_ps(_mm256_load_ps(m1), p->my, _CMP_LE_OQ));
+    c = _mm256_and_ps(c, _mm256_cmp_ps(_mm256_load_ps(l2), p->z, _CMP_LE_OQ));
+    c = _mm256_and_ps(c, _mm256_cmp_ps(_mm256_load_ps(m2), p->mz, _CMP_LE_OQ));
+    return (unsigned)_mm256_movemask_ps(c);
+}
+#else
+typedef struct bsp_pt {
+    bsp_f x, y, z, mx, my, mz;
+} bsp_pt;
+static inline bsp_pt bsp_pt_of(bsp_f px, bsp_f py, bsp_f pz)
+{
+    bsp_pt p = {px, py, pz, -px, -py, -pz};
+    return p;
+}
+static inline unsigned bsp_leaf_mask8(const bsp_f *restrict l0, const bsp_f *restrict l1,
+                                      const bsp_f *restrict l2, const bsp_f *restrict m0,
+                                      const bsp_f *restrict m1, const bsp_f *restrict m2,
+                                      const bsp_pt *p)
+{
+    unsigned m = 0;
+    for (int e = 0; e < 8; e++)
+        m |= (unsigned)((l0[e] <= p->x) & (m0[e] <= p->mx) & (l1[e] <= p->y) &
+                        (m1[e] <= p->my) & (l2[e] <= p->z) & (m2[e] <= p->mz))
+             << e;
+    return m;
+}
+#endif
+
 /* The tree coordinates of a search (search_bsp_leaf.c): the origin c->o,
  * the inflated segment boxes st->sb, and the nodes inside the union of the
  * segment boxes in st->nx, ny, nz, nid (block order), with their tight box
@@ -206,5 +268,16 @@ ct_idx cti_bsp_tree_coords(bsp_ctx *c, bsp_box *root);
  * numbers segs, or (cti_bsp_leaf_rec) a list of records. */
 void cti_bsp_leaf(bsp_ctx *c, ct_idx n0, ct_idx n1, const ct_idx *restrict segs, ct_idx ns);
 void cti_bsp_leaf_rec(bsp_ctx *c, ct_idx n0, ct_idx n1, const bsp_f *restrict recs, ct_idx ns);
+
+/* A dense leaf (search_bsp_dense.c): with the hull filter, when the first
+ * nodes of [n0, n1) pass the box test of most of the segments they meet in
+ * their groups of 8 (cti_bsp_leaf_is_dense), the leaf is decided by
+ * cti_bsp_leaf_dense: the predicate's first steps in SIMD lanes over the
+ * leaf's segments with the node broadcast, the rest in a batch. The leaf's
+ * boxes are in sk->lb (padded to a multiple of 8). */
+int cti_bsp_leaf_is_dense(const bsp_ctx *c, const bsp_stack *sk, ct_idx n0, ct_idx n1,
+                          ct_idx ns);
+void cti_bsp_leaf_dense(bsp_ctx *c, bsp_stack *sk, ct_idx n0, ct_idx n1,
+                        const ct_idx *restrict segs, ct_idx ns);
 
 #endif /* CT_SEARCH_BSP_INTERNAL_H */

@@ -172,70 +172,28 @@ static int bsp_leaf_room(bsp_ctx *c, bsp_stack *sk, ct_idx ns)
     size_t cap = ((size_t)ns + (size_t)ns / 2 + 64) & ~(size_t)7;
     bsp_f *lb = ct_calloc(6 * cap, sizeof *lb);
     ct_idx *lid = ct_calloc(cap, sizeof *lid);
-    if (!lb || !lid) {
+    ct_real *lc = ct_calloc(BSP_LC * cap, sizeof *lc);
+    ct_idx *lcn = ct_calloc(4 * cap, sizeof *lcn);
+    if (!lb || !lid || !lc || !lcn) {
         ct_free(lb);
         ct_free(lid);
+        ct_free(lc);
+        ct_free(lcn);
 #pragma omp atomic write
         c->err = CT_ERR_NOMEM;
         return 0;
     }
     ct_free(sk->lb);
     ct_free(sk->lid);
+    ct_free(sk->lc);
+    ct_free(sk->lcn);
     sk->lb = lb;
     sk->lid = lid;
+    sk->lc = lc;
+    sk->lcn = lcn;
     sk->lbcap = cap;
     return 1;
 }
-
-/* The box test of a node (px, py, pz) against 8 segments of a leaf, from
- * box q of the leaf's arrays (l0.. lower bounds, m0.. negated upper
- * bounds): bit e of the result is set when the node is in box q + e. With
- * AVX, six 8-lane compares and a mask. */
-#if defined(__AVX__)
-typedef struct bsp_pt {
-    __m256 x, y, z, mx, my, mz;
-} bsp_pt;
-static inline bsp_pt bsp_pt_of(bsp_f px, bsp_f py, bsp_f pz)
-{
-    bsp_pt p = {_mm256_set1_ps(px),  _mm256_set1_ps(py),  _mm256_set1_ps(pz),
-                _mm256_set1_ps(-px), _mm256_set1_ps(-py), _mm256_set1_ps(-pz)};
-    return p;
-}
-static inline unsigned bsp_leaf_mask8(const bsp_f *restrict l0, const bsp_f *restrict l1,
-                                      const bsp_f *restrict l2, const bsp_f *restrict m0,
-                                      const bsp_f *restrict m1, const bsp_f *restrict m2,
-                                      const bsp_pt *p)
-{
-    __m256 c = _mm256_cmp_ps(_mm256_load_ps(l0), p->x, _CMP_LE_OQ);
-    c = _mm256_and_ps(c, _mm256_cmp_ps(_mm256_load_ps(m0), p->mx, _CMP_LE_OQ));
-    c = _mm256_and_ps(c, _mm256_cmp_ps(_mm256_load_ps(l1), p->y, _CMP_LE_OQ));
-    c = _mm256_and_ps(c, _mm256_cmp_ps(_mm256_load_ps(m1), p->my, _CMP_LE_OQ));
-    c = _mm256_and_ps(c, _mm256_cmp_ps(_mm256_load_ps(l2), p->z, _CMP_LE_OQ));
-    c = _mm256_and_ps(c, _mm256_cmp_ps(_mm256_load_ps(m2), p->mz, _CMP_LE_OQ));
-    return (unsigned)_mm256_movemask_ps(c);
-}
-#else
-typedef struct bsp_pt {
-    bsp_f x, y, z, mx, my, mz;
-} bsp_pt;
-static inline bsp_pt bsp_pt_of(bsp_f px, bsp_f py, bsp_f pz)
-{
-    bsp_pt p = {px, py, pz, -px, -py, -pz};
-    return p;
-}
-static inline unsigned bsp_leaf_mask8(const bsp_f *restrict l0, const bsp_f *restrict l1,
-                                      const bsp_f *restrict l2, const bsp_f *restrict m0,
-                                      const bsp_f *restrict m1, const bsp_f *restrict m2,
-                                      const bsp_pt *p)
-{
-    unsigned m = 0;
-    for (int e = 0; e < 8; e++)
-        m |= (unsigned)((l0[e] <= p->x) & (m0[e] <= p->mx) & (l1[e] <= p->y) &
-                        (m1[e] <= p->my) & (l2[e] <= p->z) & (m2[e] <= p->mz))
-             << e;
-    return m;
-}
-#endif
 
 /* Test every node of [n0, n1) against the ns segments whose boxes are in
  * this thread's leaf scratch (sk->lb, lbcap apart; upper bounds negated as
@@ -261,11 +219,17 @@ static void bsp_leaf_scan(bsp_ctx *c, bsp_stack *sk, ct_idx n0, ct_idx n1,
         l0[q] = l1[q] = l2[q] = (bsp_f)INFINITY;
         m0[q] = m1[q] = m2[q] = (bsp_f)INFINITY;
     }
+    /* Hull filter: the candidates that pass the box test go through the
+     * batch predicate, or, in a dense leaf, its steps run over the leaf's
+     * segments (search_bsp_dense.c); the box filter decides them here, one
+     * by one. */
+    const int batch = in->filter != CT_FILTER_BOX;
+    if (batch && cti_bsp_leaf_is_dense(c, sk, n0, n1, ns)) {
+        cti_bsp_leaf_dense(c, sk, n0, n1, segs, ns);
+        return;
+    }
     const ct_real *restrict x = in->x, *restrict y = in->y, *restrict z = in->z;
     size_t len = col->len[t];
-    /* Hull filter: the candidates that pass the box test go through the
-     * batch predicate; the box filter decides them here, one by one. */
-    const int batch = in->filter != CT_FILTER_BOX;
     cti_pair_batch pb;
     ct_idx bpos[CTI_PAIR_BATCH], last = -1;
     cti_pair_batch_init(&pb);

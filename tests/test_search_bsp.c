@@ -82,6 +82,14 @@ static ct_idx check_bsp(const ct_search_input *in, const char *what)
                       "list)",
                       what, leaves[a], boxes[b], got.n, ref.n);
         }
+    /* Every leaf on the dense path (search_bsp_dense.c), and none. */
+    for (int dense = -1; dense <= 1; dense += 2) {
+        ct_search_params p = ct_search_default_params(CT_SEARCH_BSP);
+        p.dense = dense;
+        ctt_search_with(&p, in, &got);
+        cr_assert(ctt_same_pairs(&ref, &got), "%s: bsp with dense %d gives %d pairs, direct %d",
+                  what, dense, got.n, ref.n);
+    }
     ct_idx n = ref.n;
     ct_pairs_destroy(&ref);
     ct_pairs_destroy(&got);
@@ -354,9 +362,14 @@ Test(search_bsp, random_soups_many_seeds, .timeout = 120)
         ctt_search_tuned(CT_SEARCH_DIRECT, 0, 0, &in, &ref);
         int leaf = (int)(rnd() * 40);
         double mb = rnd() < 0.5 ? 0 : box * 0.2 * rnd();
-        ctt_search_tuned(CT_SEARCH_BSP, leaf, mb, &in, &got);
-        cr_assert(ctt_same_pairs(&ref, &got), "seed %d (self %d, leaf %d, min_box %g): %d vs %d",
-                  seed, self, leaf, mb, got.n, ref.n);
+        ct_search_params p = ct_search_default_params(CT_SEARCH_BSP);
+        p.leaf_size = leaf;
+        p.min_box = mb;
+        p.dense = (seed / 3) % 3 - 1; /* independent of self (seed % 3) */
+        ctt_search_with(&p, &in, &got);
+        cr_assert(ctt_same_pairs(&ref, &got),
+                  "seed %d (self %d, leaf %d, min_box %g, dense %d): %d vs %d", seed, self, leaf,
+                  mb, p.dense, got.n, ref.n);
         ct_pairs_destroy(&ref);
         ct_pairs_destroy(&got);
         ctt_scene_free(&s);
@@ -397,4 +410,18 @@ Test(search_bsp, one_and_two_threads_identical)
     ct_pairs_destroy(&p2);
     ct_pairs_destroy(&ref);
     ctt_scene_free(&s);
+}
+
+/* The dense-leaf knob takes -1, 0 and 1 only. */
+Test(search_bsp, dense_knob_range)
+{
+    ct_search_params p = ct_search_default_params(CT_SEARCH_BSP);
+    ct_search *w;
+    for (int v = -2; v <= 2; v++) {
+        p.dense = v;
+        const int rc = ct_search_init(&w, &p);
+        cr_assert_eq(rc, v >= -1 && v <= 1 ? CT_OK : CT_ERR_ARG, "dense %d: %d", v, rc);
+        if (rc == CT_OK)
+            ct_search_destroy(w);
+    }
 }

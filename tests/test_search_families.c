@@ -52,6 +52,17 @@ static void check_case(const char *family, int64_t n, ctd_numbering num, double 
                   family, (long long)n, ctd_numbering_name(num), gap_h, ct_search_algo_name(a),
                   got.n, (long long)missing(&ref, &got), (long long)missing(&got, &ref), ref.n);
     }
+    /* The bsp search with every leaf on the dense path, and with none. */
+    for (int dense = -1; dense <= 1; dense += 2) {
+        ct_search_params p = ct_search_default_params(CT_SEARCH_BSP);
+        p.dense = dense;
+        ctt_search_with(&p, &in, &got);
+        cr_assert(ctt_same_pairs(&ref, &got),
+                  "%s, n=%lld, numbering %s, gap %g h: bsp with dense %d gives %d pairs (missing "
+                  "%lld, extra %lld), direct %d",
+                  family, (long long)n, ctd_numbering_name(num), gap_h, dense, got.n,
+                  (long long)missing(&ref, &got), (long long)missing(&got, &ref), ref.n);
+    }
     /* The topological search may miss pairs; it never reports one that the
      * direct search rejects. */
     ctt_search(CT_SEARCH_TOPO, &in, &got);

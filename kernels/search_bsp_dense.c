@@ -1,0 +1,295 @@
+/*
+ * search_bsp_dense.c -- the dense leaf of the quick-sort search.
+ *
+ * A node's candidates all lie in its leaf. Where elements are small
+ * against the search distance (the fine region of a graded mesh), a node
+ * passes the box test of most of the leaf's segments it meets, and the
+ * batch predicate (predicate_batch.c) spends most of its time copying
+ * fifteen coordinates per pair into its lanes. A dense leaf instead copies
+ * its segments' corners once, with the bounds of their boxes, into SoA
+ * arrays, and runs the predicate's cheap steps (1 and 2, the box; 2b, a
+ * corner within d) on 8 segments at a time in SIMD lanes, the node's
+ * coordinates broadcast. The pairs those steps leave undecided (about one
+ * in ten on the graded mesh) go to the batch predicate, whose answer is
+ * the one-pair predicate's; its lanes rerun steps 1 to 2b on the same
+ * values, so they are undecided there too. The steps are predicate_steps.h's
+ * inline functions and the box bounds are their min, max, lo - d and
+ * hi + d, computed once instead of per pair: every answer is bit for bit
+ * that of ct_pair_may_touch, and the pair set is the direct search's.
+ *
+ * A leaf is dense when its first nodes' box tests pass at least half of
+ * the lanes of the groups of 8 that they touch; otherwise (a coarse
+ * region, the plates) the lanes would mostly compute pairs the box test
+ * already rejected, and the leaf takes the batch path of search_bsp_leaf.c.
+ *
+ * Threads: a leaf belongs to one task, and everything here is that
+ * thread's scratch (its bsp_stack) and its collector buffer.
+ */
+#include "predicate_steps.h"
+#include "search_bsp_internal.h"
+
+/* The array of the leaf's corner scratch (BSP_LC arrays, lbcap apart):
+ * corner e's axis a, then the box's lo, hi, lo - d and hi + d on axis a,
+ * then the sum of (v - v) over the corners' coordinates (0 when they are
+ * finite). */
+#define LC_CORNER(e, a) (3 * (e) + (a))
+#define LC_LO(a) (12 + (a))
+#define LC_HI(a) (15 + (a))
+#define LC_LOD(a) (18 + (a))
+#define LC_HID(a) (21 + (a))
+#define LC_FIN 24
+_Static_assert(LC_FIN + 1 == BSP_LC, "the dense leaf's arrays");
+
+/* Nodes whose box tests choose the leaf's path. */
+enum { DENSE_SAMPLE = 8 };
+
+int cti_bsp_leaf_is_dense(const bsp_ctx *c, const bsp_stack *sk, ct_idx n0, ct_idx n1,
+                          ct_idx ns)
+{
+    if (c->dense != 0)
+        return c->dense > 0;
+    const bsp_state *st = c->st;
+    const size_t w = sk->lbcap;
+    const bsp_f *restrict l0 = sk->lb, *restrict l1 = l0 + w, *restrict l2 = l1 + w;
+    const bsp_f *restrict m0 = l2 + w, *restrict m1 = m0 + w, *restrict m2 = m1 + w;
+    const ct_idx ns8 = (ns + 7) & ~(ct_idx)7, ke = CTI_MIN(n1, n0 + DENSE_SAMPLE);
+    int64_t bits = 0, groups = 0;
+    for (ct_idx k = n0; k < ke; k++) {
+        const bsp_pt pt = bsp_pt_of(st->nx[k], st->ny[k], st->nz[k]);
+        for (ct_idx q0 = 0; q0 < ns8; q0 += 8) {
+            unsigned m = bsp_leaf_mask8(l0 + q0, l1 + q0, l2 + q0, m0 + q0, m1 + q0, m2 + q0, &pt);
+            bits += __builtin_popcount(m);
+            groups += m != 0;
+        }
+    }
+    return 2 * bits >= 8 * groups && groups > 0;
+}
+
+/* The corners of the leaf's segments segs[0..ns), their node numbers and
+ * their boxes' bounds into this thread's scratch; the padding lanes up to
+ * a multiple of 8 get zeros and no node (no node's box test passes them). */
+CTI_NOVEC static void dense_corners(const ct_search_input *in, bsp_stack *sk,
+                                    const ct_idx *restrict segs, ct_idx ns, ct_real d)
+{
+    const size_t w = sk->lbcap;
+    ct_real *restrict lc = sk->lc;
+    ct_idx *restrict lcn = sk->lcn;
+    const ct_real *restrict x = in->x, *restrict y = in->y, *restrict z = in->z;
+    const ct_idx *const cn[4] = {in->n1, in->n2, in->n3, in->n4};
+    const ct_idx ns8 = (ns + 7) & ~(ct_idx)7;
+    CTI_NOVEC_LOOP
+    for (ct_idx q = 0; q < ns; q++) {
+        const ct_idx j = segs[q];
+        for (int e = 0; e < 4; e++) {
+            const ct_idx i = cn[e][j];
+            lcn[(size_t)e * w + (size_t)q] = i;
+            lc[(size_t)LC_CORNER(e, 0) * w + (size_t)q] = x[i];
+            lc[(size_t)LC_CORNER(e, 1) * w + (size_t)q] = y[i];
+            lc[(size_t)LC_CORNER(e, 2) * w + (size_t)q] = z[i];
+        }
+    }
+    for (ct_idx q = ns; q < ns8; q++) {
+        for (int e = 0; e < 4; e++)
+            lcn[(size_t)e * w + (size_t)q] = -1;
+        for (int a = 0; a < 12; a++)
+            lc[(size_t)a * w + (size_t)q] = 0;
+    }
+    for (int a = 0; a < 3; a++) {
+        const ct_real *restrict ca = lc + (size_t)LC_CORNER(0, a) * w;
+        const ct_real *restrict cb = lc + (size_t)LC_CORNER(1, a) * w;
+        const ct_real *restrict cc = lc + (size_t)LC_CORNER(2, a) * w;
+        const ct_real *restrict ce = lc + (size_t)LC_CORNER(3, a) * w;
+        ct_real *restrict lo = lc + (size_t)LC_LO(a) * w, *restrict hi = lc + (size_t)LC_HI(a) * w;
+        ct_real *restrict lod = lc + (size_t)LC_LOD(a) * w;
+        ct_real *restrict hid = lc + (size_t)LC_HID(a) * w;
+#pragma omp simd
+        for (ct_idx q = 0; q < ns8; q++) {
+            const ct_real l = cti_step_lo(ca[q], cb[q], cc[q], ce[q]);
+            const ct_real h = cti_step_hi(ca[q], cb[q], cc[q], ce[q]);
+            lo[q] = l, hi[q] = h, lod[q] = l - d, hid[q] = h + d;
+        }
+    }
+    ct_real *restrict fin = lc + (size_t)LC_FIN * w;
+#pragma omp simd
+    for (ct_idx q = 0; q < ns8; q++) {
+        ct_real f = 0;
+        for (int a = 0; a < 12; a++) {
+            const ct_real v = lc[(size_t)a * w + (size_t)q];
+            f += v - v;
+        }
+        fin[q] = f;
+    }
+}
+
+/* Steps 1, 2 and 2b of point P (pfin: the sum of (v - v) over its
+ * coordinates) against the 8 segments at lane q0 of the scratch: the lanes
+ * of m they accept in *acc, those they leave undecided (or that have a
+ * coordinate that is not finite) in *und. */
+static inline void dense_steps(cti_pv P, ct_real pfin, const ct_real *restrict lc, size_t w,
+                               ct_idx q0, ct_real d2, unsigned m, unsigned *acc, unsigned *und)
+{
+    const ct_real *restrict v[BSP_LC];
+    for (int a = 0; a < BSP_LC; a++)
+        v[a] = lc + (size_t)a * w + (size_t)q0;
+    _Alignas(64) cti_lane r8[8];
+#pragma omp simd
+    for (int k = 0; k < 8; k++) {
+        const cti_pv A = {v[0][k], v[1][k], v[2][k]}, B = {v[3][k], v[4][k], v[5][k]},
+                     C = {v[6][k], v[7][k], v[8][k]}, E = {v[9][k], v[10][k], v[11][k]};
+        cti_lane out = 0;
+        const ct_real bx = cti_step_axis_lh(P.x, v[LC_LO(0)][k], v[LC_HI(0)][k],
+                                            v[LC_LOD(0)][k], v[LC_HID(0)][k], &out);
+        const ct_real by = cti_step_axis_lh(P.y, v[LC_LO(1)][k], v[LC_HI(1)][k],
+                                            v[LC_LOD(1)][k], v[LC_HID(1)][k], &out);
+        const ct_real bz = cti_step_axis_lh(P.z, v[LC_LO(2)][k], v[LC_HI(2)][k],
+                                            v[LC_LOD(2)][k], v[LC_HID(2)][k], &out);
+        const ct_real box2 = cti_step_box_sum(bx, by, bz, out);
+        const cti_lane reject = (box2 < 0) | (box2 > d2);
+        const cti_lane accept = cti_step_corners(P, A, B, C, E, d2);
+        const cti_lane nf = !(pfin + v[LC_FIN][k] == 0);
+        /* 0 reject, 1 accept, 2 undecided, 3 not finite (as the batch). */
+        r8[k] = ((reject - 1) & (2 - accept)) | (nf << 1);
+    }
+    unsigned a = 0, u = 0;
+    for (int k = 0; k < 8; k++) {
+        a |= (unsigned)(r8[k] == 1) << k;
+        u |= (unsigned)(r8[k] >> 1) << k;
+    }
+    *acc = a & m;
+    *und = u & m;
+}
+
+/* Room for nb answer bytes in this thread's scratch. */
+static int dense_room(bsp_ctx *c, bsp_stack *sk, size_t nb)
+{
+    if (nb <= sk->lrcap)
+        return 1;
+    size_t cap = nb + nb / 2 + 64;
+    uint8_t *lr = ct_calloc(cap, 1);
+    if (!lr) {
+#pragma omp atomic write
+        c->err = CT_ERR_NOMEM;
+        return 0;
+    }
+    ct_free(sk->lr);
+    sk->lr = lr;
+    sk->lrcap = cap;
+    return 1;
+}
+
+/* Decide the batch's pairs and set the answer bit of each accepted one
+ * (bit at[i] of lr). */
+static void dense_flush(cti_pair_batch *restrict pb, const int64_t *restrict at,
+                        uint8_t *restrict lr, ct_real d)
+{
+    cti_pair_batch_test(pb, d);
+    for (int i = 0; i < pb->n; i++)
+        lr[at[i] >> 3] |= (uint8_t)((pb->ok[i] != 0) << (at[i] & 7));
+    pb->n = 0;
+}
+
+/* The bits of m (lanes q0.. of the leaf) whose segment is not one of
+ * node's own (self contact excludes those). */
+static inline unsigned dense_not_own(const ct_idx *restrict lcn, size_t w, ct_idx q0,
+                                     unsigned m, ct_idx node)
+{
+    unsigned own = 0;
+    for (unsigned r = m; r; r &= r - 1) {
+        const int e = __builtin_ctz(r);
+        const size_t q = (size_t)(q0 + e);
+        own |= (unsigned)((lcn[q] == node) | (lcn[w + q] == node) | (lcn[2 * w + q] == node) |
+                          (lcn[3 * w + q] == node))
+               << e;
+    }
+    return m & ~own;
+}
+
+void cti_bsp_leaf_dense(bsp_ctx *c, bsp_stack *sk, ct_idx n0, ct_idx n1,
+                        const ct_idx *restrict segs, ct_idx ns)
+{
+    const ct_search_input *in = c->in;
+    const bsp_state *st = c->st;
+    cti_collect *col = c->col;
+    const int t = cti_thread_id();
+    const ct_idx ns8 = (ns + 7) & ~(ct_idx)7, ng = ns8 / 8;
+    if (!dense_room(c, sk, (size_t)(n1 - n0) * (size_t)ng))
+        return;
+    dense_corners(in, sk, segs, ns, c->d);
+    const size_t w = sk->lbcap;
+    const bsp_f *restrict l0 = sk->lb, *restrict l1 = l0 + w, *restrict l2 = l1 + w;
+    const bsp_f *restrict m0 = l2 + w, *restrict m1 = m0 + w, *restrict m2 = m1 + w;
+    const ct_real *restrict lc = sk->lc;
+    const ct_idx *restrict lcn = sk->lcn;
+    uint8_t *restrict lr = sk->lr;
+    const ct_real *restrict x = in->x, *restrict y = in->y, *restrict z = in->z;
+    const ct_real d = c->d, d2 = d * d;
+    const int self = in->self;
+    cti_pair_batch pb;
+    int64_t at[CTI_PAIR_BATCH];
+    cti_pair_batch_init(&pb);
+
+    /* Steps 1 to 2b per node and group of 8; the undecided pairs into the
+     * batch, copied from the scratch. */
+    for (ct_idx k = n0; k < n1; k++) {
+        const ct_idx node = in->sec[st->nid[k]];
+        const bsp_pt pt = bsp_pt_of(st->nx[k], st->ny[k], st->nz[k]);
+        const cti_pv P = {x[node], y[node], z[node]};
+        const ct_real pfin = (P.x - P.x) + (P.y - P.y) + (P.z - P.z);
+        uint8_t *restrict rk = lr + (size_t)(k - n0) * (size_t)ng;
+        for (ct_idx g = 0; g < ng; g++) {
+            const ct_idx q0 = 8 * g;
+            unsigned m = bsp_leaf_mask8(l0 + q0, l1 + q0, l2 + q0, m0 + q0, m1 + q0, m2 + q0, &pt);
+            if (m && self)
+                m = dense_not_own(lcn, w, q0, m, node);
+            if (!m) {
+                rk[g] = 0;
+                continue;
+            }
+            unsigned acc, und;
+            dense_steps(P, pfin, lc, w, q0, d2, m, &acc, &und);
+            rk[g] = (uint8_t)acc;
+            for (; und; und &= und - 1) {
+                const int e = __builtin_ctz(und);
+                const size_t q = (size_t)(q0 + e);
+                const int i = pb.n;
+                pb.px[i] = P.x, pb.py[i] = P.y, pb.pz[i] = P.z;
+                pb.ax[i] = lc[LC_CORNER(0, 0) * w + q], pb.ay[i] = lc[LC_CORNER(0, 1) * w + q];
+                pb.az[i] = lc[LC_CORNER(0, 2) * w + q];
+                pb.bx[i] = lc[LC_CORNER(1, 0) * w + q], pb.by[i] = lc[LC_CORNER(1, 1) * w + q];
+                pb.bz[i] = lc[LC_CORNER(1, 2) * w + q];
+                pb.cx[i] = lc[LC_CORNER(2, 0) * w + q], pb.cy[i] = lc[LC_CORNER(2, 1) * w + q];
+                pb.cz[i] = lc[LC_CORNER(2, 2) * w + q];
+                pb.ex[i] = lc[LC_CORNER(3, 0) * w + q], pb.ey[i] = lc[LC_CORNER(3, 1) * w + q];
+                pb.ez[i] = lc[LC_CORNER(3, 2) * w + q];
+                at[i] = ((int64_t)(k - n0) * ng + g) * 8 + e;
+                if (++pb.n == CTI_PAIR_BATCH)
+                    dense_flush(&pb, at, lr, d);
+            }
+        }
+    }
+    if (pb.n > 0)
+        dense_flush(&pb, at, lr, d);
+
+    /* The accepted segments of each node, in increasing order. */
+    size_t len = col->len[t];
+    for (ct_idx k = n0; k < n1; k++) {
+        if (len + (size_t)ns > col->cap[t]) {
+            col->len[t] = len;
+            if (cti_collect_room(col, t, (size_t)ns) != CT_OK)
+                return;
+        }
+        ct_idx *restrict buf = col->buf[t];
+        const uint8_t *restrict rk = lr + (size_t)(k - n0) * (size_t)ng;
+        const size_t start = len;
+        for (ct_idx g = 0; g < ng; g++)
+            for (unsigned r = rk[g]; r; r &= r - 1)
+                buf[len++] = segs[8 * g + __builtin_ctz(r)];
+        if (len > start) {
+            const ct_idx pos = st->nid[k];
+            col->owner[pos] = t;
+            col->start[pos] = (int64_t)start;
+            col->count[pos] = (ct_idx)(len - start);
+        }
+    }
+    col->len[t] = len;
+}
