@@ -32,6 +32,10 @@
  * against its segments in increasing order with the shared predicate; each
  * node is in exactly one leaf, so its list is the direct search's list, and
  * the collector writes the canonical order whatever thread did the work.
+ * A leaf whose nodes pass the box test of most of its segments decides the
+ * predicate's first steps in SIMD lanes over its segments
+ * (search_bsp_dense.c); the others batch their candidates
+ * (predicate_batch.c). Both give the one-pair predicate's answers.
  *
  * Parallelism: OpenMP tasks. Boxes above a size cutoff partition their
  * nodes in place and write their children's segment lists into a shared

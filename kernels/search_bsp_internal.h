@@ -2,7 +2,7 @@
  * search_bsp_internal.h -- the types and box helpers shared by the files of
  * the quick-sort search (private to kernels/search_bsp*.c): search_bsp.c
  * builds the partition, search_bsp_leaf.c computes the tree coordinates and
- * scans the leaves.
+ * scans the leaves, search_bsp_dense.c decides the dense leaves.
  */
 #ifndef CT_SEARCH_BSP_INTERNAL_H
 #define CT_SEARCH_BSP_INTERNAL_H
