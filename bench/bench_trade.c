@@ -29,6 +29,11 @@
  *             search; accuracy the pairs that differ from the bucket
  *             search with renumbering off (must be 0: the renumbering
  *             returns the same list, bit for bit).
+ *  dense      "off", "auto" and "on" (ct_search_params.dense) for the bsp
+ *             search on the graded mesh (DN_TARGET secondaries, natural
+ *             numbering, gap 0.3 h + margin 0.2 h): cost ns per node per
+ *             search; accuracy the pairs that differ from the search with
+ *             no dense leaf (must be 0).
  *  quad       4tri, newton, closed on the candidate pairs of the static
  *             sheet (the crumpled case, ~2 10^4 nodes, seed 12345, not
  *             moved; bucket candidates at gap 0.3 h + margin 0.2 h;
@@ -412,7 +417,8 @@ static void bm_trade(gb_state *st, void *arg)
         ctbt_bm_margin(st, d);
         break;
     case K_RENUM:
-        ctbt_bm_renumber(st, d);
+    case K_DENSE:
+        ctbt_bm_static_search(st, d);
         break;
     case K_QUAD:
         ctbt_bm_quad(st, d);
@@ -479,6 +485,10 @@ int ctb_trade_register(const ctb_search_config *c)
                      ct_search_algo_name((ct_search_algo)a));
             ADD(K_RENUM, a, r);
         }
+    for (int v = -1; v <= 1; v++) {
+        snprintf(name, sizeof name, "dense/%s@graded", ctbt_dense_name(v));
+        ADD(K_DENSE, 0, v);
+    }
     for (int v = 0; v < 2; v++)
         for (int q = 0; q < CT_QUAD_NMETHOD; q++) {
             snprintf(name, sizeof name, "quad/%s@%s", ct_quad_method_name((ct_quad_method)q),

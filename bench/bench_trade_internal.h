@@ -24,9 +24,10 @@
 #define TR_MARGIN 0.2 /* margin / h */
 #define WQ_PAIRS 100000
 #define RN_TARGET 1000000 /* secondaries of the renumbering knob's shuffled plates */
+#define DN_TARGET 100000  /* secondaries of the dense-leaf knob's graded mesh */
 #define SAFETY_PHASES 32
 
-enum { K_SEARCH, K_FILTER, K_MARGIN, K_RENUM, K_QUAD, K_PREC, K_ASM, K_STIFF, K_SAFETY };
+enum { K_SEARCH, K_FILTER, K_MARGIN, K_RENUM, K_DENSE, K_QUAD, K_PREC, K_ASM, K_STIFF, K_SAFETY };
 enum { ASM_COLOUR, ASM_COLOUR_B1, ASM_ATOMIC, ASM_THREADBUF, ASM_GATHER, ASM_SERIAL, ASM_N };
 
 /* MV_SHEET: the crumpled sheet in self contact (every knob of the moving
@@ -102,7 +103,8 @@ void ctbt_as_free(void);
 void ctbt_bm_search(gb_state *st, const tdesc *d);
 void ctbt_bm_filter(gb_state *st, const tdesc *d);
 void ctbt_bm_margin(gb_state *st, const tdesc *d);
-void ctbt_bm_renumber(gb_state *st, const tdesc *d);
+void ctbt_bm_static_search(gb_state *st, const tdesc *d);
+const char *ctbt_dense_name(int dense);
 void ctbt_rn_free(void);
 void ctbt_bm_quad(gb_state *st, const tdesc *d);
 void ctbt_bm_prec(gb_state *st, const tdesc *d);

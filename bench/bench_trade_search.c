@@ -1,8 +1,9 @@
 /*
  * bench_trade_search.c -- the search-side knobs of the speed/accuracy trade
  * (see bench_trade.c for what each measures): the search algorithm, the
- * search filter and the re-sort margin, all on the moving scenes, and the
- * renumbering of scattered inputs on shuffled plates.
+ * search filter and the re-sort margin, all on the moving scenes, the
+ * renumbering of scattered inputs on shuffled plates and the dense leaves of
+ * the bsp search on the graded mesh.
  */
 #include <math.h>
 #include <stdio.h>
@@ -263,38 +264,46 @@ void ctbt_bm_margin(gb_state *st, const tdesc *d)
                "pairs within the gap missing from the candidates (summed over the steps)", note);
 }
 
-/* ---- Knob: renumbering of scattered inputs ------------------------------- */
+/* ---- Knobs on one static search case: renumbering, dense bsp leaves ------ */
 
-/* Shuffled plates and the reference pairs (bucket, renumbering off), built
- * on first use. */
-static struct {
+/* The two cases, built on first use with their reference pairs:
+ *  SK_RENUM  shuffled plates (RN_TARGET secondaries), reference the bucket
+ *            search with renumbering off;
+ *  SK_DENSE  the graded mesh (DN_TARGET secondaries, natural numbering),
+ *            reference the bsp search with no dense leaf (the batch path). */
+enum { SK_RENUM, SK_DENSE, SK_N };
+static struct skcase {
     int state; /* 0: not built, 1: ready, -1: failed */
     char err[256];
     ctd_case c;
     ct_search_input in;
     ct_pairs ref;
-} rn;
+} sk[SK_N];
 
 void ctbt_rn_free(void)
 {
-    if (rn.state == 0)
-        return;
-    ct_pairs_destroy(&rn.ref);
-    ctd_case_destroy(&rn.c);
-    memset(&rn, 0, sizeof rn);
+    for (int i = 0; i < SK_N; i++) {
+        if (sk[i].state == 0)
+            continue;
+        ct_pairs_destroy(&sk[i].ref);
+        ctd_case_destroy(&sk[i].c);
+        memset(&sk[i], 0, sizeof sk[i]);
+    }
 }
 
-static int rn_run(ct_search_algo a, int renumber, const ct_search_input *in, ct_search **s,
-                  ct_pairs *out)
+/* A search of algorithm a with renumber and dense set. */
+static int sk_run(ct_search_algo a, int renumber, int dense, const ct_search_input *in,
+                  ct_search **s, ct_pairs *out)
 {
     ct_search_params p = ct_search_default_params(a);
     p.renumber = renumber;
+    p.dense = dense;
     int rc = ct_search_init(s, &p);
     return rc == CT_OK ? ct_search_run(*s, in, out) : rc;
 }
 
 /* Pairs of a not in b plus pairs of b not in a (both canonical). */
-static int64_t rn_differ(const ct_pairs *a, const ct_pairs *b)
+static int64_t sk_differ(const ct_pairs *a, const ct_pairs *b)
 {
     int64_t d = 0;
     ct_idx i = 0, j = 0;
@@ -315,48 +324,66 @@ static int64_t rn_differ(const ct_pairs *a, const ct_pairs *b)
     return d;
 }
 
-void ctbt_bm_renumber(gb_state *st, const tdesc *d)
+static struct skcase *sk_get(int which)
+{
+    struct skcase *k = &sk[which];
+    if (k->state != 0)
+        return k;
+    ct_diag dg = {0};
+    k->state = -1;
+    int rc = which == SK_RENUM
+                 ? ctd_case_make(&k->c, "plates", RN_TARGET, CTD_NUM_SHUFFLED, 3, &dg)
+                 : ctd_case_make(&k->c, "graded", DN_TARGET, CTD_NUM_NATURAL, 3, &dg);
+    ct_search *s = NULL;
+    if (rc == CT_OK) {
+        ctd_case_input(&k->c, (ct_real)(TR_GAP * k->c.h_mean), (ct_real)(TR_MARGIN * k->c.h_mean),
+                       &k->in);
+        rc = ct_pairs_init(&k->ref, 0);
+        if (rc == CT_OK)
+            rc = which == SK_RENUM ? sk_run(CT_SEARCH_BUCKET, -1, 0, &k->in, &s, &k->ref)
+                                   : sk_run(CT_SEARCH_BSP, 0, -1, &k->in, &s, &k->ref);
+        ct_search_destroy(s);
+    }
+    if (rc == CT_OK)
+        k->state = 1;
+    else
+        snprintf(k->err, sizeof k->err, "%s case: %.200s",
+                 which == SK_RENUM ? "renumbering" : "dense-leaf",
+                 dg.msg[0] ? dg.msg : ct_strerror(rc));
+    return k;
+}
+
+/* renumber: d->sub the algorithm, d->variant 0 off, 1 auto. dense: bsp,
+ * d->variant -1 off, 0 auto, 1 on. */
+void ctbt_bm_static_search(gb_state *st, const tdesc *d)
 {
     ctb_bind_threads(ctbt_cfg.bind, ctbt_cfg.max_threads, NULL, 0);
-    if (rn.state == 0) {
-        ct_diag dg = {0};
-        rn.state = -1;
-        int rc = ctd_case_make(&rn.c, "plates", RN_TARGET, CTD_NUM_SHUFFLED, 3, &dg);
-        ct_search *s = NULL;
-        if (rc == CT_OK) {
-            ctd_case_input(&rn.c, (ct_real)(TR_GAP * rn.c.h_mean),
-                           (ct_real)(TR_MARGIN * rn.c.h_mean), &rn.in);
-            rc = ct_pairs_init(&rn.ref, 0);
-            if (rc == CT_OK)
-                rc = rn_run(CT_SEARCH_BUCKET, -1, &rn.in, &s, &rn.ref);
-            ct_search_destroy(s);
-        }
-        if (rc == CT_OK)
-            rn.state = 1;
-        else
-            snprintf(rn.err, sizeof rn.err, "renumbering case: %.200s",
-                     dg.msg[0] ? dg.msg : ct_strerror(rc));
-    }
-    if (rn.state < 0) {
-        gb_skip_with_error(st, rn.err);
+    const int which = d->knob == K_DENSE ? SK_DENSE : SK_RENUM;
+    struct skcase *k = sk_get(which);
+    if (k->state < 0) {
+        gb_skip_with_error(st, k->err);
         return;
     }
-    const ct_search_algo a = (ct_search_algo)d->sub;
-    const int renumber = d->variant ? 0 : -1;
+    const ct_search_algo a = which == SK_RENUM ? (ct_search_algo)d->sub : CT_SEARCH_BSP;
+    const int renumber = which == SK_RENUM ? (d->variant ? 0 : -1) : 0;
+    const int dense = which == SK_DENSE ? d->variant : 0;
     char name[64];
-    snprintf(name, sizeof name, "%s@%s", d->variant ? "auto" : "off", ct_search_algo_name(a));
+    if (which == SK_RENUM)
+        snprintf(name, sizeof name, "%s@%s", d->variant ? "auto" : "off", ct_search_algo_name(a));
+    else
+        snprintf(name, sizeof name, "%s@graded", ctbt_dense_name(dense));
     ct_search *s = NULL;
     ct_pairs out;
     memset(&out, 0, sizeof out);
     int rc = ct_pairs_init(&out, 0);
     if (rc == CT_OK)
-        rc = rn_run(a, renumber, &rn.in, &s, &out); /* also the untimed warm-up */
-    const int64_t differ = rc == CT_OK ? rn_differ(&out, &rn.ref) : 0;
+        rc = sk_run(a, renumber, dense, &k->in, &s, &out); /* also the untimed warm-up */
+    const int64_t differ = rc == CT_OK ? sk_differ(&out, &k->ref) : 0;
     const double mem = (double)ct_search_memory(s);
     int64_t it = 0;
     double t0 = ctbt_now_s();
     while (rc == CT_OK && gb_keep_running(st)) {
-        rc = ct_search_run(s, &rn.in, &out);
+        rc = ct_search_run(s, &k->in, &out);
         it++;
     }
     double dt = ctbt_now_s() - t0;
@@ -366,14 +393,23 @@ void ctbt_bm_renumber(gb_state *st, const tdesc *d)
         ctbt_set_skip(st, name, rc);
         return;
     }
-    const double nsec = rn.c.sec.n;
+    const double nsec = k->c.sec.n;
     ctbt_cost_accuracy(st, dt, it, (double)nsec, (double)differ);
     gb_set_counter(st, "x_bytes_per_node", mem / nsec, GB_PLAIN);
     char note[300];
     snprintf(note, sizeof note,
-             "plates, shuffled numbering, %ld secondary nodes, gap 0.3 h + margin 0.2 h, %d "
-             "threads",
-             (long)rn.c.sec.n, ctbt_cfg.max_threads);
-    ctbt_label(st, "renumber", name, "ns/node per search",
-               "pairs differing from the bucket search with renumbering off", note);
+             "%s, %ld secondary nodes, gap 0.3 h + margin 0.2 h, %d threads",
+             which == SK_RENUM ? "plates, shuffled numbering" : "graded mesh, natural numbering",
+             (long)k->c.sec.n, ctbt_cfg.max_threads);
+    if (which == SK_RENUM)
+        ctbt_label(st, "renumber", name, "ns/node per search",
+                   "pairs differing from the bucket search with renumbering off", note);
+    else
+        ctbt_label(st, "dense", name, "ns/node per search",
+                   "pairs differing from the bsp search without dense leaves", note);
+}
+
+const char *ctbt_dense_name(int dense)
+{
+    return dense < 0 ? "off" : dense > 0 ? "on" : "auto";
 }
