@@ -86,12 +86,13 @@ typedef struct ct_search_params {
      * min_box (0 -> gap + margin). */
     int leaf_size;
     double min_box;
-    /* bsp with the hull filter: 0 (default) a leaf whose first nodes pass
-     * the box test of at least half the segments in the groups of 8 they
-     * touch is decided by the dense path (the predicate's first steps in
-     * SIMD lanes over the leaf's segments; kernels/search_bsp_dense.c), the
-     * others by the batch path; 1 every leaf dense, -1 none. The same
-     * pairs, bit for bit; a knob for tests and measurements. */
+    /* bsp with the hull filter: 0 (default) a leaf of up to 2048 segments
+     * whose first nodes pass the box test of at least half the segments in
+     * the groups of 8 they touch is decided by the dense path (the
+     * predicate's first steps in SIMD lanes over the leaf's segments;
+     * kernels/search_bsp_dense.c), the others by the batch path; 1 every
+     * leaf of up to 2048 segments dense, -1 none. The same pairs, bit for
+     * bit; a knob for tests and measurements. */
     int dense;
     /* bucket and bsp: 0 (default) renumber the input spatially when its
      * numbering is scattered (segment corners far apart in number) and the

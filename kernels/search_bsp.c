@@ -81,8 +81,8 @@ static size_t bsp_memory(const void *p)
                st->segcap * BSP_REC * sizeof(bsp_f) + st->arenacap * sizeof(ct_idx);
     for (int t = 0; t < st->nthr; t++)
         b += st->stk[t].cap * sizeof(ct_idx) + st->stk[t].rcap * BSP_REC * sizeof(bsp_f) +
-             st->stk[t].lbcap *
-                 (6 * sizeof(bsp_f) + 5 * sizeof(ct_idx) + BSP_LC * sizeof(ct_real)) +
+             st->stk[t].lbcap * (6 * sizeof(bsp_f) + sizeof(ct_idx)) +
+             st->stk[t].lccap * (BSP_LC * sizeof(ct_real) + 4 * sizeof(ct_idx)) +
              st->stk[t].lrcap;
     return b;
 }

@@ -28,7 +28,7 @@
 #include "predicate_steps.h"
 #include "search_bsp_internal.h"
 
-/* The array of the leaf's corner scratch (BSP_LC arrays, lbcap apart):
+/* The array of the leaf's corner scratch (BSP_LC arrays, lccap apart):
  * corner e's axis a, then the box's lo, hi, lo - d and hi + d on axis a,
  * then the sum of (v - v) over the corners' coordinates (0 when they are
  * finite). */
@@ -40,12 +40,17 @@
 #define LC_FIN 24
 _Static_assert(LC_FIN + 1 == BSP_LC, "the dense leaf's arrays");
 
-/* Nodes whose box tests choose the leaf's path. */
-enum { DENSE_SAMPLE = 8 };
+/* Nodes whose box tests choose the leaf's path; the most segments a dense
+ * leaf may have (a leaf made by the box-size rule can hold any number; the
+ * corner scratch costs 216 bytes a segment); the nodes decided between two
+ * emissions (the answer bytes then take at most 256 x 256). */
+enum { DENSE_SAMPLE = 8, DENSE_MAX_SEGS = 2048, DENSE_NODES = 256 };
 
 int cti_bsp_leaf_is_dense(const bsp_ctx *c, const bsp_stack *sk, ct_idx n0, ct_idx n1,
                           ct_idx ns)
 {
+    if (ns > DENSE_MAX_SEGS)
+        return 0;
     if (c->dense != 0)
         return c->dense > 0;
     const bsp_state *st = c->st;
@@ -71,7 +76,7 @@ int cti_bsp_leaf_is_dense(const bsp_ctx *c, const bsp_stack *sk, ct_idx n0, ct_i
 CTI_NOVEC static void dense_corners(const ct_search_input *in, bsp_stack *sk,
                                     const ct_idx *restrict segs, ct_idx ns, ct_real d)
 {
-    const size_t w = sk->lbcap;
+    const size_t w = sk->lccap;
     ct_real *restrict lc = sk->lc;
     ct_idx *restrict lcn = sk->lcn;
     const ct_real *restrict x = in->x, *restrict y = in->y, *restrict z = in->z;
@@ -159,21 +164,35 @@ static inline void dense_steps(cti_pv P, ct_real pfin, const ct_real *restrict l
     *und = u & m;
 }
 
-/* Room for nb answer bytes in this thread's scratch. */
-static int dense_room(bsp_ctx *c, bsp_stack *sk, size_t nb)
+/* Room for a leaf of ns8 segments (a multiple of 8) in this thread's corner
+ * scratch and for DENSE_NODES nodes' answer bytes; 0 (and the error flag)
+ * when it cannot grow. */
+static int dense_room(bsp_ctx *c, bsp_stack *sk, ct_idx ns8)
 {
-    if (nb <= sk->lrcap)
+    const size_t nb = (size_t)DENSE_NODES * (size_t)(ns8 / 8);
+    if ((size_t)ns8 <= sk->lccap && nb <= sk->lrcap)
         return 1;
-    size_t cap = nb + nb / 2 + 64;
-    uint8_t *lr = ct_calloc(cap, 1);
-    if (!lr) {
+    const size_t cap = CTI_MAX(sk->lccap, ((size_t)ns8 + (size_t)ns8 / 2 + 64) & ~(size_t)7);
+    const size_t rcap = (size_t)DENSE_NODES * (cap / 8);
+    ct_real *lc = ct_calloc(BSP_LC * cap, sizeof *lc);
+    ct_idx *lcn = ct_calloc(4 * cap, sizeof *lcn);
+    uint8_t *lr = ct_calloc(rcap, 1);
+    if (!lc || !lcn || !lr) {
+        ct_free(lc);
+        ct_free(lcn);
+        ct_free(lr);
 #pragma omp atomic write
         c->err = CT_ERR_NOMEM;
         return 0;
     }
+    ct_free(sk->lc);
+    ct_free(sk->lcn);
     ct_free(sk->lr);
+    sk->lc = lc;
+    sk->lcn = lcn;
     sk->lr = lr;
-    sk->lrcap = cap;
+    sk->lccap = cap;
+    sk->lrcap = rcap;
     return 1;
 }
 
@@ -204,20 +223,21 @@ static inline unsigned dense_not_own(const ct_idx *restrict lcn, size_t w, ct_id
     return m & ~own;
 }
 
-void cti_bsp_leaf_dense(bsp_ctx *c, bsp_stack *sk, ct_idx n0, ct_idx n1,
-                        const ct_idx *restrict segs, ct_idx ns)
+/* Nodes [n0, n1) (at most DENSE_NODES) of a dense leaf: steps 1 to 2b per
+ * node and group of 8 into the answer bytes, the undecided pairs through
+ * the batch, then each node's accepted segments, in increasing order, into
+ * this thread's collector buffer at *len. */
+static int dense_nodes(bsp_ctx *c, bsp_stack *sk, ct_idx n0, ct_idx n1,
+                       const ct_idx *restrict segs, ct_idx ns, size_t *len)
 {
     const ct_search_input *in = c->in;
     const bsp_state *st = c->st;
     cti_collect *col = c->col;
     const int t = cti_thread_id();
-    const ct_idx ns8 = (ns + 7) & ~(ct_idx)7, ng = ns8 / 8;
-    if (!dense_room(c, sk, (size_t)(n1 - n0) * (size_t)ng))
-        return;
-    dense_corners(in, sk, segs, ns, c->d);
-    const size_t w = sk->lbcap;
-    const bsp_f *restrict l0 = sk->lb, *restrict l1 = l0 + w, *restrict l2 = l1 + w;
-    const bsp_f *restrict m0 = l2 + w, *restrict m1 = m0 + w, *restrict m2 = m1 + w;
+    const ct_idx ng = ((ns + 7) & ~(ct_idx)7) / 8;
+    const size_t wb = sk->lbcap, w = sk->lccap;
+    const bsp_f *restrict l0 = sk->lb, *restrict l1 = l0 + wb, *restrict l2 = l1 + wb;
+    const bsp_f *restrict m0 = l2 + wb, *restrict m1 = m0 + wb, *restrict m2 = m1 + wb;
     const ct_real *restrict lc = sk->lc;
     const ct_idx *restrict lcn = sk->lcn;
     uint8_t *restrict lr = sk->lr;
@@ -228,8 +248,6 @@ void cti_bsp_leaf_dense(bsp_ctx *c, bsp_stack *sk, ct_idx n0, ct_idx n1,
     int64_t at[CTI_PAIR_BATCH];
     cti_pair_batch_init(&pb);
 
-    /* Steps 1 to 2b per node and group of 8; the undecided pairs into the
-     * batch, copied from the scratch. */
     for (ct_idx k = n0; k < n1; k++) {
         const ct_idx node = in->sec[st->nid[k]];
         const bsp_pt pt = bsp_pt_of(st->nx[k], st->ny[k], st->nz[k]);
@@ -270,26 +288,42 @@ void cti_bsp_leaf_dense(bsp_ctx *c, bsp_stack *sk, ct_idx n0, ct_idx n1,
     if (pb.n > 0)
         dense_flush(&pb, at, lr, d);
 
-    /* The accepted segments of each node, in increasing order. */
-    size_t len = col->len[t];
+    size_t l = *len;
     for (ct_idx k = n0; k < n1; k++) {
-        if (len + (size_t)ns > col->cap[t]) {
-            col->len[t] = len;
+        if (l + (size_t)ns > col->cap[t]) {
+            col->len[t] = l;
             if (cti_collect_room(col, t, (size_t)ns) != CT_OK)
-                return;
+                return 0;
         }
         ct_idx *restrict buf = col->buf[t];
         const uint8_t *restrict rk = lr + (size_t)(k - n0) * (size_t)ng;
-        const size_t start = len;
+        const size_t start = l;
         for (ct_idx g = 0; g < ng; g++)
             for (unsigned r = rk[g]; r; r &= r - 1)
-                buf[len++] = segs[8 * g + __builtin_ctz(r)];
-        if (len > start) {
+                buf[l++] = segs[8 * g + __builtin_ctz(r)];
+        if (l > start) {
             const ct_idx pos = st->nid[k];
             col->owner[pos] = t;
             col->start[pos] = (int64_t)start;
-            col->count[pos] = (ct_idx)(len - start);
+            col->count[pos] = (ct_idx)(l - start);
         }
     }
+    *len = l;
+    return 1;
+}
+
+void cti_bsp_leaf_dense(bsp_ctx *c, bsp_stack *sk, ct_idx n0, ct_idx n1,
+                        const ct_idx *restrict segs, ct_idx ns)
+{
+    const ct_idx ns8 = (ns + 7) & ~(ct_idx)7;
+    if (!dense_room(c, sk, ns8))
+        return;
+    dense_corners(c->in, sk, segs, ns, c->d);
+    cti_collect *col = c->col;
+    const int t = cti_thread_id();
+    size_t len = col->len[t];
+    for (ct_idx k = n0; k < n1; k += DENSE_NODES)
+        if (!dense_nodes(c, sk, k, CTI_MIN(n1, k + DENSE_NODES), segs, ns, &len))
+            return;
     col->len[t] = len;
 }

@@ -59,8 +59,8 @@ typedef struct bsp_box {
  *  - lb, lid: a leaf's segment boxes (6 arrays, upper bounds negated as in
  *    the records) and numbers, of lbcap, a multiple of 8;
  *  - lc, lcn: a dense leaf's segments' corners and box bounds (BSP_LC
- *    arrays of lbcap, search_bsp_dense.c) and their node numbers (4 arrays
- *    of lbcap);
+ *    arrays of lccap, search_bsp_dense.c) and their node numbers (4 arrays
+ *    of lccap);
  *  - lr, lrcap: a dense leaf's answers, a byte per node and 8 segments. */
 /* Arrays of a dense leaf's corner scratch (search_bsp_dense.c). */
 #define BSP_LC 25
@@ -72,12 +72,13 @@ typedef struct bsp_stack {
     size_t rcap;
     bsp_f *lb;
     ct_idx *lid;
+    size_t lbcap;
     ct_real *lc;
     ct_idx *lcn;
-    size_t lbcap;
+    size_t lccap;
     uint8_t *lr;
     size_t lrcap;
-    char pad[128 - 4 * sizeof(size_t) - 7 * sizeof(void *)];
+    char pad[128 - 5 * sizeof(size_t) - 7 * sizeof(void *)];
 } bsp_stack;
 _Static_assert(sizeof(bsp_stack) % 64 == 0, "a thread's scratch fills whole cache lines");
 

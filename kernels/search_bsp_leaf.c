@@ -172,25 +172,17 @@ static int bsp_leaf_room(bsp_ctx *c, bsp_stack *sk, ct_idx ns)
     size_t cap = ((size_t)ns + (size_t)ns / 2 + 64) & ~(size_t)7;
     bsp_f *lb = ct_calloc(6 * cap, sizeof *lb);
     ct_idx *lid = ct_calloc(cap, sizeof *lid);
-    ct_real *lc = ct_calloc(BSP_LC * cap, sizeof *lc);
-    ct_idx *lcn = ct_calloc(4 * cap, sizeof *lcn);
-    if (!lb || !lid || !lc || !lcn) {
+    if (!lb || !lid) {
         ct_free(lb);
         ct_free(lid);
-        ct_free(lc);
-        ct_free(lcn);
 #pragma omp atomic write
         c->err = CT_ERR_NOMEM;
         return 0;
     }
     ct_free(sk->lb);
     ct_free(sk->lid);
-    ct_free(sk->lc);
-    ct_free(sk->lcn);
     sk->lb = lb;
     sk->lid = lid;
-    sk->lc = lc;
-    sk->lcn = lcn;
     sk->lbcap = cap;
     return 1;
 }

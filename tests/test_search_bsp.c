@@ -425,3 +425,31 @@ Test(search_bsp, dense_knob_range)
             ct_search_destroy(w);
     }
 }
+
+/* One leaf (every node and segment in a box far below gap + margin) with
+ * more nodes than a dense leaf decides between two emissions (256), and
+ * segments just under and over the most a dense leaf takes (2048): every
+ * node meets every segment, and both paths, forced and chosen, give the
+ * direct search's pairs. */
+Test(search_bsp, dense_leaf_large)
+{
+    const int nsegs[] = {2000, 2100};
+    for (int c = 0; c < 2; c++) {
+        ctt_scene s;
+        const int nseg = nsegs[c], nsec = small() ? 300 : 600;
+        ctt_scene_init(&s, 3 * nseg + nsec, nseg);
+        rng_state = 99 + (uint64_t)c;
+        for (int k = 0; k < nseg; k++) {
+            ct_idx v[3];
+            for (int q = 0; q < 3; q++)
+                v[q] = ctt_scene_node(&s, 1e-3 * rnd(), 1e-3 * rnd(), 1e-3 * rnd());
+            ctt_scene_seg(&s, v[0], v[1], v[2], v[2]);
+        }
+        for (int i = 0; i < nsec; i++)
+            ctt_scene_sec(&s, ctt_scene_node(&s, 1e-3 * rnd(), 1e-3 * rnd(), 1e-3 * rnd()));
+        ct_search_input in = ctt_scene_input(&s, 0.05, 0.01, 0);
+        ct_idx np = check_bsp(&in, "one large leaf");
+        cr_assert_eq(np, (ct_idx)nseg * nsec, "%d segments: %d pairs", nseg, np);
+        ctt_scene_free(&s);
+    }
+}
