@@ -174,23 +174,16 @@ static int dense_room(bsp_ctx *c, bsp_stack *sk, ct_idx ns8)
         return 1;
     const size_t cap = CTI_MAX(sk->lccap, ((size_t)ns8 + (size_t)ns8 / 2 + 64) & ~(size_t)7);
     const size_t rcap = (size_t)DENSE_NODES * (cap / 8);
-    ct_real *lc = ct_calloc(BSP_LC * cap, sizeof *lc);
-    ct_idx *lcn = ct_calloc(4 * cap, sizeof *lcn);
-    uint8_t *lr = ct_calloc(rcap, 1);
-    if (!lc || !lcn || !lr) {
-        ct_free(lc);
-        ct_free(lcn);
-        ct_free(lr);
-#pragma omp atomic write
-        c->err = CT_ERR_NOMEM;
+    const size_t bytes[3] = {BSP_LC * cap * sizeof(ct_real), 4 * cap * sizeof(ct_idx), rcap};
+    void *q[3];
+    if (!cti_bsp_alloc(c, 3, bytes, q))
         return 0;
-    }
     ct_free(sk->lc);
     ct_free(sk->lcn);
     ct_free(sk->lr);
-    sk->lc = lc;
-    sk->lcn = lcn;
-    sk->lr = lr;
+    sk->lc = q[0];
+    sk->lcn = q[1];
+    sk->lr = q[2];
     sk->lccap = cap;
     sk->lrcap = rcap;
     return 1;

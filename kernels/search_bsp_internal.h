@@ -270,6 +270,10 @@ ct_idx cti_bsp_tree_coords(bsp_ctx *c, bsp_box *root);
 void cti_bsp_leaf(bsp_ctx *c, ct_idx n0, ct_idx n1, const ct_idx *restrict segs, ct_idx ns);
 void cti_bsp_leaf_rec(bsp_ctx *c, ct_idx n0, ct_idx n1, const bsp_f *restrict recs, ct_idx ns);
 
+/* n new zeroed buffers of bytes[i] each into q[i], all or none; 0 (and the
+ * error flag) when one cannot be allocated (search_bsp_leaf.c). */
+int cti_bsp_alloc(bsp_ctx *c, int n, const size_t *bytes, void **q);
+
 /* A dense leaf (search_bsp_dense.c): with the hull filter, when the first
  * nodes of [n0, n1) pass the box test of most of the segments they meet in
  * their groups of 8 (cti_bsp_leaf_is_dense), the leaf is decided by

@@ -169,22 +169,31 @@ static int bsp_leaf_room(bsp_ctx *c, bsp_stack *sk, ct_idx ns)
 {
     if ((size_t)ns + 8 <= sk->lbcap)
         return 1;
-    size_t cap = ((size_t)ns + (size_t)ns / 2 + 64) & ~(size_t)7;
-    bsp_f *lb = ct_calloc(6 * cap, sizeof *lb);
-    ct_idx *lid = ct_calloc(cap, sizeof *lid);
-    if (!lb || !lid) {
-        ct_free(lb);
-        ct_free(lid);
-#pragma omp atomic write
-        c->err = CT_ERR_NOMEM;
+    const size_t cap = ((size_t)ns + (size_t)ns / 2 + 64) & ~(size_t)7;
+    const size_t bytes[2] = {6 * cap * sizeof(bsp_f), cap * sizeof(ct_idx)};
+    void *q[2];
+    if (!cti_bsp_alloc(c, 2, bytes, q))
         return 0;
-    }
     ct_free(sk->lb);
     ct_free(sk->lid);
-    sk->lb = lb;
-    sk->lid = lid;
+    sk->lb = q[0];
+    sk->lid = q[1];
     sk->lbcap = cap;
     return 1;
+}
+
+int cti_bsp_alloc(bsp_ctx *c, int n, const size_t *bytes, void **q)
+{
+    int ok = 1;
+    for (int i = 0; i < n; i++)
+        ok &= (q[i] = ct_calloc(bytes[i], 1)) != NULL;
+    if (ok)
+        return 1;
+    for (int i = 0; i < n; i++)
+        ct_free(q[i]);
+#pragma omp atomic write
+    c->err = CT_ERR_NOMEM;
+    return 0;
 }
 
 /* Test every node of [n0, n1) against the ns segments whose boxes are in
