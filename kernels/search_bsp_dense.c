@@ -114,15 +114,16 @@ CTI_NOVEC static void dense_corners(const ct_search_input *in, bsp_stack *sk,
             lo[q] = l, hi[q] = h, lod[q] = l - d, hid[q] = h + d;
         }
     }
+    /* 0 when the corners are finite, NaN otherwise (v - v is 0 for a
+     * finite v, NaN for NaN and infinities), whatever the order of the sum. */
     ct_real *restrict fin = lc + (size_t)LC_FIN * w;
+    for (ct_idx q = 0; q < ns8; q++)
+        fin[q] = 0;
+    for (int a = 0; a < 12; a++) {
+        const ct_real *restrict v = lc + (size_t)a * w;
 #pragma omp simd
-    for (ct_idx q = 0; q < ns8; q++) {
-        ct_real f = 0;
-        for (int a = 0; a < 12; a++) {
-            const ct_real v = lc[(size_t)a * w + (size_t)q];
-            f += v - v;
-        }
-        fin[q] = f;
+        for (ct_idx q = 0; q < ns8; q++)
+            fin[q] += v[q] - v[q];
     }
 }
 

@@ -43,9 +43,11 @@ static int same_pairs(const ct_pairs *a, const ct_pairs *b)
            memcmp(a->seg, b->seg, sizeof(ct_idx) * (size_t)a->n) == 0;
 }
 
-static int search(ct_search_algo a, const ct_search_input *in, ct_pairs *out)
+/* Search a with the bsp search's dense-leaf knob set to dense. */
+static int search_dense(ct_search_algo a, int dense, const ct_search_input *in, ct_pairs *out)
 {
     ct_search_params p = ct_search_default_params(a);
+    p.dense = dense;
     ct_search *s;
     int rc = ct_search_init(&s, &p);
     if (rc == CT_OK)
@@ -54,6 +56,11 @@ static int search(ct_search_algo a, const ct_search_input *in, ct_pairs *out)
         rc = ct_search_run(s, in, out); /* the incremental path too */
     ct_search_destroy(s);
     return rc;
+}
+
+static int search(ct_search_algo a, const ct_search_input *in, ct_pairs *out)
+{
+    return search_dense(a, 0, in, out);
 }
 
 /* Mesh generation, topology and the four searches on a few families, with
@@ -86,6 +93,10 @@ static void check_searches(void)
                 CHECK(rc == CT_OK && same_pairs(&ref, &got), "%s on %s (filter %d): rc %d, %d vs %d pairs",
                       ct_search_algo_name(a), fams[f % 5], filt, rc, got.n, ref.n);
             }
+            /* bsp with every leaf dense (its per-thread scratch in tasks). */
+            rc = search_dense(CT_SEARCH_BSP, 1, &in, &got);
+            CHECK(rc == CT_OK && same_pairs(&ref, &got), "bsp dense on %s (filter %d): rc %d",
+                  fams[f % 5], filt, rc);
             rc = search(CT_SEARCH_TOPO, &in, &got);
             CHECK(rc == CT_OK, "topological on %s: %s", fams[f % 5], ct_strerror(rc));
             ct_pairs_destroy(&ref);
