@@ -40,33 +40,38 @@
 #define LC_FIN 24
 _Static_assert(LC_FIN + 1 == BSP_LC, "the dense leaf's arrays");
 
-/* Nodes whose box tests choose the leaf's path; the most segments a dense
+/* BSP_DENSE_SAMPLE (search_bsp_internal.h): the nodes whose box tests
+ * choose the leaf's path; BSP_DENSE_MAX_SEGS: the most segments a dense
  * leaf may have (a leaf made by the box-size rule can hold any number; the
- * corner scratch costs 216 bytes a segment); the nodes decided between two
- * emissions (the answer bytes then take at most 256 x 256). */
-enum { DENSE_SAMPLE = 8, DENSE_MAX_SEGS = 2048, DENSE_NODES = 256 };
+ * corner scratch costs 216 bytes a segment). DENSE_NODES: the nodes decided
+ * between two emissions (the answer bytes then take at most 256 x 256). */
+enum { DENSE_NODES = 256 };
 
 int cti_bsp_leaf_is_dense(const bsp_ctx *c, const bsp_stack *sk, ct_idx n0, ct_idx n1,
-                          ct_idx ns)
+                          ct_idx ns, bsp_sample *smp)
 {
-    if (ns > DENSE_MAX_SEGS)
+    smp->n = 0;
+    smp->ng = ((ns + 7) & ~(ct_idx)7) / 8;
+    if (ns > BSP_DENSE_MAX_SEGS)
         return 0;
     if (c->dense != 0)
         return c->dense > 0;
     const bsp_state *st = c->st;
     const size_t w = sk->lbcap;
-    const bsp_f *restrict l0 = sk->lb, *restrict l1 = l0 + w, *restrict l2 = l1 + w;
-    const bsp_f *restrict m0 = l2 + w, *restrict m1 = m0 + w, *restrict m2 = m1 + w;
-    const ct_idx ns8 = (ns + 7) & ~(ct_idx)7, ke = CTI_MIN(n1, n0 + DENSE_SAMPLE);
+    const bsp_f *restrict lb = sk->lb;
+    const ct_idx ke = CTI_MIN(n1, n0 + BSP_DENSE_SAMPLE), ng = smp->ng;
     int64_t bits = 0, groups = 0;
     for (ct_idx k = n0; k < ke; k++) {
         const bsp_pt pt = bsp_pt_of(st->nx[k], st->ny[k], st->nz[k]);
-        for (ct_idx q0 = 0; q0 < ns8; q0 += 8) {
-            unsigned m = bsp_leaf_mask8(l0 + q0, l1 + q0, l2 + q0, m0 + q0, m1 + q0, m2 + q0, &pt);
+        uint8_t *restrict mk = smp->m + (size_t)(k - n0) * (size_t)ng;
+        for (ct_idx g = 0; g < ng; g++) {
+            const unsigned m = bsp_mask_of(smp, n0, k, g, lb, w, &pt);
+            mk[g] = (uint8_t)m;
             bits += __builtin_popcount(m);
             groups += m != 0;
         }
     }
+    smp->n = ke - n0;
     return 2 * bits >= 8 * groups && groups > 0;
 }
 
@@ -222,7 +227,8 @@ static inline unsigned dense_not_own(const ct_idx *restrict lcn, size_t w, ct_id
  * the batch, then each node's accepted segments, in increasing order, into
  * this thread's collector buffer at *len. */
 static int dense_nodes(bsp_ctx *c, bsp_stack *sk, ct_idx n0, ct_idx n1,
-                       const ct_idx *restrict segs, ct_idx ns, size_t *len)
+                       const ct_idx *restrict segs, ct_idx ns, const bsp_sample *smp,
+                       ct_idx leaf0, size_t *len)
 {
     const ct_search_input *in = c->in;
     const bsp_state *st = c->st;
@@ -230,8 +236,7 @@ static int dense_nodes(bsp_ctx *c, bsp_stack *sk, ct_idx n0, ct_idx n1,
     const int t = cti_thread_id();
     const ct_idx ng = ((ns + 7) & ~(ct_idx)7) / 8;
     const size_t wb = sk->lbcap, w = sk->lccap;
-    const bsp_f *restrict l0 = sk->lb, *restrict l1 = l0 + wb, *restrict l2 = l1 + wb;
-    const bsp_f *restrict m0 = l2 + wb, *restrict m1 = m0 + wb, *restrict m2 = m1 + wb;
+    const bsp_f *restrict lb = sk->lb;
     const ct_real *restrict lc = sk->lc;
     const ct_idx *restrict lcn = sk->lcn;
     uint8_t *restrict lr = sk->lr;
@@ -250,7 +255,7 @@ static int dense_nodes(bsp_ctx *c, bsp_stack *sk, ct_idx n0, ct_idx n1,
         uint8_t *restrict rk = lr + (size_t)(k - n0) * (size_t)ng;
         for (ct_idx g = 0; g < ng; g++) {
             const ct_idx q0 = 8 * g;
-            unsigned m = bsp_leaf_mask8(l0 + q0, l1 + q0, l2 + q0, m0 + q0, m1 + q0, m2 + q0, &pt);
+            unsigned m = bsp_mask_of(smp, leaf0, k, g, lb, wb, &pt);
             if (m && self)
                 m = dense_not_own(lcn, w, q0, m, node);
             if (!m) {
@@ -307,7 +312,7 @@ static int dense_nodes(bsp_ctx *c, bsp_stack *sk, ct_idx n0, ct_idx n1,
 }
 
 void cti_bsp_leaf_dense(bsp_ctx *c, bsp_stack *sk, ct_idx n0, ct_idx n1,
-                        const ct_idx *restrict segs, ct_idx ns)
+                        const ct_idx *restrict segs, ct_idx ns, const bsp_sample *smp)
 {
     const ct_idx ns8 = (ns + 7) & ~(ct_idx)7;
     if (!dense_room(c, sk, ns8))
@@ -317,7 +322,7 @@ void cti_bsp_leaf_dense(bsp_ctx *c, bsp_stack *sk, ct_idx n0, ct_idx n1,
     const int t = cti_thread_id();
     size_t len = col->len[t];
     for (ct_idx k = n0; k < n1; k += DENSE_NODES)
-        if (!dense_nodes(c, sk, k, CTI_MIN(n1, k + DENSE_NODES), segs, ns, &len))
+        if (!dense_nodes(c, sk, k, CTI_MIN(n1, k + DENSE_NODES), segs, ns, smp, n0, &len))
             return;
     col->len[t] = len;
 }

@@ -280,9 +280,31 @@ int cti_bsp_alloc(bsp_ctx *c, int n, const size_t *bytes, void **q);
  * cti_bsp_leaf_dense: the predicate's first steps in SIMD lanes over the
  * leaf's segments with the node broadcast, the rest in a batch. The leaf's
  * boxes are in sk->lb (padded to a multiple of 8). */
+enum { BSP_DENSE_SAMPLE = 8, BSP_DENSE_MAX_SEGS = 2048 };
+
+/* The box-test masks of a leaf's first n nodes (one byte per node and group
+ * of 8 segments, ng groups a node), computed once to choose the path and
+ * read again by the path chosen. */
+typedef struct bsp_sample {
+    ct_idx n, ng;
+    uint8_t m[BSP_DENSE_SAMPLE * (BSP_DENSE_MAX_SEGS / 8)];
+} bsp_sample;
+
+/* The mask of node k (of a leaf that starts at node n0) against group g:
+ * from the sample, or computed. */
+static inline unsigned bsp_mask_of(const bsp_sample *smp, ct_idx n0, ct_idx k, ct_idx g,
+                                   const bsp_f *restrict lb, size_t w, const bsp_pt *pt)
+{
+    if (k - n0 < smp->n)
+        return smp->m[(size_t)(k - n0) * (size_t)smp->ng + (size_t)g];
+    const size_t q0 = 8 * (size_t)g;
+    return bsp_leaf_mask8(lb + q0, lb + w + q0, lb + 2 * w + q0, lb + 3 * w + q0,
+                          lb + 4 * w + q0, lb + 5 * w + q0, pt);
+}
+
 int cti_bsp_leaf_is_dense(const bsp_ctx *c, const bsp_stack *sk, ct_idx n0, ct_idx n1,
-                          ct_idx ns);
+                          ct_idx ns, bsp_sample *smp);
 void cti_bsp_leaf_dense(bsp_ctx *c, bsp_stack *sk, ct_idx n0, ct_idx n1,
-                        const ct_idx *restrict segs, ct_idx ns);
+                        const ct_idx *restrict segs, ct_idx ns, const bsp_sample *smp);
 
 #endif /* CT_SEARCH_BSP_INTERNAL_H */

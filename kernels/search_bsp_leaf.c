@@ -225,8 +225,11 @@ static void bsp_leaf_scan(bsp_ctx *c, bsp_stack *sk, ct_idx n0, ct_idx n1,
      * segments (search_bsp_dense.c); the box filter decides them here, one
      * by one. */
     const int batch = in->filter != CT_FILTER_BOX;
-    if (batch && cti_bsp_leaf_is_dense(c, sk, n0, n1, ns)) {
-        cti_bsp_leaf_dense(c, sk, n0, n1, segs, ns);
+    bsp_sample smp;
+    smp.n = 0;
+    smp.ng = ns8 / 8;
+    if (batch && cti_bsp_leaf_is_dense(c, sk, n0, n1, ns, &smp)) {
+        cti_bsp_leaf_dense(c, sk, n0, n1, segs, ns, &smp);
         return;
     }
     const ct_real *restrict x = in->x, *restrict y = in->y, *restrict z = in->z;
@@ -256,7 +259,7 @@ static void bsp_leaf_scan(bsp_ctx *c, bsp_stack *sk, ct_idx n0, ct_idx n1,
         const ct_idx pos = st->nid[k], node = lnode[(k - n0) % CHUNK];
         size_t start = len;
         for (ct_idx q0 = 0; q0 < ns8; q0 += 8) {
-            unsigned m = bsp_leaf_mask8(l0 + q0, l1 + q0, l2 + q0, m0 + q0, m1 + q0, m2 + q0, &pt);
+            unsigned m = bsp_mask_of(&smp, n0, k, q0 / 8, sk->lb, w, &pt);
             while (m) {
                 ct_idx q = q0 + (ct_idx)__builtin_ctz(m);
                 m &= m - 1;
