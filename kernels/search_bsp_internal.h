@@ -48,6 +48,9 @@ typedef struct bsp_box {
     bsp_f lo[3], hi[3];
 } bsp_box;
 
+/* Arrays of a dense leaf's corner scratch (search_bsp_dense.c). */
+#define BSP_LC 25
+
 /* A thread's private scratch:
  *  - a: the two index lists of a split above the task cutoff, before they
  *    move to the shared arena;
@@ -62,9 +65,6 @@ typedef struct bsp_box {
  *    arrays of lccap, search_bsp_dense.c) and their node numbers (4 arrays
  *    of lccap);
  *  - lr, lrcap: a dense leaf's answers, a byte per node and 8 segments. */
-/* Arrays of a dense leaf's corner scratch (search_bsp_dense.c). */
-#define BSP_LC 25
-
 typedef struct bsp_stack {
     ct_idx *a;
     size_t cap;
@@ -290,13 +290,17 @@ typedef struct bsp_sample {
     uint8_t m[BSP_DENSE_SAMPLE * (BSP_DENSE_MAX_SEGS / 8)];
 } bsp_sample;
 
-/* The mask of node k (of a leaf that starts at node n0) against group g:
- * from the sample, or computed. */
-static inline unsigned bsp_mask_of(const bsp_sample *smp, ct_idx n0, ct_idx k, ct_idx g,
-                                   const bsp_f *restrict lb, size_t w, const bsp_pt *pt)
+/* The mask of the leaf's node i (counted from the leaf's first) against
+ * group g: the sample's when i < nsmp (sm: the sample's bytes, ng groups a
+ * node), else computed from the leaf's boxes lb (w apart). Callers pass the
+ * sample's count and bytes as locals, which the collector's stores cannot
+ * alias. */
+static inline unsigned bsp_mask_of(const uint8_t *restrict sm, ct_idx nsmp, ct_idx ng, ct_idx i,
+                                   ct_idx g, const bsp_f *restrict lb, size_t w,
+                                   const bsp_pt *pt)
 {
-    if (k - n0 < smp->n)
-        return smp->m[(size_t)(k - n0) * (size_t)smp->ng + (size_t)g];
+    if (i < nsmp)
+        return sm[(size_t)i * (size_t)ng + (size_t)g];
     const size_t q0 = 8 * (size_t)g;
     return bsp_leaf_mask8(lb + q0, lb + w + q0, lb + 2 * w + q0, lb + 3 * w + q0,
                           lb + 4 * w + q0, lb + 5 * w + q0, pt);

@@ -232,8 +232,7 @@ static void bsp_leaf_scan(bsp_ctx *c, bsp_stack *sk, ct_idx n0, ct_idx n1,
         cti_bsp_leaf_dense(c, sk, n0, n1, segs, ns, &smp);
         return;
     }
-    /* The sampled nodes' masks, read back (locals: the buffer's stores
-     * cannot change them). */
+    /* The sampled nodes' masks, read back (bsp_mask_of). */
     const ct_idx nsmp = smp.n;
     const uint8_t *restrict sm = smp.m;
     const ct_real *restrict x = in->x, *restrict y = in->y, *restrict z = in->z;
@@ -263,9 +262,7 @@ static void bsp_leaf_scan(bsp_ctx *c, bsp_stack *sk, ct_idx n0, ct_idx n1,
         const ct_idx pos = st->nid[k], node = lnode[(k - n0) % CHUNK];
         size_t start = len;
         for (ct_idx q0 = 0; q0 < ns8; q0 += 8) {
-            unsigned m = k - n0 < nsmp ? sm[(size_t)(k - n0) * (size_t)(ns8 / 8) + (size_t)(q0 / 8)]
-                                       : bsp_leaf_mask8(l0 + q0, l1 + q0, l2 + q0, m0 + q0,
-                                                        m1 + q0, m2 + q0, &pt);
+            unsigned m = bsp_mask_of(sm, nsmp, ns8 / 8, k - n0, q0 / 8, l0, w, &pt);
             while (m) {
                 ct_idx q = q0 + (ct_idx)__builtin_ctz(m);
                 m &= m - 1;
