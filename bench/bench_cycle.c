@@ -48,7 +48,9 @@
  * the nodal forces and ct_assemble), ns_timestep, ns_total, and
  * ns_total_x_threads (ns_total times the threads: the "per thread" figure
  * the target of 15 ns is stated in); ns_per_sort (one search, per node),
- * resort_interval, ns_check, cand_per_node, active_per_node,
+ * resort_interval, ns_check, cand_per_node, eval_per_node (candidates
+ * through the narrow phase: the others the skip proved out of contact),
+ * active_per_node,
  * threads, nodes.
  */
 #include "bench_cycle.h"
@@ -327,6 +329,8 @@ static void bm_cycle(gb_state *st, void *arg)
         gb_set_counter(st, "resort_interval_seen",
                        (double)s->interval_sum / (double)s->natural_sorts, GB_PLAIN);
     gb_set_counter(st, "cand_per_node", (double)s->cand_sum / (double)s->cycles / sc.nnode,
+                   GB_PLAIN);
+    gb_set_counter(st, "eval_per_node", (double)s->eval_sum / (double)s->cycles / sc.nnode,
                    GB_PLAIN);
     gb_set_counter(st, "active_per_node",
                    (double)s->active_sum / (double)s->cycles / sc.nnode, GB_PLAIN);

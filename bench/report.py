@@ -98,7 +98,7 @@ CYCLE_PHASES = ["ns_search", "ns_narrow", "ns_force", "ns_assemble", "ns_timeste
 CYCLE_TARGET_NS = 15.0
 COUNTERS += [c for c in CYCLE_PHASES + [
     "ns_total", "ns_total_x_threads", "ns_per_sort", "ns_check", "resort_interval",
-    "resort_interval_seen", "cand_per_node", "active_per_node", "nodes"] if c not in COUNTERS]
+    "resort_interval_seen", "cand_per_node", "eval_per_node", "active_per_node", "nodes"] if c not in COUNTERS]
 PREC_ORDER = ["double", "single"]
 
 

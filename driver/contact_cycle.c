@@ -21,6 +21,7 @@ ctd_cycle_params ctd_cycle_default_params(double h)
     p.viss = (ct_real)0.05;
     p.mu = (ct_real)0.2;
     p.kt = 1;
+    p.skip = 1;
     return p;
 }
 
@@ -29,9 +30,10 @@ static void free_pair_arrays(ctd_cycle *cy)
     for (int i = 0; i < 4; i++)
         ct_free(cy->s[i]);
     ct_free(cy->old_of_new);
-    for (int i = 0; i < 13; i++)
+    for (int i = 0; i < CY_NGEO; i++)
         ct_free(cy->g[i]);
     ct_free(cy->flag);
+    ct_free(cy->evald);
     for (int i = 0; i < 3; i++)
         ct_free(cy->fp[i]);
     free(cy->blk);
@@ -40,6 +42,7 @@ static void free_pair_arrays(ctd_cycle *cy)
     cy->old_of_new = NULL;
     memset(cy->g, 0, sizeof cy->g);
     cy->flag = NULL;
+    cy->evald = NULL;
     memset(cy->fp, 0, sizeof cy->fp);
     cy->cap = 0;
 }
@@ -56,9 +59,10 @@ static int grow_pair_arrays(ctd_cycle *cy, size_t n, int exact)
     for (int i = 0; i < 4; i++)
         ok &= (cy->s[i] = ct_calloc(c, sizeof(ct_idx))) != NULL;
     ok &= (cy->old_of_new = ct_calloc(c, sizeof(ct_idx))) != NULL;
-    for (int i = 0; i < 13; i++)
+    for (int i = 0; i < CY_NGEO; i++)
         ok &= (cy->g[i] = ct_calloc(c, sizeof(ct_real))) != NULL;
     ok &= (cy->flag = ct_calloc(c, 1)) != NULL;
+    ok &= (cy->evald = ct_calloc(c, 1)) != NULL;
     for (int i = 0; i < 3; i++)
         ok &= (cy->fp[i] = ct_calloc(c, sizeof(ct_real))) != NULL;
     ok &= (cy->blk = calloc((c + CY_BLOCK - 1) / CY_BLOCK, sizeof *cy->blk)) != NULL;
@@ -67,14 +71,20 @@ static int grow_pair_arrays(ctd_cycle *cy, size_t n, int exact)
         return CT_ERR_NOMEM;
     }
     cy->cap = c;
-    ct_contact_geo g = {cy->g[0], cy->g[1], cy->g[2],  cy->g[3],  cy->g[4],
-                        cy->g[5], cy->g[6], cy->g[7],  cy->g[8],  cy->g[9],
-                        cy->g[10], cy->g[11], cy->g[12], cy->flag};
-    cy->geo = g;
+    /* The results the cycle keeps per pair (ctd_cycle_geo): p, the
+     * weights and the flag. */
+    memset(&cy->geo, 0, sizeof cy->geo);
+    cy->geo.pen = cy->g[0];
+    cy->geo.h1 = cy->g[1];
+    cy->geo.h2 = cy->g[2];
+    cy->geo.h3 = cy->g[3];
+    cy->geo.h4 = cy->g[4];
+    cy->geo.flag = cy->flag;
     return CT_OK;
 }
 
-/* Make friction history side b hold n pairs (contents not kept). */
+/* Make friction history and skip expiry side b hold n pairs (contents not
+ * kept). */
 static int grow_ft(ctd_cycle *cy, int b, size_t n, int exact)
 {
     if (n <= cy->capft[b] && cy->ft[b][0])
@@ -83,10 +93,13 @@ static int grow_ft(ctd_cycle *cy, int b, size_t n, int exact)
         ct_free(cy->ft[b][i]);
         cy->ft[b][i] = NULL;
     }
+    ct_free(cy->ex[b]);
+    cy->ex[b] = NULL;
     size_t c = exact ? n + 64 : n + n / 2 + 64;
     int ok = 1;
     for (int i = 0; i < 3; i++)
         ok &= (cy->ft[b][i] = ct_calloc(c, sizeof(ct_real))) != NULL;
+    ok &= (cy->ex[b] = ct_calloc(c, sizeof(ct_real))) != NULL;
     cy->capft[b] = ok ? c : 0;
     return ok ? CT_OK : CT_ERR_NOMEM;
 }
@@ -103,7 +116,7 @@ int ctd_cycle_init(ctd_cycle **out, const ctd_cycle_params *p, ct_idx nnode, con
         (nmain && !mainn) || (nseg && (!n1 || !n2 || !n3 || !n4)) || !(p->gap > 0) ||
         !(p->margin >= 0) || p->quad < 0 || p->quad >= CT_QUAD_NMETHOD ||
         p->asm_variant < 0 || p->asm_variant >= CT_ASM_NVARIANT ||
-        (p->law != CTD_LAW_TYPE7 && p->law != CTD_LAW_LINEAR))
+        (p->law != CTD_LAW_TYPE7 && p->law != CTD_LAW_LINEAR) || (p->skip != 0 && p->skip != 1))
         return CT_ERR_ARG;
     ctd_cycle *cy = calloc(1, sizeof *cy);
     if (!cy)
@@ -122,6 +135,7 @@ int ctd_cycle_init(ctd_cycle **out, const ctd_cycle_params *p, ct_idx nnode, con
     cy->n4 = n4;
     cy->self = self;
     cy->need_sort = 1;
+    cy->skip_on = p->skip && p->two_sided && p->quad == CT_QUAD_4TRI;
     ct_search_params sp = ct_search_default_params(p->algo);
     int rc = ct_search_init(&cy->search, &sp);
     if (rc == CT_OK)
@@ -133,6 +147,13 @@ int ctd_cycle_init(ctd_cycle **out, const ctd_cycle_params *p, ct_idx nnode, con
         cy->y0 = ct_calloc((size_t)nnode, sizeof(ct_real));
         cy->z0 = ct_calloc((size_t)nnode, sizeof(ct_real));
         if (!cy->x0 || !cy->y0 || !cy->z0)
+            rc = CT_ERR_NOMEM;
+    }
+    if (rc == CT_OK && cy->skip_on) {
+        cy->xp = ct_calloc((size_t)nnode, sizeof(ct_real));
+        cy->yp = ct_calloc((size_t)nnode, sizeof(ct_real));
+        cy->zp = ct_calloc((size_t)nnode, sizeof(ct_real));
+        if (!cy->xp || !cy->yp || !cy->zp)
             rc = CT_ERR_NOMEM;
     }
     if (rc == CT_OK)
@@ -163,10 +184,15 @@ void ctd_cycle_destroy(ctd_cycle *cy)
     ct_search_destroy(cy->search);
     ct_pairs_destroy(&cy->pairs[0]);
     ct_pairs_destroy(&cy->pairs[1]);
-    for (int b = 0; b < 2; b++)
+    for (int b = 0; b < 2; b++) {
         for (int i = 0; i < 3; i++)
             ct_free(cy->ft[b][i]);
+        ct_free(cy->ex[b]);
+    }
     ct_free(cy->x0);
+    ct_free(cy->xp);
+    ct_free(cy->yp);
+    ct_free(cy->zp);
     ct_free(cy->y0);
     ct_free(cy->z0);
     free_pair_arrays(cy);
@@ -187,6 +213,7 @@ const ctd_cycle_stats *ctd_cycle_get_stats(const ctd_cycle *cy) { return &cy->st
 void ctd_cycle_stats_reset(ctd_cycle *cy)
 {
     cy->st.cycles = cy->st.resorts = cy->st.cand_sum = cy->st.active_sum = 0;
+    cy->st.eval_sum = 0;
     for (int i = 0; i < CTD_PH_N; i++)
         cy->st.t[i] = 0;
     cy->st.t_sort = 0;
@@ -209,6 +236,11 @@ const ct_pairs *ctd_cycle_pairs(const ctd_cycle *cy) { return &cy->pairs[cy->cur
 
 const ct_contact_geo *ctd_cycle_geo(const ctd_cycle *cy) { return &cy->geo; }
 
+const uint8_t *ctd_cycle_evaluated(const ctd_cycle *cy)
+{
+    return cy->skip_on ? cy->evald : NULL;
+}
+
 const ct_real *ctd_cycle_friction(const ctd_cycle *cy, int axis)
 {
     return axis >= 0 && axis < 3 ? cy->ft[cy->cur][axis] : NULL;
@@ -216,13 +248,13 @@ const ct_real *ctd_cycle_friction(const ctd_cycle *cy, int axis)
 
 size_t ctd_cycle_memory(const ctd_cycle *cy)
 {
-    size_t per = 5 * sizeof(ct_idx) + 13 * sizeof(ct_real) + 1 + 3 * sizeof(ct_real);
-    size_t b = cy->cap * per + (cy->capft[0] + cy->capft[1]) * 3 * sizeof(ct_real);
+    size_t per = 5 * sizeof(ct_idx) + CY_NGEO * sizeof(ct_real) + 2 + 3 * sizeof(ct_real);
+    size_t b = cy->cap * per + (cy->capft[0] + cy->capft[1]) * 4 * sizeof(ct_real);
     b += (size_t)cy->nscr * CY_BLOCK *
          (CS_NREAL * sizeof(ct_real) + CS_NIDX * sizeof(ct_idx) + sizeof(int32_t));
     b += (cy->cap + CY_BLOCK - 1) / CY_BLOCK * sizeof(cy_block);
     b += ((size_t)cy->pairs[0].cap + (size_t)cy->pairs[1].cap) * 2 * sizeof(ct_idx);
-    b += 3 * (size_t)cy->nnode * sizeof(ct_real);
+    b += (cy->skip_on ? 6 : 3) * (size_t)cy->nnode * sizeof(ct_real);
     b += ct_search_memory(cy->search) + ct_assemble_ws_memory(&cy->ws);
     return b;
 }
@@ -281,6 +313,8 @@ static int phase_search(ctd_cycle *cy, const ct_real *x, const ct_real *y, const
                            cy->ft[now][1], cy->ft[now][2], cy->old_of_new, NULL);
     if (rc != CT_OK)
         return rc;
+    if (cy->skip_on)
+        cti_skip_remap(cy, n, old, now);
     /* Positions at this sort. */
     ct_real *restrict a = cy->x0, *restrict b = cy->y0, *restrict c = cy->z0;
     const ct_idx nn = cy->nnode;
@@ -324,6 +358,10 @@ int ctd_cycle_step(ctd_cycle *cy, const ct_real *x, const ct_real *y, const ct_r
 {
     if (!cy || !x || !y || !z || !vx || !vy || !vz || !fxn || !fyn || !fzn || !(dt >= 0))
         return CT_ERR_ARG;
+    /* The skip's motion bound: part of the narrow phase's time. */
+    double tm = cti_cycle_wtime();
+    if (cy->skip_on)
+        cti_skip_motion(cy, x, y, z);
     double t0 = cti_cycle_wtime();
     int64_t nsort = cy->st.resorts;
     int rc = phase_search(cy, x, y, z);
@@ -335,9 +373,9 @@ int ctd_cycle_step(ctd_cycle *cy, const ct_real *x, const ct_real *y, const ct_r
         return rc;
     }
     ct_idx n = cy->pairs[cy->cur].n;
-    int64_t active = 0;
+    int64_t active = 0, neval = 0;
     double tph[3] = {0, 0, 0};
-    rc = cti_cycle_pairs(cy, n, x, y, z, vx, vy, vz, dt, &active, tph);
+    rc = cti_cycle_pairs(cy, n, x, y, z, vx, vy, vz, dt, &active, &neval, tph);
     double t2 = cti_cycle_wtime();
     /* The pass's wall time, shared among narrow phase, force and step. */
     if (rc == CT_OK) {
@@ -352,7 +390,7 @@ int ctd_cycle_step(ctd_cycle *cy, const ct_real *x, const ct_real *y, const ct_r
         return rc;
     ctd_cycle_stats *s = &cy->st;
     s->t[CTD_PH_SEARCH] += t1 - t0;
-    s->t[CTD_PH_NARROW] += tph[0];
+    s->t[CTD_PH_NARROW] += tph[0] + (t0 - tm);
     s->t[CTD_PH_FORCE] += tph[1];
     s->t[CTD_PH_ASSEMBLE] += t3 - t2;
     s->t[CTD_PH_TIMESTEP] += tph[2];
@@ -360,6 +398,8 @@ int ctd_cycle_step(ctd_cycle *cy, const ct_real *x, const ct_real *y, const ct_r
     s->life_cycles++;
     s->ncand = n;
     s->nactive = (ct_idx)active;
+    s->neval = (ct_idx)neval;
+    s->eval_sum += neval;
     s->cand_sum += n;
     s->active_sum += active;
     return CT_OK;

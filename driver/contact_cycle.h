@@ -8,7 +8,10 @@
  *     search (ct_search_run), the assembly preparation (ct_asm_seg_slots,
  *     ct_assemble_prepare) and the friction history carried from the old
  *     pair list to the new one (ct_friction_remap);
- *  2. narrow phase (ct_narrow_node_segment) of every candidate;
+ *  2. narrow phase (ct_narrow_node_segment) of every candidate that may be
+ *     in contact: with the skip on (the default, see below), a candidate
+ *     whose last computed distance exceeds the gap by more than the motion
+ *     since then cannot be in contact and keeps its last results;
  *  3. force, for the pairs in contact (p > 0; the others get zero force and
  *     zero friction history): the relative velocity at the contact point, the normal law
  *     (TYPE7, ct_penalty_type7, or linear), damping and the normal force
@@ -55,11 +58,37 @@ typedef struct ctd_cycle_params {
     ct_real viss;               /* normal damping ratio */
     ct_real mu;                 /* Coulomb coefficient (0: no friction) */
     ct_real kt;                 /* tangential (stick) stiffness */
+    int skip;                   /* 1 (default): skip the narrow phase of the
+                                   candidates that provably are out of contact */
 } ctd_cycle_params;
 
+/*
+ * The skip. Every point of a segment (the 4-triangle surface of a quad, or
+ * a triangle) is a convex combination of its corners, so when the node has
+ * moved at most a and every main node at most b, the node-segment distance
+ * has shrunk by at most a + b. The cycle sums, cycle after cycle, the
+ * largest step of a secondary node plus the largest step of a main node
+ * (positions of the previous cycle kept); a candidate whose distance D was
+ * computed when that sum was M_c needs no narrow phase while the sum stays
+ * below M_c + (D - gap - slack): its distance is still above the gap, so
+ * its penetration, force, friction history and step limit are the zeros a
+ * narrow phase would give. The slack, 1024 machine epsilons times the
+ * largest coordinate plus the gap, covers the rounding of D; the sum is
+ * scaled by 1 + 1e-6 for its own. Forces, histories and steps are
+ * therefore those of the full evaluation, bit for bit (tests/test_cycle.c
+ * checks it). A skipped candidate's penetration (ctd_cycle_geo) reads 0
+ * and its flag is left over. The bound is carried
+ * across a re-sort for the pairs that survive it (new pairs are evaluated).
+ * It holds for the exact distances the skip uses: two-sided contact with
+ * triangles and the 4-triangle quad method. With one-sided contact (a node
+ * behind a segment is in contact without crossing it) or the Newton and
+ * closed-form methods (their distance to the patch is not a bound) every
+ * candidate is evaluated, whatever `skip` says.
+ */
+
 /* The defaults: bucket, hull filter, 4tri, colour, TYPE7, two-sided,
- * gap 0.3 h, margin 0.2 h, K0 = 1, viss 0.05, Coulomb 0.2, kt = K0 (h the
- * mean main edge length the caller passes). */
+ * gap 0.3 h, margin 0.2 h, K0 = 1, viss 0.05, Coulomb 0.2, kt = K0, skip
+ * on (h the mean main edge length the caller passes). */
 ctd_cycle_params ctd_cycle_default_params(double h);
 
 /* Phases, the index into the time array of the statistics. */
@@ -72,12 +101,13 @@ typedef struct ctd_cycle_stats {
     int64_t resorts;           /* searches run (the first one included) */
     int64_t cand_sum;          /* candidate pairs, summed over cycles */
     int64_t active_sum;        /* active pairs (p > 0), summed over cycles */
+    int64_t eval_sum;          /* pairs through the narrow phase, summed */
     double t[CTD_PH_N];        /* seconds spent in each phase */
     double t_sort;             /* of t[CTD_PH_SEARCH]: seconds in the searches
                                   (with their preparation and remap); the rest
                                   is the re-sort check */
     /* Of the last cycle: */
-    ct_idx ncand, nactive;
+    ct_idx ncand, nactive, neval;
     ct_real bound;             /* displacement bound of the re-sort check */
     ct_real dt_kin, dt_nodal;  /* smallest step of each kind (CT_DT_NONE: none) */
     /* Over the interface's life (not reset): cycles, searches fired by the
@@ -129,8 +159,16 @@ void ctd_cycle_stats_reset(ctd_cycle *cy);
 /* The current candidate pairs (valid until the next step). */
 const ct_pairs *ctd_cycle_pairs(const ctd_cycle *cy);
 
-/* The narrow-phase results of the last cycle (one element per candidate). */
+/* The narrow-phase results the cycle keeps, one element per candidate:
+ * pen (0 out of contact), the flag of every candidate evaluated in the
+ * last cycle, and the weights h1..h4 of the candidates in contact (the
+ * others hold left-over values). The other fields are NULL: the force pass
+ * takes them from its block scratch, and storing them for every pair cost
+ * more than the narrow phase the skip saves. */
 const ct_contact_geo *ctd_cycle_geo(const ctd_cycle *cy);
+/* 1 for each candidate whose narrow phase ran in the last cycle, 0 for one
+ * the skip left alone; NULL when the skip is off. */
+const uint8_t *ctd_cycle_evaluated(const ctd_cycle *cy);
 /* Component axis (0, 1, 2) of the tangential friction force of each
  * candidate after the last cycle: the history the next cycle's predictor
  * starts from (zero for a pair out of contact). NULL for a bad axis. */

@@ -38,12 +38,16 @@ static inline double cti_cycle_wtime(void)
  * 256 slower, by the kernels' fixed cost per call. */
 #define CY_BLOCK 4096
 
+/* Narrow-phase results kept per pair: p and the four weights. */
+#define CY_NGEO 5
+
 /* One block's results of the fused pass. */
 typedef struct cy_block {
     int rc, rc_kin, rc_nod;  /* the first failing kernel; the step kernels' codes */
     int64_t active;          /* pairs with p > 0 */
     ct_real dt_kin, dt_nod;  /* the block's smallest limits */
     ct_idx i_kin, i_nod;     /* their pairs (global indices; -1: none) */
+    ct_idx neval;            /* pairs through the narrow phase */
     double t[3];             /* seconds in narrow phase, force, step */
 } cy_block;
 
@@ -82,17 +86,25 @@ struct ctd_cycle {
     int cur;
     ct_pairs pairs[2];
     ct_real *ft[2][3];
+    ct_real *ex[2]; /* the skip's expiry of each pair (contact_cycle_skip.c) */
     size_t capft[2];
     /* Single-buffered per-pair arrays (capacity cap). */
     size_t cap;
     ct_idx *s[4], *old_of_new;
-    ct_real *g[13];
+    ct_real *g[CY_NGEO]; /* p, h1..h4 */
     uint8_t *flag;
+    uint8_t *evald; /* 1: the pair's narrow phase ran this cycle */
     ct_real *fp[3]; /* the pair force on the secondary node (assembled) */
     ct_contact_geo geo;
     cy_block *blk; /* (cap + CY_BLOCK - 1) / CY_BLOCK records */
     cy_scratch *scr; /* per thread (nscr) */
     int nscr;
+    /* The skip (contact_cycle_skip.c): on, the previous cycle's positions
+     * (valid when have_prev), the motion sum since the last re-sort, the
+     * rounding slack of this cycle. */
+    int skip_on, have_prev;
+    ct_real *xp, *yp, *zp;
+    double motion, slack;
     /* Assembly. */
     ct_assemble_ws ws;
     int ws_ready;
@@ -100,10 +112,24 @@ struct ctd_cycle {
 };
 
 /* The fused pass over the n candidate pairs (contact_cycle_pairs.c): the
- * active count and the seconds spent in narrow phase, force and step. */
+ * active count, the count of pairs through the narrow phase and the seconds
+ * spent in narrow phase, force and step. */
 int cti_cycle_pairs(ctd_cycle *cy, ct_idx n, const ct_real *x, const ct_real *y,
                     const ct_real *z, const ct_real *vx, const ct_real *vy, const ct_real *vz,
-                    ct_real dt, int64_t *active, double tph[3]);
+                    ct_real dt, int64_t *active, int64_t *neval, double tph[3]);
+
+/* The skip (contact_cycle_skip.c). cti_skip_motion adds this cycle's
+ * motion bound to the sum and keeps the positions; cti_skip_remap carries
+ * the expiries of the pairs that survive a re-sort (after the friction
+ * remap filled old_of_new) and restarts the sum; cti_skip_select lists in
+ * act the pairs of block [k0, k1) (indices in the block) whose expiry has
+ * passed and returns their count; cti_skip_expiry sets the expiries of the
+ * ne evaluated pairs act[j] from their narrow-phase results (packed). */
+void cti_skip_motion(ctd_cycle *cy, const ct_real *x, const ct_real *y, const ct_real *z);
+void cti_skip_remap(ctd_cycle *cy, ct_idx n, int old, int now);
+ct_idx cti_skip_select(ctd_cycle *cy, ct_idx k0, ct_idx k1, ct_idx *act);
+void cti_skip_expiry(ctd_cycle *cy, ct_idx k0, ct_idx ne, const ct_idx *act, const ct_real *dist,
+                     const ct_real *gap, const uint8_t *flag);
 
 /* The per-thread scratch of the pass, for nthr threads (outside a parallel
  * region), and its release. */

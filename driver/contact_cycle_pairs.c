@@ -57,45 +57,118 @@ int cti_cycle_scratch_grow(ctd_cycle *cy, int nthr)
     return CT_OK;
 }
 
-/* Pack the pairs in contact of block [k0, k1) into s: their indices in the
- * block (act) and the inputs of the force and step kernels. Returns their
- * count. */
-static ct_idx block_pack(const ctd_cycle *cy, ct_idx k0, ct_idx k1, cy_scratch *s)
+/* The narrow phase of block [k0, k1): of every pair, or with the skip of
+ * those whose expiry has passed, into the scratch (act: their indices in
+ * the block). The slots are chosen so that the force kernels' inputs (h,
+ * n, p, gap) land where the force pass reads them; the distance and the
+ * contact point borrow four slots the force pass only writes. */
+static int block_narrow(ctd_cycle *cy, ct_idx k0, ct_idx k1, cy_scratch *s, const ct_real *x,
+                        const ct_real *y, const ct_real *z, ct_idx *neval)
+{
+    const ct_pairs *pp = &cy->pairs[cy->cur];
+    const ct_idx nb = k1 - k0;
+    ct_idx *restrict act = s->i[CS_ACT];
+    ct_idx ne = nb;
+    if (cy->skip_on) {
+        ne = cti_skip_select(cy, k0, k1, act);
+    } else {
+        for (ct_idx k = 0; k < nb; k++)
+            act[k] = k;
+    }
+    *neval = ne;
+    if (ne == 0)
+        return CT_OK;
+    const ct_idx *en = pp->node + k0, *es = pp->seg + k0;
+    if (ne < nb) {
+        ct_idx *restrict pn = s->i[CS_NODE], *restrict ps = s->i[CS_S1];
+        for (ct_idx j = 0; j < ne; j++) {
+            pn[j] = en[act[j]];
+            ps[j] = es[act[j]];
+        }
+        en = pn;
+        es = ps;
+    }
+    ct_real *const *v = s->v;
+    uint8_t *fl = (uint8_t *)(void *)s->flag7;
+    const ct_contact_geo out = {v[CS_VRX], v[CS_PEN], v[CS_NX], v[CS_NY], v[CS_NZ],
+                                v[CS_VRY], v[CS_VRZ], v[CS_VN], v[CS_H1], v[CS_H2],
+                                v[CS_H3],  v[CS_H4],  v[CS_GAP], fl};
+    int rc = ct_narrow_node_segment(ne, en, es, cy->n1, cy->n2, cy->n3, cy->n4, x, y, z, NULL,
+                                    NULL, cy->p.gap, 0, 0, cy->p.quad, cy->p.two_sided, &out,
+                                    NULL);
+    if (rc == CT_OK && cy->skip_on)
+        cti_skip_expiry(cy, k0, ne, act, out.dist, out.gap, fl);
+    return rc;
+}
+
+/* After block_narrow: write the results back into the interface's arrays
+ * (p and the flag of every evaluated pair, the weights of the pairs in
+ * contact), then pack the pairs in contact into s for the force and step
+ * kernels: their indices in the block (act), their geometry (compacted in
+ * place), nodes, mass and friction history. Returns their count. */
+static ct_idx block_pack(const ctd_cycle *cy, ct_idx k0, ct_idx ne, cy_scratch *s)
 {
     const ct_contact_geo *g = &cy->geo;
-    const ct_real *restrict pen = g->pen + k0;
-    ct_idx *restrict act = s->i[CS_ACT];
-    ct_idx na = 0;
-    /* Every index is written, the count advances by the test: no branch. */
-    for (ct_idx k = 0; k < k1 - k0; k++) {
-        act[na] = k;
-        na += pen[k] > 0;
+    ct_real *const *v = s->v;
+    ct_idx *act = s->i[CS_ACT];
+    const uint8_t *restrict fl = (const uint8_t *)(const void *)s->flag7;
+    const ct_real *restrict pen = v[CS_PEN];
+    {
+        ct_real *restrict gp = g->pen + k0;
+        uint8_t *restrict gf = g->flag + k0;
+        const ct_idx *restrict a = act;
+        for (ct_idx j = 0; j < ne; j++) {
+            gp[a[j]] = pen[j];
+            gf[a[j]] = fl[j];
+        }
     }
+    /* The evaluated pairs in contact (positions in the scratch). Every
+     * index is written, the count advances by the test: no branch. */
+    ct_idx *restrict pk = s->i[CS_S4];
+    ct_idx na = 0;
+    for (ct_idx j = 0; j < ne; j++) {
+        pk[na] = j;
+        na += pen[j] > 0;
+    }
+    /* Their weights, which the assembly reads. (The other results are
+     * not kept: stored for every pair, they cost more than the narrow
+     * phase saved by the skip, every store a cache miss.) */
+    const int slot[4] = {CS_H1, CS_H2, CS_H3, CS_H4};
+    ct_real *const dst[4] = {g->h1, g->h2, g->h3, g->h4};
+    for (int a = 0; a < 4; a++) {
+        const ct_real *restrict f = v[slot[a]];
+        ct_real *restrict t = dst[a] + k0;
+        for (ct_idx i = 0; i < na; i++)
+            t[act[pk[i]]] = f[pk[i]];
+    }
+    /* Compact the force kernels' geometry and the indices in place (pk[i]
+     * >= i: a slot is read before it is overwritten). */
+    _Static_assert(CS_GAP == CS_H1 + 8, "the geometry scratch arrays must be consecutive");
+    for (int a = CS_H1; a <= CS_GAP; a++) {
+        ct_real *t = v[a];
+        for (ct_idx i = 0; i < na; i++)
+            t[i] = t[pk[i]];
+    }
+    for (ct_idx i = 0; i < na; i++)
+        act[i] = act[pk[i]];
+    /* Nodes, mass and history of the pairs in contact (pk is not needed
+     * any more: its array receives the fourth segment node). */
     const ct_idx *restrict nd = cy->pairs[cy->cur].node + k0;
     const ct_idx *restrict s1 = cy->s[0] + k0, *restrict s2 = cy->s[1] + k0;
     const ct_idx *restrict s3 = cy->s[2] + k0, *restrict s4 = cy->s[3] + k0;
     const ct_real *restrict mass = cy->m;
     ct_idx *restrict cn = s->i[CS_NODE], *restrict c1 = s->i[CS_S1], *restrict c2 = s->i[CS_S2];
     ct_idx *restrict c3 = s->i[CS_S3], *restrict c4 = s->i[CS_S4];
-    ct_real *const *v = s->v;
+    ct_real *restrict ms = v[CS_MS];
+    const ct_idx *restrict ac = act;
     for (ct_idx i = 0; i < na; i++) {
-        const ct_idx k = act[i];
+        const ct_idx k = ac[i];
         cn[i] = nd[k];
         c1[i] = s1[k];
         c2[i] = s2[k];
         c3[i] = s3[k];
         c4[i] = s4[k];
-        v[CS_MS][i] = mass[nd[k]];
-    }
-    /* The nine geometry inputs, in the order of their scratch arrays. */
-    _Static_assert(CS_GAP == CS_H1 + 8, "the geometry scratch arrays must be consecutive");
-    const ct_real *const src[] = {g->h1 + k0, g->h2 + k0, g->h3 + k0, g->h4 + k0, g->nx + k0,
-                                  g->ny + k0, g->nz + k0, g->pen + k0, g->gap + k0};
-    for (int a = 0; a < 9; a++) {
-        const ct_real *restrict f = src[a];
-        ct_real *restrict t = v[CS_H1 + a];
-        for (ct_idx i = 0; i < na; i++)
-            t[i] = f[act[i]];
+        ms[i] = mass[nd[k]];
     }
     if (cy->p.mu > 0) {
         ct_real *const *ft = cy->ft[cy->cur];
@@ -103,7 +176,7 @@ static ct_idx block_pack(const ctd_cycle *cy, ct_idx k0, ct_idx k1, cy_scratch *
             const ct_real *restrict f = ft[d] + k0;
             ct_real *restrict t = v[CS_T0 + d];
             for (ct_idx i = 0; i < na; i++)
-                t[i] = f[act[i]];
+                t[i] = f[ac[i]];
         }
     }
     return na;
@@ -211,13 +284,12 @@ static void fold_limit(int rc, ct_real d, ct_idx i, int *best_rc, ct_real *best,
  * those times (tph: narrow, force with its packing, step). */
 int cti_cycle_pairs(ctd_cycle *cy, ct_idx n, const ct_real *x, const ct_real *y,
                     const ct_real *z, const ct_real *vx, const ct_real *vy, const ct_real *vz,
-                    ct_real dt, int64_t *active, double tph[3])
+                    ct_real dt, int64_t *active, int64_t *neval, double tph[3])
 {
     /* A team larger than any before gets its scratch here, once. */
     int rc = cti_cycle_scratch_grow(cy, cti_cycle_max_threads());
     if (rc != CT_OK)
         return rc;
-    const ct_pairs *pp = &cy->pairs[cy->cur];
     const ct_idx nblk = (n + CY_BLOCK - 1) / CY_BLOCK;
     cy_block *blk = cy->blk;
 #pragma omp parallel for schedule(static)
@@ -226,19 +298,13 @@ int cti_cycle_pairs(ctd_cycle *cy, ct_idx n, const ct_real *x, const ct_real *y,
         cy_block *b = &blk[bi];
         cy_scratch *s = &cy->scr[cti_cycle_thread()];
         double t0 = cti_cycle_wtime();
-        b->rc = ct_narrow_node_segment(
-            k1 - k0, pp->node + k0, pp->seg + k0, cy->n1, cy->n2, cy->n3, cy->n4, x, y, z, NULL,
-            NULL, cy->p.gap, 0, 0, cy->p.quad, cy->p.two_sided,
-            &(ct_contact_geo){cy->geo.dist + k0, cy->geo.pen + k0, cy->geo.nx + k0,
-                              cy->geo.ny + k0, cy->geo.nz + k0, cy->geo.cx + k0,
-                              cy->geo.cy + k0, cy->geo.cz + k0, cy->geo.h1 + k0,
-                              cy->geo.h2 + k0, cy->geo.h3 + k0, cy->geo.h4 + k0,
-                              cy->geo.gap + k0, cy->geo.flag + k0},
-            NULL);
+        ct_idx ne = 0;
+        b->rc = block_narrow(cy, k0, k1, s, x, y, z, &ne);
+        b->neval = ne;
         double t1 = cti_cycle_wtime();
         ct_idx na = 0;
         if (b->rc == CT_OK) {
-            na = block_pack(cy, k0, k1, s);
+            na = block_pack(cy, k0, ne, s);
             b->rc = packed_force(cy, na, s, vx, vy, vz, dt);
             if (b->rc == CT_OK)
                 block_unpack(cy, k0, k1, na, s);
@@ -259,11 +325,13 @@ int cti_cycle_pairs(ctd_cycle *cy, ct_idx n, const ct_real *x, const ct_real *y,
     ct_idx ikin = -1, inod = -1;
     double sum[3] = {0, 0, 0};
     *active = 0;
+    *neval = 0;
     for (ct_idx bi = 0; bi < nblk; bi++) {
         const cy_block *b = &blk[bi];
         if (b->rc != CT_OK)
             return b->rc;
         *active += b->active;
+        *neval += b->neval;
         fold_limit(b->rc_kin, b->dt_kin, b->i_kin, &rc_kin, &dkin, &ikin);
         fold_limit(b->rc_nod, b->dt_nod, b->i_nod, &rc_nod, &dnod, &inod);
         for (int i = 0; i < 3; i++)

@@ -24,7 +24,7 @@ typedef struct crun {
     ctd_cycle *cy;
 } crun;
 
-static void crun_make(crun *r, int64_t nodes, double step)
+static void crun_make_skip(crun *r, int64_t nodes, double step, int skip)
 {
     memset(r, 0, sizeof *r);
     ct_diag diag;
@@ -56,10 +56,16 @@ static void crun_make(crun *r, int64_t nodes, double step)
     mo.period = ctd_motion_max_step(&mo, 0.5 * (hi - lo)) / (step * r->h);
     r->mo = mo;
     ctd_cycle_params p = ctd_cycle_default_params(r->h);
+    p.skip = skip;
     cr_assert_eq(ctd_cycle_init(&r->cy, &p, r->n, r->m, r->c.sec.n, r->c.sec.node, r->c.sec.n,
                                 r->c.sec.node, r->c.main.n, r->c.mn1, r->c.mn2, r->c.mn3,
                                 r->c.mn4, 1),
                  CT_OK);
+}
+
+static void crun_make(crun *r, int64_t nodes, double step)
+{
+    crun_make_skip(r, nodes, step, 1);
 }
 
 static void crun_step(crun *r, int cycle)
@@ -139,8 +145,8 @@ Test(cycle, candidates_complete_against_direct)
                       "cycle %d: node %d force is not finite", k, (int)i);
         const ct_contact_geo *g = ctd_cycle_geo(r.cy);
         for (ct_idx q = 0; q < cand->n; q++)
-            cr_assert(isfinite(g->pen[q]) && isfinite(g->nx[q]) && isfinite(g->ny[q]) &&
-                      isfinite(g->nz[q]) && isfinite(g->h1[q]) && isfinite(g->h4[q]),
+            cr_assert(isfinite(g->pen[q]) && isfinite(g->h1[q]) && isfinite(g->h2[q]) &&
+                      isfinite(g->h3[q]) && isfinite(g->h4[q]),
                       "cycle %d: pair %d has a non-finite narrow-phase result", k, (int)q);
         const ctd_cycle_stats *s = ctd_cycle_get_stats(r.cy);
         cr_assert(isfinite(s->dt_kin) && s->dt_kin > 0 && isfinite(s->dt_nodal) &&
@@ -218,7 +224,7 @@ Test(cycle, threads_bit_identical)
  * dkin and dnod. ft is the friction history (updated). */
 static void whole_list_reference(const crun *r, const ct_pairs *P, ct_real *const ft[3],
                                  ct_real *const f[3], ct_real *dkin, ct_real *dnod,
-                                 const ct_contact_geo *geo_out)
+                                 const ct_contact_geo *geo_out, const uint8_t *ev)
 {
     const ct_idx n = P->n;
     const ctd_cycle_params p = ctd_cycle_default_params(r->h);
@@ -239,15 +245,25 @@ static void whole_list_reference(const crun *r, const ct_pairs *P, ct_real *cons
                                         r->pos[0], r->pos[1], r->pos[2], NULL, NULL, p.gap, 0,
                                         0, p.quad, p.two_sided, &g, NULL),
                  CT_OK);
-    /* The narrow phase is per pair: the block pass must give its bytes. */
-    ct_real *const mine[13] = {geo_out->dist, geo_out->pen, geo_out->nx, geo_out->ny,
-                               geo_out->nz,   geo_out->cx,  geo_out->cy, geo_out->cz,
-                               geo_out->h1,   geo_out->h2,  geo_out->h3, geo_out->h4,
-                               geo_out->gap};
-    for (int i = 0; i < 13; i++)
-        cr_assert(memcmp(mine[i], a[i], sizeof(ct_real) * (size_t)n) == 0,
-                  "narrow-phase array %d differs from the whole-list call", i);
-    cr_assert(memcmp(geo_out->flag, flag, (size_t)n) == 0);
+    /* The narrow phase is per pair: the block pass must give its bytes for
+     * what it keeps: p of every pair, the flag of every pair it evaluated,
+     * the weights of every pair in contact. A pair the skip left out must
+     * be out of contact by the whole-list call too (and read p = 0). The
+     * other fields are not kept. */
+    cr_assert(!geo_out->dist && !geo_out->nx && !geo_out->cx && !geo_out->gap);
+    const int kept[4] = {H1, H2, H3, H4};
+    ct_real *const mine[4] = {geo_out->h1, geo_out->h2, geo_out->h3, geo_out->h4};
+    for (ct_idx k = 0; k < n; k++) {
+        cr_assert(memcmp(&geo_out->pen[k], &a[PEN][k], sizeof(ct_real)) == 0,
+                  "pair %d: p %g, the whole-list call %g", (int)k, (double)geo_out->pen[k],
+                  (double)a[PEN][k]);
+        if (ev && !ev[k])
+            continue;
+        cr_assert_eq(geo_out->flag[k], flag[k]);
+        for (int i = 0; i < 4 && a[PEN][k] > 0; i++)
+            cr_assert(memcmp(&mine[i][k], &a[kept[i]][k], sizeof(ct_real)) == 0,
+                      "pair %d: weight %d differs from the whole-list call", (int)k, i + 1);
+    }
     for (ct_idx k = 0; k < n; k++) {
         ct_idx s = P->seg[k], q[4] = {c->mn1[s], c->mn2[s], c->mn3[s], c->mn4[s]};
         const ct_real *h[4] = {a[H1], a[H2], a[H3], a[H4]};
@@ -290,7 +306,9 @@ static void whole_list_reference(const crun *r, const ct_pairs *P, ct_real *cons
 
 /* (e) The narrow phase, force and step run fused in blocks of pairs; the
  * result must be that of each kernel called once on the whole list: the
- * same narrow-phase bytes, the same nodal step limit (the kinematic one and
+ * same narrow-phase bytes for what the cycle keeps (p of every pair, out
+ * of contact by the whole-list call too where the skip left it out; the
+ * flag of every pair evaluated; the weights of the pairs in contact), the same nodal step limit (the kinematic one and
  * the nodal forces within round-off: the reference sums the relative
  * velocity in its own order), and nodal forces equal to
  * a serial assembly of the whole-list pair forces within round-off (the
@@ -311,6 +329,7 @@ Test(cycle, fused_pass_equals_whole_list_kernels)
         cr_assert(f[d]);
     }
     int checked = 0;
+    int64_t skipped = 0;
     for (int k = 0; k < 6; k++) {
         crun_step(&r, k);
         const ctd_cycle_stats *s = ctd_cycle_get_stats(r.cy);
@@ -325,7 +344,10 @@ Test(cycle, fused_pass_equals_whole_list_kernels)
             break; /* the pairs moved: the reference's history no longer applies */
         }
         ct_real dkin, dnod;
-        whole_list_reference(&r, P, ft, f, &dkin, &dnod, ctd_cycle_geo(r.cy));
+        const uint8_t *ev = ctd_cycle_evaluated(r.cy);
+        whole_list_reference(&r, P, ft, f, &dkin, &dnod, ctd_cycle_geo(r.cy), ev);
+        for (ct_idx q = 0; q < P->n; q++)
+            skipped += !ev[q];
         /* The friction history, pair by pair: the whole list's within
          * round-off (its relative velocity sums in another order), and
          * exactly zero out of contact. */
@@ -363,6 +385,7 @@ Test(cycle, fused_pass_equals_whole_list_kernels)
         checked++;
     }
     cr_assert_geq(checked, 2, "only %d cycles before the first re-sort", checked);
+    cr_assert_gt(skipped, 0, "the skip left no pair out: the test does not exercise it");
     for (int d = 0; d < 3; d++) {
         ct_free(ft[d]);
         ct_free(f[d]);
@@ -410,4 +433,54 @@ Test(cycle, friction_history_reset_out_of_contact)
     cr_assert_eq(ctd_cycle_friction(cy, 0)[0], ha);
     cr_assert_null(ctd_cycle_friction(cy, 3));
     ctd_cycle_destroy(cy);
+}
+
+/* (g) The skip of the narrow phase changes no force, friction history or
+ * step: the same motion run with the skip and without it gives the same
+ * bytes at every cycle, re-sorts included, while the skip leaves out a
+ * good share of the candidates. A faster motion than the other tests (up
+ * to 0.03 h per cycle) makes the pairs' expiries run out often. */
+Test(cycle, skip_equals_full_evaluation)
+{
+    ctt_threads(2);
+    crun a, b;
+    crun_make_skip(&a, nodes_for_test(), 0.03, 1);
+    crun_make_skip(&b, nodes_for_test(), 0.03, 0);
+    cr_assert_null(ctd_cycle_evaluated(b.cy));
+    int ncyc = cycles_for_test();
+    for (int k = 0; k < ncyc; k++) {
+        crun_step(&a, k);
+        crun_step(&b, k);
+        const ct_pairs *pa = ctd_cycle_pairs(a.cy);
+        cr_assert_eq(pa->n, ctd_cycle_pairs(b.cy)->n);
+        for (int d = 0; d < 3; d++) {
+            cr_assert(memcmp(a.f[d], b.f[d], sizeof(ct_real) * (size_t)a.n) == 0,
+                      "cycle %d axis %d: the skip changed the nodal forces", k, d);
+            cr_assert(memcmp(ctd_cycle_friction(a.cy, d), ctd_cycle_friction(b.cy, d),
+                             sizeof(ct_real) * (size_t)pa->n) == 0,
+                      "cycle %d axis %d: the skip changed the friction history", k, d);
+        }
+        const ctd_cycle_stats *sa = ctd_cycle_get_stats(a.cy), *sb = ctd_cycle_get_stats(b.cy);
+        cr_assert_eq(sa->nactive, sb->nactive);
+        cr_assert_eq(sa->dt_kin, sb->dt_kin);
+        cr_assert_eq(sa->dt_nodal, sb->dt_nodal);
+        cr_assert_eq(sb->neval, pa->n);
+        /* A skipped pair's penetration is 0, as the full evaluation says. */
+        const uint8_t *ev = ctd_cycle_evaluated(a.cy);
+        const ct_real *pna = ctd_cycle_geo(a.cy)->pen, *pnb = ctd_cycle_geo(b.cy)->pen;
+        ct_idx ne = 0;
+        for (ct_idx q = 0; q < pa->n; q++) {
+            ne += ev[q];
+            cr_assert(ev[q] || (pna[q] == 0 && pnb[q] == 0),
+                      "cycle %d: skipped pair %d has penetration %g", k, (int)q, (double)pnb[q]);
+        }
+        cr_assert_eq(ne, sa->neval);
+    }
+    const ctd_cycle_stats *sa = ctd_cycle_get_stats(a.cy), *sb = ctd_cycle_get_stats(b.cy);
+    cr_assert_geq(sa->natural_sorts, 2, "the criterion fired %ld times", (long)sa->natural_sorts);
+    cr_assert_gt(sa->active_sum, 0);
+    cr_assert_lt(sa->eval_sum, sb->eval_sum * 3 / 4, "the skip left out only %ld of %ld pairs",
+                 (long)(sb->eval_sum - sa->eval_sum), (long)sb->eval_sum);
+    crun_free(&a);
+    crun_free(&b);
 }
