@@ -12,7 +12,8 @@
  * The scene: the meshgen case (self contact, natural numbering, unit mass
  * per node), gap 0.3 h (two-sided shells: 0.15 h of sheet thickness per
  * side), margin 0.2 h, TYPE7 law with K0 = 1, damping 0.05, Coulomb 0.2,
- * bucket search with the hull filter, 4-triangle quads, colouring assembly
+ * bucket search with the hull filter, 4-triangle quads, colouring assembly,
+ * the narrow phase's skip of the pairs proved out of contact
  * (ctd_cycle_default_params). It moves under the prescribed motion of
  * ctd_motion: the stacking axis (y for folded, z for crumpled) is scaled
  * about the middle by s0 - s1 (1 - cos phi)/2 (folded: s0 = 0.72, so the
@@ -59,6 +60,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include <omp.h>
 
 #include "bench_topology.h"
 #include "contact.h"
@@ -337,11 +340,137 @@ static void bm_cycle(gb_state *st, void *arg)
     gb_set_counter(st, "threads", (double)d->threads, GB_PLAIN);
     gb_set_counter(st, "nodes", (double)sc.nnode, GB_PLAIN);
     snprintf(msg, sizeof msg,
-             "prec=%s %s self contact, bucket+hull, 4tri, TYPE7, Coulomb 0.2, colour; "
+             "prec=%s %s self contact, bucket+hull, 4tri, skip, TYPE7, Coulomb 0.2, colour; "
              "%d cycles + 1 forced search per iteration; %.1f ns/node/cycle x %d thr = %.1f "
              "(target <= 15); %s[%s]",
              sizeof(ct_real) == 4 ? "single" : "double", d->family, d->cycles, total,
              d->threads, total * d->threads, ctb_bind_name(cfg.bind), where);
+    gb_set_label(st, msg);
+}
+
+/* ---- The skip as a trade-table knob -----------------------------------
+ *
+ * trade/skip/<off|on>@folded: the folded sheet of 10^5 nodes, a fresh
+ * interface (skip off or on) run for TS_CYCLES cycles of the motion from
+ * cycle 1 (its first search and the natural re-sorts included), with all
+ * threads: cost ns per node per cycle; accuracy the largest difference of
+ * a nodal force from the run without the skip, relative to the largest
+ * nodal force, over those cycles (must be 0: the skip is exact).
+ * x_eval_per_node the candidates through the narrow phase. */
+#define TS_NODES 100000
+#define TS_CYCLES 24
+
+/* Run the stretch with skip setting `skip` into a fresh interface; when
+ * cmp is given (the other run's forces, TS_CYCLES x 3 x nnode), fold the
+ * largest difference into *diff and the largest |f| into *fmax; when keep
+ * is given, store the forces there. Timed by the caller's state unless st
+ * is NULL. */
+static int skip_stretch(gb_state *st, int skip, const ct_real *cmp, ct_real *keep,
+                        double *diff, double *fmax, int64_t *eval_sum, int64_t *cycles,
+                        double *tstep)
+{
+    ctd_cycle_params p = ctd_cycle_default_params(sc.h);
+    p.skip = skip;
+    ctd_cycle *cy = NULL;
+    int rc = ctd_cycle_init(&cy, &p, sc.nnode, sc.m, sc.c.sec.n, sc.c.sec.node, sc.c.sec.n,
+                            sc.c.sec.node, sc.c.main.n, sc.c.mn1, sc.c.mn2, sc.c.mn3, sc.c.mn4,
+                            sc.c.self);
+    if (rc == CT_OK)
+        rc = ctd_cycle_reserve(cy, (ct_idx)(ctd_cycle_pairs(sc.cy)->n * 3 / 2));
+    const size_t nn = (size_t)sc.nnode;
+    for (int k = 0; k < TS_CYCLES && rc == CT_OK; k++) {
+        if (st)
+            gb_pause_timing(st);
+        ctd_motion_eval(&sc.mo, sc.nnode, (const ct_real *const *)sc.ref, (double)(1 + k),
+                        CB_DT, sc.pos, sc.vel);
+        if (st)
+            gb_resume_timing(st);
+        double t0 = omp_get_wtime();
+        rc = ctd_cycle_step(cy, sc.pos[0], sc.pos[1], sc.pos[2], sc.vel[0], sc.vel[1],
+                            sc.vel[2], (ct_real)CB_DT, sc.f[0], sc.f[1], sc.f[2]);
+        *tstep += omp_get_wtime() - t0;
+        if (rc != CT_OK || st)
+            continue;
+        for (int a = 0; a < 3; a++) {
+            const ct_real *f = sc.f[a];
+            size_t off = ((size_t)k * 3 + (size_t)a) * nn;
+            if (keep)
+                memcpy(keep + off, f, sizeof(ct_real) * nn);
+            for (size_t i = 0; cmp && i < nn; i++) {
+                double v = fabs((double)f[i] - (double)cmp[off + i]);
+                *diff = v > *diff ? v : *diff;
+                double m = fabs((double)cmp[off + i]);
+                *fmax = m > *fmax ? m : *fmax;
+            }
+        }
+    }
+    if (rc == CT_OK) {
+        *eval_sum += ctd_cycle_get_stats(cy)->eval_sum;
+        *cycles += ctd_cycle_get_stats(cy)->cycles;
+    }
+    if (st)
+        gb_pause_timing(st);
+    ctd_cycle_destroy(cy);
+    if (st)
+        gb_resume_timing(st);
+    return rc;
+}
+
+static void bm_trade_skip(gb_state *st, void *arg)
+{
+    const int skip = *(const int *)arg;
+    char msg[700];
+    static int acc_done;
+    static double acc;
+    if ((double)TS_NODES * CB_BYTES_PER_NODE > cfg.mem_limit) {
+        gb_skip_with_error(st, "skipped: not enough memory");
+        return;
+    }
+    if (scene_get("folded", TS_NODES) != CT_OK) {
+        snprintf(msg, sizeof msg, "setup: %.300s", sc.err);
+        gb_skip_with_error(st, msg);
+        return;
+    }
+    ctb_bind_threads(cfg.bind, cfg.max_threads, NULL, 0);
+    int rc = CT_OK;
+    int64_t es = 0, nc = 0;
+    double ts = 0;
+    if (!acc_done) { /* both runs once, untimed: the accuracy */
+        size_t len = (size_t)TS_CYCLES * 3 * (size_t)sc.nnode;
+        ct_real *ref = malloc(sizeof(ct_real) * len);
+        double diff = 0, fmax = 0;
+        rc = ref ? CT_OK : CT_ERR_NOMEM;
+        if (rc == CT_OK)
+            rc = skip_stretch(NULL, 0, NULL, ref, &diff, &fmax, &es, &nc, &ts);
+        if (rc == CT_OK)
+            rc = skip_stretch(NULL, 1, ref, NULL, &diff, &fmax, &es, &nc, &ts);
+        free(ref);
+        if (rc == CT_OK && !(fmax > 0)) {
+            gb_skip_with_error(st, "setup: no contact force in the stretch");
+            return;
+        }
+        acc = diff / fmax;
+        acc_done = rc == CT_OK;
+    }
+    es = nc = 0;
+    ts = 0;
+    while (rc == CT_OK && gb_keep_running(st))
+        rc = skip_stretch(st, skip, NULL, NULL, NULL, NULL, &es, &nc, &ts);
+    if (rc != CT_OK) {
+        snprintf(msg, sizeof msg, "skip stretch: %s", ct_strerror(rc));
+        gb_skip_with_error(st, msg);
+        return;
+    }
+    gb_set_counter(st, "cost", nc ? ts * 1e9 / (double)nc / sc.nnode : 0, GB_PLAIN);
+    gb_set_counter(st, "accuracy", acc, GB_PLAIN);
+    gb_set_counter(st, "x_eval_per_node", nc ? (double)es / (double)nc / sc.nnode : 0,
+                   GB_PLAIN);
+    snprintf(msg, sizeof msg,
+             "knob=skip setting=%s@folded; cost: ns/node per cycle; accuracy: largest nodal "
+             "force difference from the run without the skip / largest nodal force; prec=%s "
+             "folded sheet %d nodes, %d cycles of the motion from a fresh interface, %d threads",
+             skip ? "on" : "off", sizeof(ct_real) == 4 ? "single" : "double", (int)sc.nnode,
+             TS_CYCLES, cfg.max_threads);
     gb_set_label(st, msg);
 }
 
@@ -377,6 +506,13 @@ int ctb_cycle_register(const ctb_search_config *c)
                {"crumpled", 100000, 0},
                {"folded", 1000000, 0},
                {"crumpled", 1000000, 1}};
+    static int skip_set[2] = {0, 1};
+    for (int k = 0; k < 2; k++) {
+        char name[64];
+        snprintf(name, sizeof name, "trade/skip/%s@folded", skip_set[k] ? "on" : "off");
+        if (gb_register(name, bm_trade_skip, &skip_set[k], -1, 1, 1, 0) != 0)
+            return -1;
+    }
     int tlist[2] = {1, cfg.max_threads};
     int nt = cfg.max_threads > 1 ? 2 : 1, count = 0;
     for (size_t i = 0; i < sizeof set / sizeof *set; i++) {
@@ -388,7 +524,7 @@ int ctb_cycle_register(const ctb_search_config *c)
             count++;
         }
     }
-    return count;
+    return count + 2;
 }
 
 void ctb_cycle_cleanup(void)

@@ -86,7 +86,7 @@ KERNEL_GROUPS = ["narrow", "force", "prepare", "assemble"]
 TRADE_RE = re.compile(
     r"^trade/(?P<knob>[^/]+)/(?P<setting>[^/]+)(?:/iterations:\d+)?"
     r"(?:/(?:real_time|manual_time))?$")
-TRADE_KNOBS = ["search", "filter", "margin", "renumber", "dense", "quad", "precision", "assembly",
+TRADE_KNOBS = ["search", "filter", "margin", "renumber", "dense", "quad", "precision", "assembly", "skip",
                "stiffness", "safety"]
 COUNTERS += ["cost", "accuracy"]
 # The full contact cycle (bench_cycle.c); its ns_* counters are ns per node

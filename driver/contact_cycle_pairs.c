@@ -1,20 +1,22 @@
 /*
  * contact_cycle_pairs.c -- the fused pass of the contact cycle over the
- * candidate pairs (see contact_cycle.h): the narrow phase of every pair,
- * then the force and the time step of the pairs in contact.
+ * candidate pairs (see contact_cycle.h): the narrow phase of every
+ * candidate (with the skip, of those whose expiry has passed), then the
+ * force and the time step of the pairs in contact.
  *
  * The pass runs in blocks of CY_BLOCK pairs so that a block's per-pair
  * arrays stay in cache from one kernel to the next (separate whole-list
  * passes streamed about 30 arrays of the size of the pair list through
- * memory). After the narrow phase, the block's pairs in contact (p > 0) are
- * packed into the thread's scratch, and the force and step kernels run on
- * them alone. A pair out of contact gets from those kernels a zero force, a
- * zero friction force and no step limit, so the pass writes exactly that
- * for it without calling them: on the folded sheet about two candidates in
- * three are out of contact. Every kernel computes each pair alone, so the
- * packing changes no pair's result, and the blocks are fixed by the pair
- * count: the results are those of whole-list calls, bit for bit, for any
- * thread count (tests/test_cycle.c checks both).
+ * memory). The narrow phase writes into the thread's scratch; p and the
+ * flag go back to the per-pair arrays, the weights too for the pairs in
+ * contact (p > 0), which are then packed in place, and the force and step
+ * kernels run on them alone. A pair out of contact gets from those kernels
+ * a zero force, a zero friction force and no step limit, so the pass
+ * writes exactly that for it without calling them: on the folded sheet
+ * about two candidates in three are out of contact. Every kernel computes
+ * each pair alone, so the packing changes no pair's result, and the blocks
+ * are fixed by the pair count: the results are those of whole-list calls,
+ * bit for bit, for any thread count (tests/test_cycle.c checks both).
  */
 #include "contact_cycle_internal.h"
 
