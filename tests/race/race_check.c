@@ -184,6 +184,8 @@ int main(void)
     check_assembly();
     extern void race_check_kernels(int *failures);
     race_check_kernels(&failures);
+    extern void race_check_cycle(int *failures);
+    race_check_cycle(&failures);
     /* The scenes of data/scenes, found from this file's path. */
     extern void race_check_scenes(const char *dir, int *failures);
     const char *f = __FILE__, *slash = strrchr(f, '/');
