@@ -96,23 +96,24 @@ Test(bench_report, cycle_table_from_sample)
     /* No label on the aggregates: the precision is the file's (ct_build's
      * precision=double). */
     expect_line(out, "### double precision");
-    expect_line(out, "| family | nodes | threads | candidates/node | active/node | re-sort "
-                     "interval (cycles) | search (amortised) | narrow | force | assembly "
+    expect_line(out, "| family | nodes | threads | candidates/node | evaluated/node | active/node "
+                     "| re-sort interval (cycles) | search (amortised) | narrow | force | assembly "
                      "| time step | total ns/node/cycle | × threads (per thread) "
                      "| vs target 15 | speed-up |");
     /* 1 thread, the real run's median: cand_per_node 6.7979 and
-     * active_per_node 2.0834 to 2 decimals; resort_interval 19 (no
+     * active_per_node 2.0834 to 2 decimals (the sample predates
+     * eval_per_node: "-"); resort_interval 19 (no
      * resort_interval_seen); phases 34.07, 259.71, 226.42, 83.52, 29.90;
      * total 633.63, times 1 thread 633.63; vs target 633.63 / 15 = 42.24;
      * no speed-up on the 1-thread row. */
-    expect_line(out, "| folded | 100000 | 1 | 6.80 | 2.08 | 19 | 34.1 | 259.7 | 226.4 | 83.5 "
+    expect_line(out, "| folded | 100000 | 1 | 6.80 | - | 2.08 | 19 | 34.1 | 259.7 | 226.4 | 83.5 "
                      "| 29.9 | 633.6 | 633.6 | 42.2× | - |");
     /* 2 threads: search 1.83 + 334.9 / 19 = 19.456, then 141.27, 122.64,
      * 48.31, 16.04; total 347.716, times 2 threads 695.433; vs target
      * 695.433 / 15 = 46.36 (the total alone would give 23.2); interval 19,
      * seen 17.5; speed-up 633.634 / 347.716 = 1.822 (the wall times would
      * give 539.2 / 305.1 = 1.77). */
-    expect_line(out, "| folded | 100000 | 2 | 6.80 | 2.08 | 19 (seen 17.5) | 19.5 | 141.3 | "
+    expect_line(out, "| folded | 100000 | 2 | 6.80 | - | 2.08 | 19 (seen 17.5) | 19.5 | 141.3 | "
                      "122.6 | 48.3 | 16.0 | 347.7 | 695.4 | 46.4× | 1.82 |");
     /* The cycle rows are in their own table, not in the "other" one (which
      * would list them by name with their median time). */
