@@ -64,11 +64,12 @@ typedef struct ctd_cycle_params {
 
 /*
  * The skip. Every point of a segment (the 4-triangle surface of a quad, or
- * a triangle) is a convex combination of its corners, so when the node has
- * moved at most a and every main node at most b, the node-segment distance
- * has shrunk by at most a + b. The cycle sums, cycle after cycle, the
- * largest step of a secondary node plus the largest step of a main node
- * (positions of the previous cycle kept); a candidate whose distance D was
+ * a triangle) is a convex combination of its corners, so the node-segment
+ * distance shrinks by no more than the bound of the re-sort criterion
+ * (ct_resort_needed: the smaller of the largest secondary step plus the
+ * largest main step and the relative bound per axis, 0 for a rigid
+ * motion). The cycle sums that bound from one cycle to the next (positions
+ * of the previous cycle kept); a candidate whose distance D was
  * computed when that sum was M_c needs no narrow phase while the sum stays
  * below M_c + (D - gap - slack): its distance is still above the gap, so
  * its penetration, force, friction history and step limit are the zeros a

@@ -1,9 +1,10 @@
 /*
  * contact_cycle_skip.c -- the skip of the contact cycle's narrow phase (see
- * contact_cycle.h for why it is exact): the motion bound summed cycle after
- * cycle, each pair's expiry (the value of that sum up to which its last
- * distance proves it out of contact), carried across a re-sort, and the
- * narrow phase of a block restricted to the pairs whose expiry has passed.
+ * contact_cycle.h for why it is exact): the motion bound (the re-sort
+ * criterion's, from one cycle to the next) summed cycle after cycle, each
+ * pair's expiry (the value of that sum up to which its last distance
+ * proves it out of contact), carried across a re-sort, and the selection
+ * of the pairs whose expiry has passed.
  *
  * The expiry of a pair evaluated when the sum was M, at distance D with gap
  * g, is M + (D - g - slack) / (1 + 1e-6); the pair is skipped while the sum
@@ -21,26 +22,18 @@
 #define CY_EPS DBL_EPSILON
 #endif
 
-/* Largest squared step and largest coordinate magnitude of the listed
- * nodes since the kept positions; a NaN step counts as infinite. */
-static void list_motion(ct_idx n, const ct_idx *restrict list, const ct_real *restrict x,
-                        const ct_real *restrict y, const ct_real *restrict z,
-                        const ct_real *restrict xp, const ct_real *restrict yp,
-                        const ct_real *restrict zp, double *step2, double *big)
+/* The largest coordinate magnitude of the listed nodes (NaN: infinite). */
+static double list_big(ct_idx n, const ct_idx *restrict list, const ct_real *restrict x,
+                       const ct_real *restrict y, const ct_real *restrict z)
 {
-    double s2 = 0, L = 0;
-#pragma omp parallel for schedule(static) reduction(max : s2, L)
+    double L = 0;
+#pragma omp parallel for schedule(static) reduction(max : L)
     for (ct_idx i = 0; i < n; i++) {
         const ct_idx k = list[i];
-        double dx = (double)x[k] - (double)xp[k], dy = (double)y[k] - (double)yp[k];
-        double dz = (double)z[k] - (double)zp[k];
-        double d2 = dx * dx + dy * dy + dz * dz;
-        s2 = (d2 > s2 || d2 != d2) ? (d2 != d2 ? INFINITY : d2) : s2;
         double a = fmax(fabs((double)x[k]), fmax(fabs((double)y[k]), fabs((double)z[k])));
         L = (a > L || a != a) ? (a != a ? INFINITY : a) : L;
     }
-    *step2 = s2;
-    *big = L;
+    return L;
 }
 
 /* Keep the positions of the listed nodes. */
@@ -59,23 +52,25 @@ static void list_keep(ct_idx n, const ct_idx *restrict list, const ct_real *rest
 
 void cti_skip_motion(ctd_cycle *cy, const ct_real *x, const ct_real *y, const ct_real *z)
 {
-    double ss = 0, sm = 0, ls = 0, lm = 0;
-    list_motion(cy->nsec, cy->sec, x, y, z, cy->xp, cy->yp, cy->zp, &ss, &ls);
-    if (cy->self) {
-        sm = ss;
-        lm = ls;
-    } else {
-        list_motion(cy->nmain, cy->mainn, x, y, z, cy->xp, cy->yp, cy->zp, &sm, &lm);
-    }
-    list_keep(cy->nsec, cy->sec, x, y, z, cy->xp, cy->yp, cy->zp);
-    if (!cy->self)
-        list_keep(cy->nmain, cy->mainn, x, y, z, cy->xp, cy->yp, cy->zp);
     /* The first cycle has no previous positions: its pairs are all new
-     * (expiry -1), so the sum does not matter; it stays 0. */
-    if (cy->have_prev)
-        cy->motion += sqrt(ss) + sqrt(sm);
+     * (expiry -1), so the sum does not matter; it stays 0. Otherwise the
+     * step's bound is the re-sort criterion's, from the last cycle's
+     * positions: the smaller of the two largest steps' sum and the
+     * relative bound per axis (0 for a rigid motion). */
+    if (cy->have_prev) {
+        ct_real b = 0;
+        ct_resort_needed(cy->nsec, cy->sec, cy->nmain, cy->mainn, cy->xp, cy->yp, cy->zp, x, y,
+                         z, 0, &b);
+        cy->motion += b == b ? (double)b : INFINITY;
+    }
+    double L = list_big(cy->nsec, cy->sec, x, y, z);
+    list_keep(cy->nsec, cy->sec, x, y, z, cy->xp, cy->yp, cy->zp);
+    if (!cy->self) {
+        L = fmax(L, list_big(cy->nmain, cy->mainn, x, y, z));
+        list_keep(cy->nmain, cy->mainn, x, y, z, cy->xp, cy->yp, cy->zp);
+    }
     cy->have_prev = 1;
-    cy->slack = 1024 * CY_EPS * (fmax(ls, lm) + (double)cy->p.gap);
+    cy->slack = 1024 * CY_EPS * (L + (double)cy->p.gap);
 }
 
 void cti_skip_remap(ctd_cycle *cy, ct_idx n, int old, int now)

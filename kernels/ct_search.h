@@ -142,12 +142,20 @@ int ct_pair_may_touch(const ct_real p[3], const ct_real a[3], const ct_real b[3]
 
 /*
  * Re-sort criterion (DESIGN.md section 5). x0/y0/z0 are the positions at
- * the last sort, x/y/z the current ones. The largest displacement of a
- * secondary node plus the largest of a main node bounds how much any
- * node-segment distance can have shrunk since the sort; while that bound is
- * at most `margin`, every pair now within `gap` was within gap + margin at
- * the sort, so the stored candidates are complete. Returns 1 when a re-sort
- * is needed, 0 when not; *bound (may be NULL) receives the bound.
+ * the last sort, x/y/z the current ones. The bound on how much any
+ * node-segment distance can have shrunk since the sort is the smaller of
+ *  - the largest displacement of a secondary node plus the largest of a
+ *    main node, and
+ *  - the relative displacement bound per axis: a point of a segment moves
+ *    by a convex combination of its corners' displacements, so along each
+ *    axis the secondary-minus-main displacement lies in [min_s - max_m,
+ *    max_s - min_m]; the bound is the length of the vector of the larger
+ *    ends. A rigid motion of both sets together (a dropped body in self
+ *    contact, sheets moving as one) gives 0: no re-sort.
+ * While the bound is at most `margin`, every pair now within `gap` was
+ * within gap + margin at the sort, so the stored candidates are complete.
+ * A NaN position gives an infinite bound. Returns 1 when a re-sort is
+ * needed, 0 when not; *bound (may be NULL) receives the bound.
  */
 int ct_resort_needed(ct_idx nsec, const ct_idx *sec, ct_idx nmain,
                      const ct_idx *main_nodes, const ct_real *x0, const ct_real *y0,

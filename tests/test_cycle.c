@@ -77,6 +77,24 @@ static void crun_step(crun *r, int cycle)
     cr_assert_eq(rc, CT_OK, "cycle %d: %s", cycle, ct_strerror(rc));
 }
 
+/* The motion of crun_step plus a rigid drift of `drift` (a vector, in
+ * units of h) per cycle. */
+static void crun_step_drift(crun *r, int cycle, const double drift[3])
+{
+    const double dt = 1e-3;
+    ctd_motion_eval(&r->mo, r->n, (const ct_real *const *)r->ref, cycle, dt, r->pos, r->vel);
+    for (int a = 0; a < 3; a++) {
+        const double d = drift[a] * r->h;
+        for (ct_idx i = 0; i < r->n; i++) {
+            r->pos[a][i] += (ct_real)(cycle * d);
+            r->vel[a][i] += (ct_real)(d / dt);
+        }
+    }
+    int rc = ctd_cycle_step(r->cy, r->pos[0], r->pos[1], r->pos[2], r->vel[0], r->vel[1],
+                            r->vel[2], (ct_real)dt, r->f[0], r->f[1], r->f[2]);
+    cr_assert_eq(rc, CT_OK, "cycle %d: %s", cycle, ct_strerror(rc));
+}
+
 static void crun_free(crun *r)
 {
     ctd_cycle_destroy(r->cy);
@@ -483,4 +501,45 @@ Test(cycle, skip_equals_full_evaluation)
                  (long)(sb->eval_sum - sa->eval_sum), (long)sb->eval_sum);
     crun_free(&a);
     crun_free(&b);
+}
+
+/* (h) A rigid drift of the whole sheet, 0.5 h per cycle (2.5 margins),
+ * on top of the fold-and-slide motion: the re-sort criterion and the skip
+ * use the relative displacement, so the drifting sheet re-sorts as often
+ * as the still one and the skip leaves out as many pairs; with the skip
+ * off, the drifting sheet's forces are the same bytes. */
+Test(cycle, rigid_drift_keeps_resorts_and_skip)
+{
+    ctt_threads(2);
+    const double none[3] = {0, 0, 0}, drift[3] = {0.4, 0.2, -0.224};
+    crun still, moving, full;
+    crun_make_skip(&still, nodes_for_test(), 0.015, 1);
+    crun_make_skip(&moving, nodes_for_test(), 0.015, 1);
+    crun_make_skip(&full, nodes_for_test(), 0.015, 0);
+    int ncyc = cycles_for_test();
+    for (int k = 0; k < ncyc; k++) {
+        crun_step_drift(&still, k, none);
+        crun_step_drift(&moving, k, drift);
+        crun_step_drift(&full, k, drift);
+        for (int d = 0; d < 3; d++)
+            cr_assert(memcmp(moving.f[d], full.f[d], sizeof(ct_real) * (size_t)moving.n) == 0,
+                      "cycle %d axis %d: the skip changed the drifting sheet's forces", k, d);
+    }
+    const ctd_cycle_stats *ss = ctd_cycle_get_stats(still.cy);
+    const ctd_cycle_stats *sm = ctd_cycle_get_stats(moving.cy);
+    const ctd_cycle_stats *sf = ctd_cycle_get_stats(full.cy);
+    cr_assert_eq(sm->resorts, ss->resorts, "%ld searches drifting, %ld still", (long)sm->resorts,
+                 (long)ss->resorts);
+    cr_assert_lt(sm->resorts, ncyc / 3);
+    cr_assert_eq(sm->active_sum, sf->active_sum);
+    cr_assert_gt(sm->active_sum, 0);
+    /* The skip: within 5 % of the still sheet's evaluations, and a good
+     * share of the candidates left out. */
+    cr_assert_leq((double)sm->eval_sum, 1.05 * (double)ss->eval_sum,
+                  "%ld pairs evaluated drifting, %ld still", (long)sm->eval_sum,
+                  (long)ss->eval_sum);
+    cr_assert_lt(sm->eval_sum, sf->eval_sum * 3 / 4);
+    crun_free(&still);
+    crun_free(&moving);
+    crun_free(&full);
 }

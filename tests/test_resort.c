@@ -449,15 +449,25 @@ Test(resort, asks_for_resort_above_margin)
     cr_assert_eq(ct_resort_needed(s.nsec, s.sec, s.nmain, s.mainn, s.x0, s.y0, s.z0, s.x, s.y, s.z,
                                   (ct_real)0.1, &bound), 0);
     cr_assert_eq(bound, 0);
-    /* One secondary node moved by 0.07 and one main node by 0.05: 0.12 > 0.1. */
+    /* One secondary node moved by 0.07 up and one main node by 0.05 down:
+     * they approach by 0.12 > 0.1 (both bounds give 0.12). */
     s.z[s.sec[17]] += (ct_real)0.07;
-    s.x[s.mainn[5]] += (ct_real)0.05;
+    s.z[s.mainn[5]] -= (ct_real)0.05;
     cr_assert_eq(ct_resort_needed(s.nsec, s.sec, s.nmain, s.mainn, s.x0, s.y0, s.z0, s.x, s.y, s.z,
                                   (ct_real)0.1, &bound), 1);
     cr_assert_float_eq(bound, 0.12, CTT_TOL(1e-12, 1e-6));
     /* The same motion fits in a margin of 0.13. */
     cr_assert_eq(ct_resort_needed(s.nsec, s.sec, s.nmain, s.mainn, s.x0, s.y0, s.z0, s.x, s.y, s.z,
                                   (ct_real)0.13, NULL), 0);
+    /* The main node moved sideways instead: the relative displacement is at
+     * most |(-0.05, 0, 0.07)| = 0.086, below 0.1 (the sum of the two
+     * largest displacements would say 0.12). */
+    s.z[s.mainn[5]] = s.z0[s.mainn[5]];
+    s.x[s.mainn[5]] += (ct_real)0.05;
+    cr_assert_eq(ct_resort_needed(s.nsec, s.sec, s.nmain, s.mainn, s.x0, s.y0, s.z0, s.x, s.y, s.z,
+                                  (ct_real)0.1, &bound), 0);
+    cr_assert_float_eq(bound, sqrt(0.07 * 0.07 + 0.05 * 0.05), CTT_TOL(1e-12, 1e-6));
+    s.x[s.mainn[5]] = s.x0[s.mainn[5]];
     /* A NaN position always asks for a re-sort. */
     s.y[s.sec[3]] = (ct_real)NAN;
     cr_assert_eq(ct_resort_needed(s.nsec, s.sec, s.nmain, s.mainn, s.x0, s.y0, s.z0, s.x, s.y, s.z,
@@ -489,6 +499,54 @@ Test(resort, motion_above_margin_can_break_completeness)
     cr_assert_gt(now.n, 0);
     cr_assert_eq(ct_resort_needed(s.nsec, s.sec, s.nmain, s.mainn, s.x0, s.y0, s.z0, s.x, s.y, s.z,
                                   margin, NULL), 1);
+    ct_pairs_destroy(&cand);
+    ct_pairs_destroy(&now);
+    scene_free(&s);
+}
+
+/* A rigid translation of both sets, 30 times the margin: the relative
+ * bound is 0 (up to rounding), no re-sort is asked, and the stored
+ * candidates still hold every pair the direct search finds within the gap
+ * at the new positions; with the secondary nodes moved alone by the same
+ * vector the criterion asks for a re-sort. */
+Test(resort, rigid_translation_needs_no_resort)
+{
+    scene s;
+    scene_make(&s, 16, ctt_checking() ? 800 : 3000);
+    const ct_real gap = (ct_real)0.2, margin = (ct_real)0.15;
+    ct_pairs cand, now;
+    ct_pairs_init(&cand, 0);
+    ct_pairs_init(&now, 0);
+    run_direct(&s, gap, margin, &cand);
+    memcpy(s.x0, s.x, sizeof(ct_real) * (size_t)s.nnode);
+    memcpy(s.y0, s.y, sizeof(ct_real) * (size_t)s.nnode);
+    memcpy(s.z0, s.z, sizeof(ct_real) * (size_t)s.nnode);
+    const double t[3] = {3.0, -2.0, 1.5}; /* |t| = 3.9 = 26 margins */
+    for (ct_idx k = 0; k < s.nnode; k++) {
+        s.x[k] = s.x0[k] + (ct_real)t[0];
+        s.y[k] = s.y0[k] + (ct_real)t[1];
+        s.z[k] = s.z0[k] + (ct_real)t[2];
+    }
+    ct_real bound;
+    cr_assert_eq(ct_resort_needed(s.nsec, s.sec, s.nmain, s.mainn, s.x0, s.y0, s.z0, s.x, s.y,
+                                  s.z, margin, &bound), 0, "bound %g", (double)bound);
+    cr_assert_leq(bound, CTT_TOL(1e-12, 1e-5));
+    run_direct(&s, gap, 0, &now);
+    cr_assert_gt(now.n, 0);
+    for (ct_idx k = 0; k < now.n; k++)
+        cr_assert(has_pair(&cand, now.node[k], now.seg[k]),
+                  "pair (%d, %d) within the gap is not among the stored candidates",
+                  (int)now.node[k], (int)now.seg[k]);
+    /* The plate left behind: the secondary nodes moved, the main ones not. */
+    for (ct_idx k = 0; k < s.nmain; k++) {
+        s.x[s.mainn[k]] = s.x0[s.mainn[k]];
+        s.y[s.mainn[k]] = s.y0[s.mainn[k]];
+        s.z[s.mainn[k]] = s.z0[s.mainn[k]];
+    }
+    cr_assert_eq(ct_resort_needed(s.nsec, s.sec, s.nmain, s.mainn, s.x0, s.y0, s.z0, s.x, s.y,
+                                  s.z, margin, &bound), 1);
+    cr_assert_float_eq(bound, sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]),
+                       CTT_TOL(1e-12, 1e-5));
     ct_pairs_destroy(&cand);
     ct_pairs_destroy(&now);
     scene_free(&s);
