@@ -38,8 +38,9 @@
  * forced one included: there is always at least one), and the interval the
  * mean number of cycles between re-sorts of the criterion over a whole
  * period of the motion, computed exactly from the motion's displacement
- * field (the bound ct_resort_needed evaluates: twice the largest node
- * displacement since the last sort, against the margin). The interval the
+ * field (the bound ct_resort_needed evaluates: the smaller of twice the
+ * largest node displacement since the last sort and the relative bound per
+ * axis, against the margin). The interval the
  * interface itself saw (re-sorts fired by the criterion, over its life) is
  * reported too when there was one (resort_interval_seen; blocks are
  * usually shorter than an interval, so it rarely is).
@@ -143,7 +144,9 @@ static int cmp_a_desc(const void *p, const void *q)
  * b = cos^2 of its slide wave, df and dsl the changes of the scale and of
  * the slide amplitude), so the largest displacement is a maximum over the
  * Pareto front of the points (a, b): a few nodes. The criterion's bound is
- * twice it (secondary and main are the same nodes).
+ * the smaller of twice it (secondary and main are the same nodes) and the
+ * relative bound per axis, the length of the vector of the displacements'
+ * ranges along the axes ((max d - min d) df and (max cos - min cos) dsl).
  */
 static double predict_interval(const ctd_motion *mo, ct_idx n, const ct_real *rc,
                                double margin)
@@ -154,10 +157,15 @@ static double predict_interval(const ctd_motion *mo, ct_idx n, const ct_real *rc
         return 0;
     }
     double kw = 2 * 3.141592653589793 / mo->wavelength;
+    double dlo = 1e300, dhi = -1e300, clo = 1e300, chi = -1e300;
     for (ct_idx i = 0; i < n; i++) {
         double d = (double)rc[i] - mo->centre, cw = cos(kw * (double)rc[i]);
         pt[i].a = d * d;
         pt[i].b = cw * cw;
+        dlo = d < dlo ? d : dlo;
+        dhi = d > dhi ? d : dhi;
+        clo = cw < clo ? cw : clo;
+        chi = cw > chi ? cw : chi;
     }
     qsort(pt, (size_t)n, sizeof *pt, cmp_a_desc);
     int nf = 0;
@@ -178,7 +186,11 @@ static double predict_interval(const ctd_motion *mo, ct_idx n, const ct_real *rc
             double v = pt[k].a * df2 + pt[k].b * ds2;
             m2 = v > m2 ? v : m2;
         }
-        if (2 * sqrt(m2) > margin) {
+        /* The relative bound per axis: the ranges of the displacements
+         * along the compression and the slide axes (the third is 0). */
+        double rcx = (dhi - dlo) * fabs(f - f0), rsl = (chi - clo) * fabs(s - s0);
+        double rel = sqrt(rcx * rcx + rsl * rsl), abs2 = 2 * sqrt(m2);
+        if ((rel < abs2 ? rel : abs2) > margin) {
             sorts++;
             sum += c - last;
             last = c;
