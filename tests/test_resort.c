@@ -390,6 +390,40 @@ static int has_pair(const ct_pairs *p, ct_idx node, ct_idx seg)
     return lo < p->n && p->node[lo] == node && p->seg[lo] == seg;
 }
 
+/* Every pair the direct search finds within the gap at the current
+ * positions (into now, not empty) is among the stored candidates. */
+static void expect_complete(const scene *s, ct_real gap, const ct_pairs *cand, ct_pairs *now,
+                            int round)
+{
+    run_direct(s, gap, 0, now);
+    cr_assert_gt(now->n, 0);
+    for (ct_idx k = 0; k < now->n; k++)
+        cr_assert(has_pair(cand, now->node[k], now->seg[k]),
+                  "round %d: pair (%d, %d) within the gap is not among the stored candidates",
+                  round, (int)now->node[k], (int)now->seg[k]);
+}
+
+/* The positions at the sort: x0, y0, z0 = x, y, z. */
+static void keep_sort_positions(scene *s)
+{
+    memcpy(s->x0, s->x, sizeof(ct_real) * (size_t)s->nnode);
+    memcpy(s->y0, s->y, sizeof(ct_real) * (size_t)s->nnode);
+    memcpy(s->z0, s->z, sizeof(ct_real) * (size_t)s->nnode);
+}
+
+/* A scene of nq x nq quads and ncloud secondary nodes, sorted: its
+ * candidates within gap + margin by the direct search in cand, its
+ * positions at the sort kept; now initialised (empty). */
+static void sorted_scene(scene *s, int nq, int ncloud, ct_real gap, ct_real margin,
+                         ct_pairs *cand, ct_pairs *now)
+{
+    scene_make(s, nq, ncloud);
+    ct_pairs_init(cand, 0);
+    ct_pairs_init(now, 0);
+    run_direct(s, gap, margin, cand);
+    keep_sort_positions(s);
+}
+
 static void move_all(scene *s, double amp_sec, double amp_main)
 {
     /* Random directions, each node moved by at most its amplitude. */
@@ -407,15 +441,9 @@ static void move_all(scene *s, double amp_sec, double amp_main)
 Test(resort, candidates_complete_below_margin)
 {
     scene s;
-    scene_make(&s, 24, ctt_checking() ? 1500 : 6000);
     const ct_real gap = (ct_real)0.2, margin = (ct_real)0.15;
     ct_pairs cand, now;
-    ct_pairs_init(&cand, 0);
-    ct_pairs_init(&now, 0);
-    run_direct(&s, gap, margin, &cand);
-    memcpy(s.x0, s.x, sizeof(ct_real) * (size_t)s.nnode);
-    memcpy(s.y0, s.y, sizeof(ct_real) * (size_t)s.nnode);
-    memcpy(s.z0, s.z, sizeof(ct_real) * (size_t)s.nnode);
+    sorted_scene(&s, 24, ctt_checking() ? 1500 : 6000, gap, margin, &cand, &now);
     for (int round = 0; round < 5; round++) {
         /* Secondary nodes move up to 0.09, main nodes up to 0.05: the bound
          * is at most 0.14 < margin. */
@@ -425,12 +453,7 @@ Test(resort, candidates_complete_below_margin)
                                     s.z, margin, &bound);
         cr_assert_eq(need, 0, "bound %g should be below the margin %g", (double)bound, (double)margin);
         cr_assert_leq(bound, (ct_real)0.14 + (ct_real)1e-6);
-        run_direct(&s, gap, 0, &now);
-        cr_assert_gt(now.n, 0);
-        for (ct_idx k = 0; k < now.n; k++)
-            cr_assert(has_pair(&cand, now.node[k], now.seg[k]),
-                      "round %d: pair (%d, %d) within the gap is not among the stored candidates",
-                      round, now.node[k], now.seg[k]);
+        expect_complete(&s, gap, &cand, &now, round);
     }
     ct_pairs_destroy(&cand);
     ct_pairs_destroy(&now);
@@ -441,9 +464,7 @@ Test(resort, asks_for_resort_above_margin)
 {
     scene s;
     scene_make(&s, 8, 200);
-    memcpy(s.x0, s.x, sizeof(ct_real) * (size_t)s.nnode);
-    memcpy(s.y0, s.y, sizeof(ct_real) * (size_t)s.nnode);
-    memcpy(s.z0, s.z, sizeof(ct_real) * (size_t)s.nnode);
+    keep_sort_positions(&s);
     ct_real bound;
     /* Nothing moved: no re-sort. */
     cr_assert_eq(ct_resort_needed(s.nsec, s.sec, s.nmain, s.mainn, s.x0, s.y0, s.z0, s.x, s.y, s.z,
@@ -491,9 +512,7 @@ Test(resort, motion_above_margin_can_break_completeness)
     ct_pairs_init(&now, 0);
     run_direct(&s, gap, margin, &cand);
     cr_assert_eq(cand.n, 0, "the node starts 0.55 or more above the plate");
-    memcpy(s.x0, s.x, sizeof(ct_real) * (size_t)s.nnode);
-    memcpy(s.y0, s.y, sizeof(ct_real) * (size_t)s.nnode);
-    memcpy(s.z0, s.z, sizeof(ct_real) * (size_t)s.nnode);
+    keep_sort_positions(&s);
     s.z[n] = (ct_real)0.1; /* moved by 0.5 > margin */
     run_direct(&s, gap, 0, &now);
     cr_assert_gt(now.n, 0);
@@ -512,15 +531,9 @@ Test(resort, motion_above_margin_can_break_completeness)
 Test(resort, rigid_translation_needs_no_resort)
 {
     scene s;
-    scene_make(&s, 16, ctt_checking() ? 800 : 3000);
     const ct_real gap = (ct_real)0.2, margin = (ct_real)0.15;
     ct_pairs cand, now;
-    ct_pairs_init(&cand, 0);
-    ct_pairs_init(&now, 0);
-    run_direct(&s, gap, margin, &cand);
-    memcpy(s.x0, s.x, sizeof(ct_real) * (size_t)s.nnode);
-    memcpy(s.y0, s.y, sizeof(ct_real) * (size_t)s.nnode);
-    memcpy(s.z0, s.z, sizeof(ct_real) * (size_t)s.nnode);
+    sorted_scene(&s, 16, ctt_checking() ? 800 : 3000, gap, margin, &cand, &now);
     const double t[3] = {3.0, -2.0, 1.5}; /* |t| = 3.9 = 26 margins */
     for (ct_idx k = 0; k < s.nnode; k++) {
         s.x[k] = s.x0[k] + (ct_real)t[0];
@@ -531,12 +544,7 @@ Test(resort, rigid_translation_needs_no_resort)
     cr_assert_eq(ct_resort_needed(s.nsec, s.sec, s.nmain, s.mainn, s.x0, s.y0, s.z0, s.x, s.y,
                                   s.z, margin, &bound), 0, "bound %g", (double)bound);
     cr_assert_leq(bound, CTT_TOL(1e-12, 1e-5));
-    run_direct(&s, gap, 0, &now);
-    cr_assert_gt(now.n, 0);
-    for (ct_idx k = 0; k < now.n; k++)
-        cr_assert(has_pair(&cand, now.node[k], now.seg[k]),
-                  "pair (%d, %d) within the gap is not among the stored candidates",
-                  (int)now.node[k], (int)now.seg[k]);
+    expect_complete(&s, gap, &cand, &now, 0);
     /* The plate left behind: the secondary nodes moved, the main ones not. */
     for (ct_idx k = 0; k < s.nmain; k++) {
         s.x[s.mainn[k]] = s.x0[s.mainn[k]];
