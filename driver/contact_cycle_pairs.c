@@ -124,61 +124,68 @@ static ct_idx block_pack(const ctd_cycle *cy, ct_idx k0, ct_idx ne, cy_scratch *
             gf[a[j]] = fl[j];
         }
     }
-    /* The evaluated pairs in contact (positions in the scratch). Every
-     * index is written, the count advances by the test: no branch. */
-    ct_idx *restrict pk = s->i[CS_S4];
+    /* The evaluated pairs in contact (positions in the scratch, pk). Every
+     * index is written, the count advances by the test: no branch. The
+     * block keeps pk's uses apart from the gathers below, which write its
+     * array. */
     ct_idx na = 0;
-    for (ct_idx j = 0; j < ne; j++) {
-        pk[na] = j;
-        na += pen[j] > 0;
-    }
-    /* Their weights, which the assembly reads. (The other results are
-     * not kept: stored for every pair, they cost more than the narrow
-     * phase saved by the skip, every store a cache miss.) */
-    const int slot[4] = {CS_H1, CS_H2, CS_H3, CS_H4};
-    ct_real *const dst[4] = {g->h1, g->h2, g->h3, g->h4};
-    for (int a = 0; a < 4; a++) {
-        const ct_real *restrict f = v[slot[a]];
-        ct_real *restrict t = dst[a] + k0;
-        for (ct_idx i = 0; i < na; i++)
-            t[act[pk[i]]] = f[pk[i]];
-    }
-    /* Compact the force kernels' geometry and the indices in place (pk[i]
-     * >= i: a slot is read before it is overwritten). */
-    _Static_assert(CS_GAP == CS_H1 + 8, "the geometry scratch arrays must be consecutive");
-    for (int a = CS_H1; a <= CS_GAP; a++) {
-        ct_real *t = v[a];
-        for (ct_idx i = 0; i < na; i++)
-            t[i] = t[pk[i]];
-    }
-    for (ct_idx i = 0; i < na; i++)
-        act[i] = act[pk[i]];
-    /* Nodes, mass and history of the pairs in contact (pk is not needed
-     * any more: its array receives the fourth segment node). */
-    const ct_idx *restrict nd = cy->pairs[cy->cur].node + k0;
-    const ct_idx *restrict s1 = cy->s[0] + k0, *restrict s2 = cy->s[1] + k0;
-    const ct_idx *restrict s3 = cy->s[2] + k0, *restrict s4 = cy->s[3] + k0;
-    const ct_real *restrict mass = cy->m;
-    ct_idx *restrict cn = s->i[CS_NODE], *restrict c1 = s->i[CS_S1], *restrict c2 = s->i[CS_S2];
-    ct_idx *restrict c3 = s->i[CS_S3], *restrict c4 = s->i[CS_S4];
-    ct_real *restrict ms = v[CS_MS];
-    const ct_idx *restrict ac = act;
-    for (ct_idx i = 0; i < na; i++) {
-        const ct_idx k = ac[i];
-        cn[i] = nd[k];
-        c1[i] = s1[k];
-        c2[i] = s2[k];
-        c3[i] = s3[k];
-        c4[i] = s4[k];
-        ms[i] = mass[nd[k]];
-    }
-    if (cy->p.mu > 0) {
-        ct_real *const *ft = cy->ft[cy->cur];
-        for (int d = 0; d < 3; d++) {
-            const ct_real *restrict f = ft[d] + k0;
-            ct_real *restrict t = v[CS_T0 + d];
+    {
+        ct_idx *restrict pk = s->i[CS_S4];
+        for (ct_idx j = 0; j < ne; j++) {
+            pk[na] = j;
+            na += pen[j] > 0;
+        }
+        /* Their weights, which the assembly reads. (The other results are
+         * not kept: stored for every pair, they cost more than the narrow
+         * phase saved by the skip, every store a cache miss.) */
+        const int slot[4] = {CS_H1, CS_H2, CS_H3, CS_H4};
+        ct_real *const dst[4] = {g->h1, g->h2, g->h3, g->h4};
+        for (int a = 0; a < 4; a++) {
+            const ct_real *restrict f = v[slot[a]];
+            ct_real *restrict t = dst[a] + k0;
             for (ct_idx i = 0; i < na; i++)
-                t[i] = f[ac[i]];
+                t[act[pk[i]]] = f[pk[i]];
+        }
+        /* Compact the force kernels' geometry and the indices in place
+         * (pk[i] >= i: a slot is read before it is overwritten). */
+        _Static_assert(CS_GAP == CS_H1 + 8, "the geometry scratch arrays must be consecutive");
+        for (int a = CS_H1; a <= CS_GAP; a++) {
+            ct_real *t = v[a];
+            for (ct_idx i = 0; i < na; i++)
+                t[i] = t[pk[i]];
+        }
+        for (ct_idx i = 0; i < na; i++)
+            act[i] = act[pk[i]];
+    }
+    {
+        /* Nodes, mass and history of the pairs in contact (pk's array now
+         * receives the fourth segment node). */
+        const ct_idx *restrict nd = cy->pairs[cy->cur].node + k0;
+        const ct_idx *restrict s1 = cy->s[0] + k0, *restrict s2 = cy->s[1] + k0;
+        const ct_idx *restrict s3 = cy->s[2] + k0, *restrict s4 = cy->s[3] + k0;
+        const ct_real *restrict mass = cy->m;
+        ct_idx *restrict cn = s->i[CS_NODE], *restrict c1 = s->i[CS_S1];
+        ct_idx *restrict c2 = s->i[CS_S2], *restrict c3 = s->i[CS_S3];
+        ct_idx *restrict c4 = s->i[CS_S4];
+        ct_real *restrict ms = v[CS_MS];
+        const ct_idx *restrict ac = act;
+        for (ct_idx i = 0; i < na; i++) {
+            const ct_idx k = ac[i];
+            cn[i] = nd[k];
+            c1[i] = s1[k];
+            c2[i] = s2[k];
+            c3[i] = s3[k];
+            c4[i] = s4[k];
+            ms[i] = mass[nd[k]];
+        }
+        if (cy->p.mu > 0) {
+            ct_real *const *ft = cy->ft[cy->cur];
+            for (int d = 0; d < 3; d++) {
+                const ct_real *restrict f = ft[d] + k0;
+                ct_real *restrict t = v[CS_T0 + d];
+                for (ct_idx i = 0; i < na; i++)
+                    t[i] = f[ac[i]];
+            }
         }
     }
     return na;

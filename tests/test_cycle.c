@@ -326,14 +326,14 @@ static void whole_list_reference(const crun *r, const ct_pairs *P, ct_real *cons
  * result must be that of each kernel called once on the whole list: the
  * same narrow-phase bytes for what the cycle keeps (p of every pair, out
  * of contact by the whole-list call too where the skip left it out; the
- * flag of every pair evaluated; the weights of the pairs in contact), the same nodal step limit (the kinematic one and
- * the nodal forces within round-off: the reference sums the relative
- * velocity in its own order), and nodal forces equal to
- * a serial assembly of the whole-list pair forces within round-off (the
- * colouring sums in another order). Checked at the first cycle (friction
- * history zero) and at the following cycles while no re-sort moves the
- * pairs, with the history carried by the reference itself. Two threads, a
- * list of several blocks. */
+ * flag of every pair evaluated; the weights of the pairs in contact), the
+ * same nodal step limit (the kinematic one and the nodal forces within
+ * round-off: the reference sums the relative velocity in its own order),
+ * and nodal forces equal to a serial assembly of the whole-list pair
+ * forces within round-off (the colouring sums in another order). Checked
+ * at the first cycle (friction history zero) and at the following cycles
+ * while no re-sort moves the pairs, with the history carried by the
+ * reference itself. Two threads, a list of several blocks. */
 Test(cycle, fused_pass_equals_whole_list_kernels)
 {
     crun r;
