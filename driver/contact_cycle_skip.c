@@ -22,32 +22,23 @@
 #define CY_EPS DBL_EPSILON
 #endif
 
-/* The largest coordinate magnitude of the listed nodes (NaN: infinite). */
-static double list_big(ct_idx n, const ct_idx *restrict list, const ct_real *restrict x,
-                       const ct_real *restrict y, const ct_real *restrict z)
+/* Keep the positions of the listed nodes, and return their largest
+ * coordinate magnitude (NaN: infinite), in one pass. */
+static double list_keep(ct_idx n, const ct_idx *restrict list, const ct_real *restrict x,
+                        const ct_real *restrict y, const ct_real *restrict z,
+                        ct_real *restrict xp, ct_real *restrict yp, ct_real *restrict zp)
 {
     double L = 0;
 #pragma omp parallel for schedule(static) reduction(max : L)
     for (ct_idx i = 0; i < n; i++) {
         const ct_idx k = list[i];
+        xp[k] = x[k];
+        yp[k] = y[k];
+        zp[k] = z[k];
         double a = fmax(fabs((double)x[k]), fmax(fabs((double)y[k]), fabs((double)z[k])));
         L = (a > L || a != a) ? (a != a ? INFINITY : a) : L;
     }
     return L;
-}
-
-/* Keep the positions of the listed nodes. */
-static void list_keep(ct_idx n, const ct_idx *restrict list, const ct_real *restrict x,
-                      const ct_real *restrict y, const ct_real *restrict z,
-                      ct_real *restrict xp, ct_real *restrict yp, ct_real *restrict zp)
-{
-#pragma omp parallel for schedule(static)
-    for (ct_idx i = 0; i < n; i++) {
-        const ct_idx k = list[i];
-        xp[k] = x[k];
-        yp[k] = y[k];
-        zp[k] = z[k];
-    }
 }
 
 void cti_skip_motion(ctd_cycle *cy, const ct_real *x, const ct_real *y, const ct_real *z)
@@ -63,12 +54,9 @@ void cti_skip_motion(ctd_cycle *cy, const ct_real *x, const ct_real *y, const ct
                          z, 0, &b);
         cy->motion += b == b ? (double)b : INFINITY;
     }
-    double L = list_big(cy->nsec, cy->sec, x, y, z);
-    list_keep(cy->nsec, cy->sec, x, y, z, cy->xp, cy->yp, cy->zp);
-    if (!cy->self) {
-        L = fmax(L, list_big(cy->nmain, cy->mainn, x, y, z));
-        list_keep(cy->nmain, cy->mainn, x, y, z, cy->xp, cy->yp, cy->zp);
-    }
+    double L = list_keep(cy->nsec, cy->sec, x, y, z, cy->xp, cy->yp, cy->zp);
+    if (!cy->self)
+        L = fmax(L, list_keep(cy->nmain, cy->mainn, x, y, z, cy->xp, cy->yp, cy->zp));
     cy->have_prev = 1;
     cy->slack = 1024 * CY_EPS * (L + (double)cy->p.gap);
 }
