@@ -26,6 +26,7 @@
 #include <unistd.h>
 
 #include "bench_cycle.h"
+#include "bench_paired.h"
 #include "bench_floor.h"
 #include "bench_kernels.h"
 #include "bench_peers.h"
@@ -60,6 +61,7 @@ static void usage(FILE *f)
                "       floor/<triad/dram|triad/ws|bucket/plates>/t<threads>/<n>/real_time\n"
                "       real/<deck>/<algo>/t<threads>/real_time\n"
                "       cycle/<folded|crumpled>/t<threads>/<nodes>/real_time\n"
+               "       paired/<family>/<b>-vs-<a>/t<threads>/<nodes>/real_time\n"
                "env: CT_BENCH_FULL=1, CT_BENCH_BIND, CT_BENCH_DIRECT_BUDGET,\n"
                "     CT_SHARED (the Radioss decks), CT_BENCH_MESH=deck.rad\n");
 }
@@ -176,7 +178,7 @@ int main(int argc, char **argv)
     if (ctb_search_register(&cfg) < 0 || ctb_peers_register(&cfg) < 0 ||
         ctb_kernels_register(&cfg) < 0 || ctb_floor_register(&cfg) < 0 ||
         ctb_real_register(&cfg) < 0 || ctb_trade_register(&cfg) < 0 ||
-        ctb_cycle_register(&cfg) < 0) {
+        ctb_cycle_register(&cfg) < 0 || ctb_paired_register(&cfg) < 0) {
         fprintf(stderr, "bench: out of memory registering benchmarks\n");
         rc = 1;
     } else {
@@ -194,6 +196,7 @@ int main(int argc, char **argv)
     ctb_real_cleanup();
     ctb_trade_cleanup();
     ctb_cycle_cleanup();
+    ctb_paired_cleanup();
     ctb_topology_close();
     free(args);
     return rc;

@@ -99,6 +99,22 @@ CYCLE_TARGET_NS = 15.0
 COUNTERS += [c for c in CYCLE_PHASES + [
     "ns_total", "ns_total_x_threads", "ns_per_sort", "ns_check", "resort_interval",
     "resort_interval_seen", "cand_per_node", "eval_per_node", "active_per_node", "nodes"] if c not in COUNTERS]
+# The ratio targets measured in interleaved rounds (bench_paired.c):
+# paired/<family>/<b>-vs-<a>/t<threads>/<nodes>.
+PAIRED_RE = re.compile(
+    r"^paired/(?P<family>[^/]+)/(?P<what>[^/]+)/t(?P<threads>\d+)/(?P<n>\d+)"
+    r"(?:/iterations:\d+)?(?:/(?:real_time|manual_time))?$")
+COUNTERS += ["ns_a", "ns_b", "ratio", "ratio_min", "ratio_max", "rounds", "pairs_a", "pairs_b",
+             "same_pairs"]
+# The issue's target for a (family, comparison): its text and its test.
+PAIRED_TARGETS = {
+    ("plates", "bsp-vs-bucket"): ("≤ 2 (issue 2: bsp within 2× of bucket, uniform mesh)",
+                                  lambda r: r <= 2),
+    ("graded", "bsp-vs-bucket"): ("< 1 (issue 2: bsp faster than bucket, graded mesh)",
+                                  lambda r: r < 1),
+    ("plates", "bucket-shuffled-vs-natural"): ("≤ 1.5 (issue 2: shuffled within 1.5× of "
+                                               "ordered)", lambda r: r <= 1.5),
+}
 PREC_ORDER = ["double", "single"]
 
 
@@ -607,6 +623,51 @@ def print_cycle(cyc, out):
         out.append("")
 
 
+def parse_paired(other):
+    """Split the paired records (paired/<family>/<b>-vs-<a>/t<threads>/<nodes>)
+    from the others."""
+    return split_named(other, PAIRED_RE)
+
+
+def print_paired(paired, out):
+    """One row per paired benchmark: both searches' ns per node, the median of
+    the rounds' ratios, their range, and the issue's target when it has one."""
+    if not paired:
+        return
+    out.append("## Ratio targets, measured in interleaved rounds\n")
+    out.append("Each row times two searches in one benchmark, one whole search of each per "
+               "round, alternating which runs first (bench_paired.c), so that both see the "
+               "same state of the host. a and b: median ns per secondary node over the "
+               "rounds; ratio: the median of the rounds' b / a (median of the repetitions); "
+               "range: the smallest and largest round's ratio (medians of the "
+               "repetitions).\n")
+    out.append("| family | nodes | threads | b vs a | a ns/node | b ns/node | ratio b/a "
+               "| range | same pairs | target | met? |")
+    out.append("|---|---:|---:|---|---:|---:|---:|---|---|---|---|")
+    for r in sorted(paired, key=lambda r: (r["family"], r["what"], r["n"], r["threads"])):
+        head = "| %s | %d | %d | %s " % (r["family"], r["n"], r["threads"], r["what"])
+        tgt = PAIRED_TARGETS.get((r["family"], r["what"]))
+        if r["error"]:
+            out.append(head + "| %s | - | - | - | - | %s | - |" % (r["error"],
+                                                                 tgt[0] if tgt else "-"))
+            continue
+        c = r["counters"]
+        ratio = c.get("ratio")
+        same = c.get("same_pairs")
+        same_s = "-" if same is None else ("yes" if same == 1 else "**no**")
+        rng = "-"
+        if c.get("ratio_min") is not None and c.get("ratio_max") is not None:
+            rng = "%.2f-%.2f" % (c["ratio_min"], c["ratio_max"])
+        met = "-"
+        if tgt and ratio is not None:
+            met = "yes" if tgt[1](ratio) else "**no**"
+        out.append(head + "| %s | %s | %s | %s | %s | %s | %s |" % (
+            fmt_ns(c.get("ns_a")), fmt_ns(c.get("ns_b")),
+            "%.2f" % ratio if ratio is not None else "-", rng, same_s,
+            tgt[0] if tgt else "-", met))
+    out.append("")
+
+
 def print_other(other, out):
     if not other:
         return
@@ -816,9 +877,10 @@ def report(datas, names=None, compare=None):
         peers, other = parse_peers(other)
         trade, other = parse_trade(other, tag)
         cyc, other = parse_cycle(other, tag)
+        paired, other = parse_paired(other)
         files.append({"tag": tag, "name": name, "data": data, "search": search,
                       "kern": kern, "flo": flo, "other": other, "peers": peers,
-                      "trade": trade, "cycle": cyc})
+                      "trade": trade, "cycle": cyc, "paired": paired})
     for f in files:
         if multi:
             out.append("# %s precision (%s)\n" % (f["tag"], f["name"]))
@@ -837,6 +899,7 @@ def report(datas, names=None, compare=None):
     print_floor([r for f in files for r in f["flo"]], {f["tag"]: f["search"] for f in files},
                 out)
     print_cycle([r for f in files for r in f["cycle"]], out)
+    print_paired([r for f in files for r in f["paired"]], out)
     for f in files:
         print_peers(f["peers"], f["search"], out)
     print_trade([r for f in files for r in f["trade"]], compare, out)

@@ -133,3 +133,34 @@ Test(bench_report, missing_file_fails)
     cr_expect(strstr(out, "cannot read") != NULL, "no error message:\n%s", out);
     free(out);
 }
+
+Test(bench_report, paired_ratio_table_from_sample)
+{
+    cr_assert(access(SAMPLE, R_OK) == 0, "%s not found", SAMPLE);
+    int status = -1;
+    char *out = run_report(SAMPLE, &status);
+    cr_assert_eq(status, 0, "report.py failed:\n%s", out);
+
+    expect_line(out, "## Ratio targets, measured in interleaved rounds");
+    expect_line(out, "| family | nodes | threads | b vs a | a ns/node | b ns/node | ratio b/a "
+                     "| range | same pairs | target | met? |");
+    /* The sample's medians: ns_a 73.983, ns_b 140.264, ratio 1.8025 (at
+     * most 2: met), ratio_min 1.7364, ratio_max 1.8671, same_pairs 1. */
+    expect_line(out, "| plates | 1000000 | 2 | bsp-vs-bucket | 74.0 | 140.3 | 1.80 | 1.74-1.87 "
+                     "| yes | ≤ 2 (issue 2: bsp within 2× of bucket, uniform mesh) | yes |");
+    /* Two numberings: no same_pairs counter ("-"); ratio 1.9596 > 1.5. */
+    expect_line(out, "| plates | 1000000 | 2 | bucket-shuffled-vs-natural | 75.4 | 140.2 | 1.96 "
+                     "| 1.90-2.19 | - | ≤ 1.5 (issue 2: shuffled within 1.5× of ordered) "
+                     "| **no** |");
+    /* Graded: 0.7658 < 1, met. */
+    expect_line(out, "| graded | 100000 | 2 | bsp-vs-bucket | 308.2 | 234.3 | 0.77 | 0.75-0.77 "
+                     "| yes | < 1 (issue 2: bsp faster than bucket, graded mesh) | yes |");
+    /* Sorted by family: graded before plates. */
+    const char *g = strstr(out, "| graded | 100000 | 2 | bsp-vs-bucket");
+    const char *p = strstr(out, "| plates | 1000000 | 2 | bsp-vs-bucket");
+    cr_expect(g && p && g < p, "rows not sorted by family:\n%s", out);
+    cr_expect(strstr(out, "| paired/") == NULL, "paired rows left in the \"other\" table:\n%s",
+              out);
+
+    free(out);
+}
