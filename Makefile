@@ -168,7 +168,9 @@ test: deps
 # MESH=path adds a Radioss deck of yours to the real-mesh benchmarks.
 # `make bench` runs the double-precision benchmarks, then the precision-
 # sensitive ones (kernels, the precision trade row) in single precision,
-# compares the narrow phase of both builds on one case, and writes the
+# times the kernel rows of both builds in alternating rounds (the single
+# build's speed-up, bench/interleave.py), compares the narrow phase of both
+# builds on one case, and writes the
 # Markdown tables (build/bench.md) and the plots (docs/*.png).
 BENCH_ARGS ?=
 BENCH_ENV = CT_SHARED=$(abspath ../shared) $(if $(MESH),CT_BENCH_MESH=$(abspath $(MESH)))
@@ -181,11 +183,15 @@ bench: deps
 	$(BENCH_ENV) $(BENCHBIN) --benchmark_out=$(BENCH_OUT).json $(BENCH_ARGS)
 	$(BENCH_ENV) $(BENCH_SINGLE) --benchmark_filter='^(kernels/(narrow|force)|trade/precision)' \
 	  --benchmark_out=$(BENCH_OUT)-single.json --benchmark_repetitions=3
+	$(BENCH_ENV) python3 bench/interleave.py $(BENCHBIN) $(BENCH_SINGLE) --rounds 5 \
+	  --filter '^kernels/(narrow/[a-z0-9]+|force/penalty\+coulomb-fused)/t1/' \
+	  --json $(BENCH_OUT)-interleaved.json
 	$(BENCHBIN) --dump-narrow $(BENCH_OUT)-narrow-double.txt
 	$(BENCH_SINGLE) --dump-narrow $(BENCH_OUT)-narrow-single.txt
 	python3 bench/trade_precision.py $(BENCH_OUT)-narrow-double.txt $(BENCH_OUT)-narrow-single.txt \
 	  --json $(BENCH_OUT)-precision.json
-	python3 bench/report.py $(BENCH_OUT).json $(BENCH_OUT)-single.json $(BENCH_OUT)-precision.json > $(BENCH_OUT).md
+	python3 bench/report.py $(BENCH_OUT).json $(BENCH_OUT)-single.json $(BENCH_OUT)-precision.json \
+	  $(BENCH_OUT)-interleaved.json > $(BENCH_OUT).md
 	python3 bench/plots.py $(BENCH_OUT).json $(BENCH_OUT)-single.json --out docs/
 	@echo "bench: tables in $(BENCH_OUT).md, plots in docs/, raw results in $(BENCH_OUT)*.json"
 

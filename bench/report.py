@@ -50,6 +50,12 @@ present, else the median of the repetition rows), and prints:
     per cycle of each phase (the search amortised over the re-sort interval),
     the total, the total times the threads against the target of 15 ns, and
     the speed-up over the 1-thread row of the same family and size;
+  - the ratio targets of the search measured in interleaved rounds
+    (paired/<family>/<b>-vs-<a>/t<threads>/<nodes>, bench_paired.c), with
+    the issue's target;
+  - the single-precision speed-up measured in interleaved rounds, from the
+    output of bench/interleave.py --json when that file is given (a file
+    with a top-level "interleaved" key);
   - any other benchmark as name / median time.
 Standard library only.
 """
@@ -668,6 +674,36 @@ def print_paired(paired, out):
     out.append("")
 
 
+# The single-precision speed-up target of issue 3 (kernel rows, 1 thread).
+SINGLE_TARGET = 1.6
+
+
+def print_interleaved(inter, out):
+    """The ratio of one counter between two programs run in alternating
+    rounds (bench/interleave.py): in `make bench`, the double and the single
+    precision builds, so the ratio is the single build's speed-up."""
+    if not inter or not inter.get("rows"):
+        return
+    out.append("## Single-precision speed-up, measured in interleaved rounds\n")
+    out.append("The double (a) and single (b) precision programs run one after the other "
+               "in %d rounds, alternating which goes first, one repetition each "
+               "(bench/interleave.py; filter `%s`), so that both see the same state of the "
+               "host. a and b: median %s over the rounds; speed-up: the median of the "
+               "rounds' a / b; range: the smallest and largest round's. Target of issue 3: "
+               "single precision at least %.1f× faster.\n"
+               % (inter.get("rounds", 0), inter.get("filter", ""), inter.get("counter", ""),
+                  SINGLE_TARGET))
+    out.append("| benchmark | a (double) | b (single) | speed-up a/b | range | ≥ %.1f? |"
+               % SINGLE_TARGET)
+    out.append("|---|---:|---:|---:|---|---|")
+    for r in inter["rows"]:
+        met = "yes" if r["ratio"] >= SINGLE_TARGET else "**no**"
+        out.append("| %s | %s | %s | %.2f | %.2f-%.2f | %s |" % (
+            r["name"], fmt_ns(r["a"]), fmt_ns(r["b"]), r["ratio"], r["ratio_min"],
+            r["ratio_max"], met))
+    out.append("")
+
+
 def print_other(other, out):
     if not other:
         return
@@ -856,9 +892,10 @@ def report_search(data, search, out):
     print_speedup(families, search, out)
 
 
-def report(datas, names=None, compare=None):
+def report(datas, names=None, compare=None, inter=None):
     """datas: one parsed JSON file, or a list of them (merged); compare: the
-    "trade_precision" object of bench/trade_precision.py, or None."""
+    "trade_precision" object of bench/trade_precision.py, or None; inter:
+    the "interleaved" object of bench/interleave.py, or None."""
     if isinstance(datas, dict):
         datas = [datas]
     names = names or ["file %d" % (i + 1) for i in range(len(datas))]
@@ -896,6 +933,7 @@ def report(datas, names=None, compare=None):
                 precs.append(r["prec"])
     precs.sort(key=lambda p: (PREC_ORDER.index(p) if p in PREC_ORDER else 99, p))
     print_kernels([r for f in files for r in f["kern"]], precs, out)
+    print_interleaved(inter, out)
     print_floor([r for f in files for r in f["flo"]], {f["tag"]: f["search"] for f in files},
                 out)
     print_cycle([r for f in files for r in f["cycle"]], out)
@@ -912,7 +950,7 @@ def main(argv):
     if len(argv) < 2:
         sys.stderr.write("usage: report.py BENCH.json [BENCH2.json ...]\n")
         return 2
-    datas, names, compare = [], [], None
+    datas, names, compare, inter = [], [], None, None
     for path in argv[1:]:
         try:
             with open(path) as f:
@@ -923,12 +961,15 @@ def main(argv):
         if isinstance(data, dict) and "trade_precision" in data:
             compare = data["trade_precision"]
             continue
+        if isinstance(data, dict) and "interleaved" in data:
+            inter = data["interleaved"]
+            continue
         datas.append(data)
         names.append(path)
     if not datas:
         sys.stderr.write("report.py: no benchmark file given\n")
         return 2
-    sys.stdout.write(report(datas, names, compare) + "\n")
+    sys.stdout.write(report(datas, names, compare, inter) + "\n")
     return 0
 
 

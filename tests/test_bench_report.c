@@ -3,7 +3,9 @@
  * (bench/report.py) on a fixed file, tests/data/bench_sample.json: a real
  * `make bench` output (plates, 1000 and 10000 target nodes, 1 and 2
  * threads, 3 repetitions), trimmed, and two full contact cycle medians
- * (cycle/folded/t1/100000 from a real run, its t2 row made up). The
+ * (cycle/folded/t1/100000 from a real run, its t2 row made up), and three
+ * paired medians of a real run (bench_paired.c); with
+ * tests/data/interleaved_sample.json, a real bench/interleave.py output. The
  * expected numbers are worked out by hand from the JSON values and written
  * next to each check.
  *
@@ -13,6 +15,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "test_run.h"
@@ -20,6 +23,7 @@
 
 #define REPORT "bench/report.py"
 #define SAMPLE "tests/data/bench_sample.json"
+#define INTER "tests/data/interleaved_sample.json"
 
 /* Run `python3 bench/report.py <arg>`; returns its output (free it) and
  * its exit status in *status. */
@@ -163,4 +167,97 @@ Test(bench_report, paired_ratio_table_from_sample)
               out);
 
     free(out);
+}
+
+Test(bench_report, interleaved_table_from_sample)
+{
+    cr_assert(access(INTER, R_OK) == 0, "%s not found", INTER);
+    int status = -1;
+    char *out = run_report(SAMPLE " " INTER, &status);
+    cr_assert_eq(status, 0, "report.py failed:\n%s", out);
+
+    expect_line(out, "## Single-precision speed-up, measured in interleaved rounds");
+    expect_line(out, "| benchmark | a (double) | b (single) | speed-up a/b | range | ≥ 1.6? |");
+    /* The file's row: a 16.256, b 10.271, ratio 1.5526 (< 1.6), range
+     * 1.4648-1.5943. */
+    expect_line(out, "| kernels/narrow/tri/t1/1000000 | 16.3 | 10.3 | 1.55 | 1.46-1.59 "
+                     "| **no** |");
+    /* Newton 10^6: a 37.228, b 19.652, ratio 1.8930 >= 1.6, range
+     * 1.6184-1.9544. */
+    expect_line(out, "| kernels/narrow/newton/t1/1000000 | 37.2 | 19.7 | 1.89 | 1.62-1.95 "
+                     "| yes |");
+    /* Without the file, no such table. */
+    free(out);
+    out = run_report(SAMPLE, &status);
+    cr_assert_eq(status, 0, "report.py failed:\n%s", out);
+    cr_expect(strstr(out, "Single-precision speed-up, measured") == NULL,
+              "interleaved table without its file:\n%s", out);
+    free(out);
+}
+
+/* A fake benchmark program (a shell script) for bench/interleave.py: it
+ * appends its tag to LOG, counts its calls in CNT, and writes a Google
+ * Benchmark JSON with one run whose ns_per_pair is `first` on odd calls
+ * and `second` on even ones. */
+static void write_fake(const char *path, const char *tag, const char *log, const char *cnt,
+                       const char *first, const char *second)
+{
+    FILE *f = fopen(path, "w");
+    cr_assert(f, "cannot write %s", path);
+    fprintf(f,
+            "#!/bin/sh\n"
+            "echo %s >> %s\n"
+            "n=$(cat %s 2>/dev/null || echo 0); n=$((n + 1)); echo $n > %s\n"
+            "v=%s; [ $((n %% 2)) -eq 0 ] && v=%s\n"
+            "for a in \"$@\"; do case $a in --benchmark_out=*) out=${a#--benchmark_out=};; "
+            "esac; done\n"
+            "printf '{\"context\": {\"ct_build\": \"%s\"}, \"benchmarks\": [{\"name\": "
+            "\"kernels/x/t1/10/real_time\", \"run_name\": \"kernels/x/t1/10/real_time\", "
+            "\"run_type\": \"iteration\", \"ns_per_pair\": %%s}]}' $v > $out\n",
+            tag, log, cnt, cnt, first, second, tag);
+    fclose(f);
+    cr_assert(chmod(path, 0755) == 0, "chmod %s", path);
+}
+
+Test(bench_report, interleave_alternates_and_takes_medians)
+{
+    char dir[] = "/tmp/ct_interleave_XXXXXX";
+    cr_assert(mkdtemp(dir), "mkdtemp");
+    char a[300], b[300], log[300], ca[300], cb[300], js[300], cmd[1600];
+    snprintf(a, sizeof a, "%s/a.sh", dir);
+    snprintf(b, sizeof b, "%s/b.sh", dir);
+    snprintf(log, sizeof log, "%s/log", dir);
+    snprintf(ca, sizeof ca, "%s/ca", dir);
+    snprintf(cb, sizeof cb, "%s/cb", dir);
+    snprintf(js, sizeof js, "%s/out.json", dir);
+    /* a: always 10; b: 4 on its odd calls, 5 on its even ones. Three
+     * rounds: ratios 10/4, 10/5, 10/4 = 2.5, 2, 2.5: median 2.5, range 2 to
+     * 2.5; b's median 4. */
+    write_fake(a, "A", log, ca, "10", "10");
+    write_fake(b, "B", log, cb, "4", "5");
+    snprintf(cmd, sizeof cmd,
+             "python3 bench/interleave.py %s %s --filter x --rounds 3 --json %s 2>&1", a, b, js);
+    int status = -1;
+    char *out = ctt_run_cmd(cmd, &status);
+    cr_assert_eq(status, 0, "interleave.py failed:\n%s", out);
+    free(out);
+    /* The order of the calls: A B, then B A, then A B. */
+    snprintf(cmd, sizeof cmd, "tr -d '\\n' < %s", log);
+    out = ctt_run_cmd(cmd, &status);
+    cr_expect_str_eq(out, "ABBAAB", "calls not alternated: %s", out);
+    free(out);
+    snprintf(cmd, sizeof cmd,
+             "python3 -c \"import json; r = json.load(open('%s'))['interleaved']['rows'][0]; "
+             "print('%%s %%g %%g %%g %%g %%g %%d' %% (r['name'], r['a'], r['b'], r['ratio'], "
+             "r['ratio_min'], r['ratio_max'], r['rounds']))\"", js);
+    out = ctt_run_cmd(cmd, &status);
+    cr_expect_str_eq(out, "kernels/x/t1/10 10 4 2.5 2 2.5 3\n", "rows: %s", out);
+    free(out);
+    /* A program that fails is reported, not averaged away. */
+    snprintf(cmd, sizeof cmd, "python3 bench/interleave.py /bin/false %s --filter x 2>&1", b);
+    out = ctt_run_cmd(cmd, &status);
+    cr_expect_neq(status, 0, "a failing program was accepted:\n%s", out);
+    free(out);
+    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
+    cr_expect(system(cmd) == 0);
 }
