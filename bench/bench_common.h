@@ -17,6 +17,9 @@
 /* A monotonic clock, in seconds. */
 double ctb_now_s(void);
 
+/* The median of v[0..n-1] (n >= 1; v is sorted in place). */
+double ctb_median(double *v, int n);
+
 /* The search input of a mesh, its arrays first-touch copies (ctb_free),
  * and the reference pairs of the topological search's misses. */
 typedef struct ctb_mesh {

@@ -36,6 +36,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "bench_eff.h"
 #include "bench_topology.h"
 #include "contact.h"
 #include "floor.h"
@@ -48,7 +49,7 @@ enum { TRIAD_DRAM = 0, TRIAD_WS = 1 };
 static const char *const triad_kind_name[2] = {"dram", "ws"};
 
 typedef struct floor_desc {
-    int kind;      /* benchmark: 0 triad, 1 bucket */
+    int kind;      /* benchmark: 0 triad, 1 bucket, 2 triad efficiency */
     int triad;     /* TRIAD_DRAM or TRIAD_WS */
     int64_t n;     /* triad elements per array, or target nodes */
     int threads;
@@ -329,6 +330,34 @@ static void bm_bucket(gb_state *st, void *arg)
     ct_pairs_destroy(&out);
 }
 
+/* The machine's own 2-thread efficiency on a memory-bound loop: the DRAM
+ * triad, 1 thread against all in interleaved rounds (bench_eff.c), the
+ * ceiling of every kernel that streams from memory. */
+static int triad_call(void *arg)
+{
+    const floor_desc *d = arg;
+    triad(d->n, tri.a, tri.b, tri.c, 3.0);
+    return 0;
+}
+
+static void bm_triad_eff(gb_state *st, void *arg)
+{
+    const floor_desc *d = arg;
+    char where[256], msg[400];
+    ctb_bind_threads(cfg.bind, d->threads, where, sizeof where);
+    if (triad_arrays(d->n, d->threads) != 0) {
+        gb_skip_with_error(st, "triad: out of memory");
+        return;
+    }
+    ctb_eff_run(st, triad_call, (void *)d, (double)ctb_triad_bytes(d->n, sizeof(double)),
+                d->threads, cfg.bind, where, sizeof where);
+    snprintf(msg, sizeof msg, "triad %s, %.0f MiB per array; ns_t1 and ns_tn per byte; "
+             "1 against %d threads; %s[%s]", triad_kind_name[d->triad],
+             (double)d->n * sizeof(double) / (1024.0 * 1024.0), d->threads,
+             ctb_bind_name(cfg.bind), where);
+    gb_set_label(st, msg);
+}
+
 /* ---- Registration -------------------------------------------------------- */
 
 static int add(int kind, int triad_kind, int64_t n, int threads, int64_t iterations)
@@ -343,6 +372,11 @@ static int add(int kind, int triad_kind, int64_t n, int threads, int64_t iterati
     d->next = descs;
     descs = d;
     char name[128];
+    if (kind == 2) {
+        snprintf(name, sizeof name, "efficiency/triad/%s/t%d", triad_kind_name[triad_kind],
+                 threads);
+        return gb_register(name, bm_triad_eff, d, n, 1, 1, 0);
+    }
     if (kind == 0) {
         snprintf(name, sizeof name, "floor/triad/%s/t%d", triad_kind_name[triad_kind], threads);
         return gb_register(name, bm_triad, d, n, 1, iterations, 0);
@@ -366,6 +400,11 @@ int ctb_floor_register(const ctb_search_config *c)
             add(0, TRIAD_WS, triad_n(TRIAD_WS), tlist[t], 0) != 0)
             return -1;
         count += 2;
+    }
+    if (nt > 1) {
+        if (add(2, TRIAD_DRAM, triad_n(TRIAD_DRAM), cfg.max_threads, 0) != 0)
+            return -1;
+        count++;
     }
     int64_t nmax = cfg.full ? 10000000 : 1000000;
     for (int64_t n = 1000000; n <= nmax; n *= 10)

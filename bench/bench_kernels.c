@@ -39,6 +39,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "bench_eff.h"
 #include "bench_topology.h"
 #include "contact.h"
 #include "gbench.h"
@@ -71,6 +72,7 @@ typedef struct kdesc {
     int group, sub;
     int64_t npair;
     int threads;
+    int eff; /* 1: efficiency/<kernel>: 1 thread against `threads` (bench_eff.c) */
     struct kdesc *next;
 } kdesc;
 
@@ -462,6 +464,18 @@ static int run_once(const kdesc *d, pdata *p, ct_narrow_stats *stats)
     return CT_ERR_ARG;
 }
 
+/* The efficiency rows' call (bench_eff.c). */
+typedef struct eff_ctx {
+    const kdesc *d;
+    pdata *p;
+} eff_ctx;
+
+static int eff_call(void *arg)
+{
+    eff_ctx *c = arg;
+    return run_once(c->d, c->p, NULL);
+}
+
 /* Untimed preparation of the assembly variant of d on p's workspace. */
 static int asm_prepare(const kdesc *d, pdata *p)
 {
@@ -541,6 +555,21 @@ static void bm_kernel(gb_state *st, void *arg)
     ctb_bind_threads(cfg.bind, d->threads, where, sizeof where);
     if (d->group == G_ASM)
         rc = asm_prepare(d, p);
+    if (d->eff && rc == CT_OK) {
+        eff_ctx c = {d, p};
+        rc = ctb_eff_run(st, eff_call, &c, (double)npair, d->threads, cfg.bind, where,
+                         sizeof where);
+        if (rc != CT_OK) {
+            snprintf(msg, sizeof msg, "%s: %s", setting(d, set, sizeof set), ct_strerror(rc));
+            gb_skip_with_error(st, msg);
+            return;
+        }
+        snprintf(msg, sizeof msg, "prec=%s %s; %ld pairs; 1 against %d threads; %s[%s]",
+                 prec_name(), setting(d, set, sizeof set), (long)npair, d->threads,
+                 ctb_bind_name(cfg.bind), where);
+        gb_set_label(st, msg);
+        return;
+    }
     ct_narrow_stats stats;
     memset(&stats, 0, sizeof stats);
     if (rc == CT_OK)
@@ -586,7 +615,8 @@ static void bm_kernel(gb_state *st, void *arg)
 
 /* ---- Registration -------------------------------------------------------- */
 
-static int add(int group, int sub, const char *what, int64_t npair, int threads)
+static int add_desc(int group, int sub, const char *what, int64_t npair, int threads,
+                    int eff)
 {
     kdesc *d = calloc(1, sizeof *d);
     if (!d)
@@ -595,11 +625,18 @@ static int add(int group, int sub, const char *what, int64_t npair, int threads)
     d->sub = sub;
     d->npair = npair;
     d->threads = threads;
+    d->eff = eff;
     d->next = descs;
     descs = d;
     char name[160];
-    snprintf(name, sizeof name, "kernels/%s/t%d", what, threads);
-    return gb_register(name, bm_kernel, d, npair, 1, 0, 0);
+    snprintf(name, sizeof name, "%s/%s/t%d", eff ? "efficiency" : "kernels", what, threads);
+    /* An efficiency row is one iteration: its rounds are the measurement. */
+    return gb_register(name, bm_kernel, d, npair, 1, eff ? 1 : 0, 0);
+}
+
+static int add(int group, int sub, const char *what, int64_t npair, int threads)
+{
+    return add_desc(group, sub, what, npair, threads, 0);
 }
 
 int ctb_kernels_register(const ctb_search_config *c)
@@ -654,6 +691,25 @@ int ctb_kernels_register(const ctb_search_config *c)
         ADD(G_EDGE, 0, "narrow/edge");
     }
 #undef ADD
+    /* The 2-thread efficiency target at the largest size, 1 thread against
+     * all in interleaved rounds: quads first (the pairs of the last size
+     * are still built), then triangles. */
+    if (cfg.max_threads > 1) {
+        const struct {
+            int g, s;
+            const char *what;
+        } eff[] = {{G_NARROW, CT_QUAD_4TRI, "narrow/4tri"},
+                   {G_NARROW, CT_QUAD_NEWTON, "narrow/newton"},
+                   {G_FORCE, F_PAIR_FUSED, "force/penalty+coulomb-fused"},
+                   {G_TYPE7, 0, "force/type7"},
+                   {G_ASM, A_COLOUR, "assemble/colour"},
+                   {G_NARROW, -1, "narrow/tri"}};
+        for (size_t i = 0; i < sizeof eff / sizeof eff[0]; i++) {
+            if (add_desc(eff[i].g, eff[i].s, eff[i].what, nmax, cfg.max_threads, 1) != 0)
+                return -1;
+            count++;
+        }
+    }
     return count;
 }
 

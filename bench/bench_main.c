@@ -62,6 +62,7 @@ static void usage(FILE *f)
                "       real/<deck>/<algo>/t<threads>/real_time\n"
                "       cycle/<folded|crumpled>/t<threads>/<nodes>/real_time\n"
                "       paired/<family>/<b>-vs-<a>/t<threads>/<nodes>/real_time\n"
+               "       efficiency/<kernel|triad/dram>/t<threads>/<n>/real_time\n"
                "env: CT_BENCH_FULL=1, CT_BENCH_BIND, CT_BENCH_DIRECT_BUDGET,\n"
                "     CT_SHARED (the Radioss decks), CT_BENCH_MESH=deck.rad\n");
 }

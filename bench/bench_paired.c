@@ -98,17 +98,6 @@ static paired_mesh *mesh_get(const char *family, int64_t target, int numbering,
 
 /* ---- The benchmark ------------------------------------------------------- */
 
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-static double median(double *v, int n)
-{
-    qsort(v, (size_t)n, sizeof *v, cmp_double);
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 /* One whole search of in, its wall time in *t. */
 static int time_search(ct_search *s, const ct_search_input *in, ct_pairs *out, double *t)
@@ -192,9 +181,9 @@ static void bm_paired(gb_state *st, void *arg)
             rmax = r[i] > rmax ? r[i] : rmax;
         }
         const double na = (double)ia->nsec, nb = (double)ib->nsec;
-        gb_set_counter(st, "ns_a", median(ta, n) * 1e9 / na, GB_PLAIN);
-        gb_set_counter(st, "ns_b", median(tb, n) * 1e9 / nb, GB_PLAIN);
-        gb_set_counter(st, "ratio", median(r, n), GB_PLAIN);
+        gb_set_counter(st, "ns_a", ctb_median(ta, n) * 1e9 / na, GB_PLAIN);
+        gb_set_counter(st, "ns_b", ctb_median(tb, n) * 1e9 / nb, GB_PLAIN);
+        gb_set_counter(st, "ratio", ctb_median(r, n), GB_PLAIN);
         gb_set_counter(st, "ratio_min", rmin, GB_PLAIN);
         gb_set_counter(st, "ratio_max", rmax, GB_PLAIN);
         gb_set_counter(st, "rounds", (double)n, GB_PLAIN);

@@ -53,6 +53,9 @@ present, else the median of the repetition rows), and prints:
   - the ratio targets of the search measured in interleaved rounds
     (paired/<family>/<b>-vs-<a>/t<threads>/<nodes>, bench_paired.c), with
     the issue's target;
+  - the parallel efficiency measured in interleaved rounds
+    (efficiency/<kernel>/t<threads>/<n>, bench_eff.c), kernels and the DRAM
+    triad, against the target of 90 %;
   - the single-precision speed-up measured in interleaved rounds, from the
     output of bench/interleave.py --json when that file is given (a file
     with a top-level "interleaved" key);
@@ -121,6 +124,13 @@ PAIRED_TARGETS = {
     ("plates", "bucket-shuffled-vs-natural"): ("≤ 1.5 (issue 2: shuffled within 1.5× of "
                                                "ordered)", lambda r: r <= 1.5),
 }
+# The 2-thread efficiency target measured in interleaved rounds
+# (bench_eff.c): efficiency/<kernel or triad/dram>/t<threads>/<n>.
+EFF_RE = re.compile(
+    r"^efficiency/(?P<what>.+?)/t(?P<threads>\d+)/(?P<n>\d+)"
+    r"(?:/iterations:\d+)?(?:/(?:real_time|manual_time))?$")
+COUNTERS += ["ns_t1", "ns_tn", "eff", "eff_min", "eff_max", "eff_best", "calls"]
+EFF_TARGET = 0.9
 PREC_ORDER = ["double", "single"]
 
 
@@ -704,6 +714,47 @@ def print_interleaved(inter, out):
     out.append("")
 
 
+def print_eff(rows, out):
+    """The efficiency rows: the kernels (ns per pair) and the DRAM triad
+    (GB/s), against the target of issue 3."""
+    if not rows:
+        return
+    out.append("## Parallel efficiency, measured in interleaved rounds\n")
+    out.append("Each row times one call with 1 thread and with all threads, round after "
+               "round, alternating which goes first (bench_eff.c; a timing is the median of "
+               "a few calls lasting about 20 ms). efficiency: the median of the rounds' "
+               "t1 / (threads × tN); range: the smallest and largest round's; best: from "
+               "the best 1-thread and all-threads times (a busy host only adds time). "
+               "Target of issue 3: at least %d %%. The DRAM triad is the machine's own "
+               "efficiency on a loop that only streams memory: the ceiling of the kernels "
+               "that stream their pairs from memory.\n" % round(100 * EFF_TARGET))
+    out.append("| benchmark | size | threads | 1 thread | all threads | efficiency | range "
+               "| best | ≥ %d %%? |" % round(100 * EFF_TARGET))
+    out.append("|---|---:|---:|---:|---:|---:|---|---:|---|")
+    for r in sorted(rows, key=lambda r: (r["what"].startswith("triad"), r["what"], r["n"])):
+        head = "| %s | %d | %d " % (r["what"], r["n"], r["threads"])
+        if r["error"]:
+            out.append(head + "| %s | - | - | - | - | - |" % r["error"])
+            continue
+        c = r["counters"]
+        t1, tn = c.get("ns_t1"), c.get("ns_tn")
+        if r["what"].startswith("triad"):
+            a = "%.1f GB/s" % (1 / t1) if t1 else "-"
+            b = "%.1f GB/s" % (1 / tn) if tn else "-"
+        else:
+            a = "%s ns/pair" % fmt_ns(t1) if t1 is not None else "-"
+            b = "%s ns/pair" % fmt_ns(tn) if tn is not None else "-"
+        e = c.get("eff")
+        pct = lambda v: "%d %%" % round(100 * v) if v is not None else "-"
+        rng = "%s-%s" % (pct(c.get("eff_min")), pct(c.get("eff_max")))
+        met = "-" if e is None else ("yes" if e >= EFF_TARGET else "**no**")
+        if r["what"].startswith("triad"):
+            met = "(ceiling)"
+        out.append(head + "| %s | %s | %s | %s | %s | %s |" % (a, b, pct(e), rng,
+                                                              pct(c.get("eff_best")), met))
+    out.append("")
+
+
 def print_other(other, out):
     if not other:
         return
@@ -915,9 +966,10 @@ def report(datas, names=None, compare=None, inter=None):
         trade, other = parse_trade(other, tag)
         cyc, other = parse_cycle(other, tag)
         paired, other = parse_paired(other)
+        eff, other = split_named(other, EFF_RE)
         files.append({"tag": tag, "name": name, "data": data, "search": search,
                       "kern": kern, "flo": flo, "other": other, "peers": peers,
-                      "trade": trade, "cycle": cyc, "paired": paired})
+                      "trade": trade, "cycle": cyc, "paired": paired, "eff": eff})
     for f in files:
         if multi:
             out.append("# %s precision (%s)\n" % (f["tag"], f["name"]))
@@ -934,6 +986,7 @@ def report(datas, names=None, compare=None, inter=None):
     precs.sort(key=lambda p: (PREC_ORDER.index(p) if p in PREC_ORDER else 99, p))
     print_kernels([r for f in files for r in f["kern"]], precs, out)
     print_interleaved(inter, out)
+    print_eff([r for f in files for r in f["eff"]], out)
     print_floor([r for f in files for r in f["flo"]], {f["tag"]: f["search"] for f in files},
                 out)
     print_cycle([r for f in files for r in f["cycle"]], out)

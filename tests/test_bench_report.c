@@ -4,7 +4,8 @@
  * `make bench` output (plates, 1000 and 10000 target nodes, 1 and 2
  * threads, 3 repetitions), trimmed, and two full contact cycle medians
  * (cycle/folded/t1/100000 from a real run, its t2 row made up), and three
- * paired medians of a real run (bench_paired.c); with
+ * paired medians and two efficiency medians of a real run (bench_paired.c,
+ * bench_eff.c); with
  * tests/data/interleaved_sample.json, a real bench/interleave.py output. The
  * expected numbers are worked out by hand from the JSON values and written
  * next to each check.
@@ -260,4 +261,31 @@ Test(bench_report, interleave_alternates_and_takes_medians)
     free(out);
     snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
     cr_expect(system(cmd) == 0);
+}
+
+Test(bench_report, efficiency_table_from_sample)
+{
+    cr_assert(access(SAMPLE, R_OK) == 0, "%s not found", SAMPLE);
+    int status = -1;
+    char *out = run_report(SAMPLE, &status);
+    cr_assert_eq(status, 0, "report.py failed:\n%s", out);
+
+    expect_line(out, "## Parallel efficiency, measured in interleaved rounds");
+    expect_line(out, "| benchmark | size | threads | 1 thread | all threads | efficiency | range "
+                     "| best | ≥ 90 %? |");
+    /* The sample's medians: ns_t1 35.972, ns_tn 24.617, eff 0.8656 (86.6 %,
+     * below 90: not met), eff_min 0.6956, eff_max 1.0245, eff_best 0.9759. */
+    expect_line(out, "| narrow/4tri | 1000000 | 2 | 36.0 ns/pair | 24.6 ns/pair | 87 % "
+                     "| 70 %-102 % | 98 % | **no** |");
+    /* The triad in GB/s: 1 / 0.043893 ns per byte = 22.78, 1 / 0.033042 =
+     * 30.26; eff 0.6647; no verdict, it is the ceiling. Listed after the
+     * kernels. */
+    expect_line(out, "| triad/dram | 8388608 | 2 | 22.8 GB/s | 30.3 GB/s | 66 % | 63 %-72 % "
+                     "| 66 % | (ceiling) |");
+    const char *k = strstr(out, "| narrow/4tri | 1000000 | 2 | 36.0");
+    const char *t = strstr(out, "| triad/dram | 8388608");
+    cr_expect(k && t && k < t, "the triad is not after the kernels:\n%s", out);
+    cr_expect(strstr(out, "| efficiency/") == NULL,
+              "efficiency rows left in the \"other\" table:\n%s", out);
+    free(out);
 }
