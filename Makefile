@@ -184,7 +184,7 @@ bench: deps
 	$(BENCH_ENV) $(BENCH_SINGLE) --benchmark_filter='^(kernels/(narrow|force)|trade/precision)' \
 	  --benchmark_out=$(BENCH_OUT)-single.json --benchmark_repetitions=3
 	$(BENCH_ENV) python3 bench/interleave.py $(BENCHBIN) $(BENCH_SINGLE) --rounds 5 \
-	  --filter '^kernels/(narrow/[a-z0-9]+|force/penalty\+coulomb-fused)/t1/' \
+	  --filter '^kernels/(narrow/[a-z0-9]+|force/penalty\+coulomb-fused)/t1/(10000|1000000)/' \
 	  --json $(BENCH_OUT)-interleaved.json
 	$(BENCHBIN) --dump-narrow $(BENCH_OUT)-narrow-double.txt
 	$(BENCH_SINGLE) --dump-narrow $(BENCH_OUT)-narrow-single.txt
