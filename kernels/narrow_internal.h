@@ -1,6 +1,6 @@
 /*
  * narrow_internal.h -- helpers shared by the narrow-phase kernels
- * (project.c, project_quad.c, edge.c).
+ * (project.c, project_quad.c, project_newton.c, edge.c).
  *
  * Structure of every pair loop: for a block of at most CTI_NR_BLOCK pairs,
  * a scalar loop (cti_nr_fetch) first copies the coordinates of each pair,
@@ -62,11 +62,13 @@ typedef int64_t cti_nr_int;
 #define CTI_NR_SIMD _Pragma("omp simd")
 
 /* Newton: iterations done for every pair in the vector loop (from the
- * linear start, see project_quad.c), then the cap for the pairs that have
- * not converged yet (scalar loop). With the linear start, 3 (single) or 4
- * (double) steps converge all but a few in 1e5 pairs of realistic meshes
- * (plates warped by 5% of the element size); a step costs about 35
- * instructions per pair in double with AVX2, 15 in single. */
+ * linear start, see project_newton.c), then the cap for the pairs that have
+ * not converged yet (further vector rounds of as many steps over those
+ * pairs alone). With the linear start, 3 (single) or 4 (double) steps
+ * converge all but a few in 1e5 pairs of realistic meshes (plates warped by
+ * 5% of the element size), but about half of a crumpled sheet's candidates
+ * (nodes off the quadrangle); a step costs about 35 instructions per pair
+ * in double with AVX2, 15 in single. */
 #ifdef CT_SINGLE
 #define CTI_NR_NEWTON_VEC_IT 3
 #else

@@ -246,7 +246,8 @@ Test(project, newton_matches_dense_search_on_warped_quads)
 /* Newton over a batch of pairs, as the vector loop sees them: warped quads
  * and nodes up to 1.2 L off the surface, far beyond the edges too, so that
  * some pairs need more than the vector loop's fixed number of iterations
- * and are finished by the scalar loop. Every pair against the dense
+ * and are finished by the further rounds (newton_redo), a few hitting the
+ * cap. Every pair against the dense
  * search. */
 Test(project, newton_batch_with_far_nodes_matches_dense_search)
 {

@@ -1,0 +1,273 @@
+/*
+ * project_newton.c -- node-quadrangle projection by Newton on the bilinear
+ * (s, t) (DESIGN.md section 6; ct_quad_method in ct_narrow.h): a linear
+ * start, a fixed number of steps in one vector loop for every pair, further
+ * vector rounds for the pairs not converged yet, and the boundary rule of
+ * narrow_quad.h.
+ */
+#include "narrow_quad.h"
+
+/* ---- Newton ---------------------------------------------------------------- */
+
+/* One Newton step on f(s,t) = |x(s,t) - p|^2 / 2: the full Hessian when it
+ * is safely positive definite, Gauss-Newton otherwise. Iterates are kept in
+ * [-3, 3]^2 so a wandering iteration stays finite. *step = |ds| + |dt|. */
+CTI_NR_INLINE void cti_newton_step(CTI_QPARAMS, ct_real *s, ct_real *t, ct_real *step)
+{
+    CTI_QUNUSED;
+    ct_real S = *s, T = *t;
+    cti_v3 xs = v3_add(a1, v3_scale(T, a3));
+    cti_v3 xt = v3_add(a2, v3_scale(S, a3));
+    cti_v3 r = v3_sub(cti_quad_x(x0, a1, a2, a3, S, T), P);
+    ct_real g1 = v3_dot(r, xs), g2 = v3_dot(r, xt);
+    ct_real h11 = v3_dot(xs, xs), h22 = v3_dot(xt, xt), h12 = v3_dot(xs, xt);
+    ct_real hf = h12 + v3_dot(r, a3);
+    ct_real detf = h11 * h22 - hf * hf;
+    ct_real detg = h11 * h22 - h12 * h12;
+    cti_nr_int full = detf > (ct_real)1e-6 * h11 * h22;
+    ct_real m12 = full ? hf : h12;
+    ct_real det = full ? detf : detg;
+    ct_real inv = 1 / (det > 0 ? det : 1);
+    ct_real ds = -(h22 * g1 - m12 * g2) * inv;
+    ct_real dt = -(h11 * g2 - m12 * g1) * inv;
+    S += ds;
+    T += dt;
+    S = S < -3 ? -3 : (S > 3 ? 3 : S);
+    T = T < -3 ? -3 : (T > 3 ? 3 : T);
+    *s = S;
+    *t = T;
+    *step = CTI_FABS(ds) + CTI_FABS(dt);
+}
+
+/* Start of Newton: the least-squares (s, t) of the quadrangle's affine part
+ * x0 + s a1 + t a2 (exact for a parallelogram), kept in [-3, 3]^2. */
+static inline void cti_newton_start(CTI_QPARAMS, ct_real *s, ct_real *t)
+{
+    CTI_QUNUSED;
+    cti_v3 r = v3_sub(P, x0);
+    ct_real h11 = v3_dot(a1, a1), h22 = v3_dot(a2, a2), h12 = v3_dot(a1, a2);
+    ct_real g1 = v3_dot(r, a1), g2 = v3_dot(r, a2);
+    cti_v3 c = v3_cross(a1, a2);
+    ct_real det = v3_dot(c, c);
+    ct_real inv = 1 / (det > 0 ? det : 1);
+    ct_real S = (h22 * g1 - h12 * g2) * inv, T = (h11 * g2 - h12 * g1) * inv;
+    *s = S < -3 ? -3 : (S > 3 ? 3 : S);
+    *t = T < -3 ? -3 : (T > 3 ? 3 : T);
+}
+
+/* Bilinear projection by Newton: one vector loop does a fixed number of
+ * steps for every pair and writes the outputs; pairs not converged then
+ * (last step above the tolerance, NaN included) continue to the cap in
+ * further vector rounds over those pairs alone (newton_redo). Which pairs
+ * continue, and for how many steps, depends on the pair only, so the
+ * results do not depend on lanes or threads. */
+
+/* The two SIMD loops of the redo stay functions of their own: inlined into
+ * newton_redo, whose compact scratch is a local aggregate, gcc 12 does not
+ * vectorise them. */
+#if defined(__GNUC__)
+#define CTI_NR_NOINLINE __attribute__((noinline))
+#else
+#define CTI_NR_NOINLINE
+#endif
+
+/* The coordinates and gaps of block pairs idx[0..m-1] into c (the layout
+ * of the block scratch, compacted). */
+static void newton_pick(const cti_nr_blk *b, const ct_idx *idx, ct_idx m, cti_nr_blk *c)
+{
+    for (ct_idx q = 0; q < m; q++) {
+        const ct_idx j = idx[q];
+        c->px[q] = b->px[j], c->py[q] = b->py[j], c->pz[q] = b->pz[j];
+        c->x1[q] = b->x1[j], c->y1[q] = b->y1[j], c->z1[q] = b->z1[j];
+        c->x2[q] = b->x2[j], c->y2[q] = b->y2[j], c->z2[q] = b->z2[j];
+        c->x3[q] = b->x3[j], c->y3[q] = b->y3[j], c->z3[q] = b->z3[j];
+        c->x4[q] = b->x4[j], c->y4[q] = b->y4[j], c->z4[q] = b->z4[j];
+        c->g[q] = b->g[j];
+    }
+}
+
+/* A round of further steps of the m compacted pairs of b (see
+ * newton_redo): the first `left` of CTI_NR_NEWTON_VEC_IT steps (the round's
+ * length is a constant, which both compilers need to vectorise it); s, t
+ * and the last step size st updated in place. A lane whose step converged
+ * keeps its values from then on; so does every lane past `left`. */
+CTI_NR_NOINLINE static void newton_round(const cti_nr_args *a, ct_idx m, const cti_nr_blk *b,
+                                         int left, ct_real *restrict sv,
+                                         ct_real *restrict tv, ct_real *restrict stv)
+{
+    CTI_NR_INPTRS(a, 0);
+    CTI_NR_SIMD
+    for (ct_idx q = 0; q < m; q++) {
+        CTI_NR_LOAD(q);
+        (void)g, (void)nonfin;
+        cti_v3 X2 = v3(x2, y2, z2), X3 = v3(x3, y3, z3), X4 = v3(x4, y4, z4),
+               P = v3(px, py, pz);
+        CTI_QUAD_MAKE(X2, X3, X4);
+        ct_real s = sv[q], t = tv[q], st = stv[q];
+        /* done: 1 once a step converged or the steps ran out, a real rather
+         * than a mask (gcc 12 does not vectorise a select between masks). */
+        ct_real done = 0;
+        _Pragma("GCC unroll 8")
+        for (int i = 0; i < CTI_NR_NEWTON_VEC_IT; i++) {
+            done = i >= left ? 1 : done;
+            ct_real s2 = s, t2 = t, st2;
+            cti_newton_step(CTI_QARGS, &s2, &t2, &st2);
+            cti_nr_int keep = done != 0;
+            s = keep ? s : s2;
+            t = keep ? t : t2;
+            st = keep ? st : st2;
+            done = st <= CTI_NR_NEWTON_TOL ? 1 : done;
+        }
+        sv[q] = s;
+        tv[q] = t;
+        stv[q] = st;
+    }
+}
+
+/* The end of Newton for the m compacted pairs of b whose iterations ended
+ * at (s, t) with last step st: into a's outputs, offset 0 (the caller's
+ * compact arrays), and b->flag. */
+CTI_NR_NOINLINE static void newton_finish(const cti_nr_args *a, ct_idx m, cti_nr_blk *b,
+                          const ct_real *restrict sv, const ct_real *restrict tv,
+                          const ct_real *restrict stv)
+{
+    CTI_NR_OUTPTRS(a, 0);
+    CTI_NR_INPTRS(a, 0);
+    int two = a->two_sided;
+    CTI_NR_SIMD
+    for (ct_idx q = 0; q < m; q++) {
+        CTI_NR_LOAD(q);
+        cti_v3 X2 = v3(x2, y2, z2), X3 = v3(x3, y3, z3), X4 = v3(x4, y4, z4),
+               P = v3(px, py, pz);
+        CTI_QUAD_MAKE(X2, X3, X4);
+        ct_real s = sv[q], t = tv[q];
+        cti_nr_int conv = stv[q] <= CTI_NR_NEWTON_TOL;
+        /* Not converged inside the square: keep the best of the iterate and
+         * the boundary, and say so. Not converged outside: the boundary. */
+        /* (|s| <= 1 as s^2 <= 1, the same answer, NaN included: written
+         * like quad_end's test, gcc 12 merges the two into a select of
+         * masks it cannot vectorise.) */
+        cti_nr_int fb = (!conv) & (s * s <= 1) & (t * t <= 1);
+        ct_real cx, cy, cz, nx, ny, nz;
+        ct_real h1, h2, h3, h4, dist, pen;
+        cti_nr_int degen, flag;
+        cti_quad_end(CTI_QARGS, s, t, conv | fb, g, two, &cx, &cy, &cz, &h1, &h2, &h3, &h4,
+                     &dist, &pen, &nx, &ny, &nz, &degen, &flag);
+        cti_nr_int bad = nonfin ? CTI_NR_F(NONFINITE) : (degen ? CTI_NR_F(DEGENERATE) : 0);
+        flag |= fb ? CTI_NR_F(FALLBACK) : 0;
+        CTI_NR_STORE(q, bad, dist, pen, nx, ny, nz, cx, cy, cz, h1, h2, h3, h4, g, flag);
+    }
+}
+
+/*
+ * The pairs of block k0 that the vector steps left unconverged (redo[j];
+ * their iterates in sv, tv) take further steps in SIMD lanes, in rounds of
+ * CTI_NR_NEWTON_VEC_IT steps over those still not converged, up to
+ * CTI_NR_NEWTON_MAX_IT steps in all; then their outputs are computed. A
+ * lane keeps its values from the step that converged, so each pair gets
+ * the steps and the values of a scalar loop that stops there (and the same
+ * bytes: a pair's arithmetic does not depend on its lane). Each round and
+ * the end work on the pairs' inputs copied into a compact scratch, as the
+ * block's own copy does (vector gathers cost more). On a crumpled sheet
+ * about half of the candidates come here (nodes off the quadrangle, where
+ * Newton on the bilinear extension converges slowly or not at all), and a
+ * scalar loop over them took four fifths of the kernel's time.
+ */
+static void newton_redo(const cti_nr_args *a, ct_idx k0, ct_idx n, cti_nr_blk *b,
+                        const cti_nr_int *redo, const ct_real *sv, const ct_real *tv)
+{
+    ct_idx rq[CTI_NR_BLOCK], live[CTI_NR_BLOCK], pos[CTI_NR_BLOCK];
+    ct_real s[CTI_NR_BLOCK], t[CTI_NR_BLOCK], st[CTI_NR_BLOCK];
+    ct_idx nr = 0;
+    for (ct_idx j = 0; j < n; j++) {
+        rq[nr] = j;
+        nr += redo[j] != 0;
+    }
+    if (nr == 0)
+        return;
+    cti_nr_blk c;
+    /* Rounds: live[] the block positions of the pairs still iterating, pos[]
+     * their places in rq (where s, t, st are kept). */
+    for (ct_idx q = 0; q < nr; q++) {
+        live[q] = rq[q];
+        pos[q] = q;
+        s[q] = sv[rq[q]];
+        t[q] = tv[rq[q]];
+        st[q] = 1;
+    }
+    ct_idx nl = nr;
+    ct_real ls[CTI_NR_BLOCK], lt[CTI_NR_BLOCK], lst[CTI_NR_BLOCK];
+    for (int it0 = CTI_NR_NEWTON_VEC_IT; nl > 0 && it0 < CTI_NR_NEWTON_MAX_IT;
+         it0 += CTI_NR_NEWTON_VEC_IT) {
+        newton_pick(b, live, nl, &c);
+        for (ct_idx q = 0; q < nl; q++) {
+            ls[q] = s[pos[q]];
+            lt[q] = t[pos[q]];
+            lst[q] = st[pos[q]];
+        }
+        newton_round(a, nl, &c, CTI_NR_NEWTON_MAX_IT - it0, ls, lt, lst);
+        ct_idx m = 0;
+        for (ct_idx q = 0; q < nl; q++) {
+            const ct_idx p = pos[q];
+            s[p] = ls[q];
+            t[p] = lt[q];
+            st[p] = lst[q];
+            live[m] = live[q];
+            pos[m] = p;
+            m += !(lst[q] <= CTI_NR_NEWTON_TOL);
+        }
+        nl = m;
+    }
+    /* The outputs, into compact arrays, then to the pairs' places. */
+    ct_real o[13][CTI_NR_BLOCK];
+    uint8_t of[CTI_NR_BLOCK];
+    const ct_contact_geo cg = {o[0], o[1], o[2], o[3], o[4],  o[5],  o[6],
+                               o[7], o[8], o[9], o[10], o[11], o[12], of};
+    cti_nr_args ca = *a;
+    ca.out = &cg;
+    newton_pick(b, rq, nr, &c);
+    newton_finish(&ca, nr, &c, s, t, st);
+    const ct_contact_geo *out = a->out;
+    ct_real *const dst[13] = {out->dist, out->pen, out->nx, out->ny, out->nz,
+                              out->cx,   out->cy,  out->cz, out->h1, out->h2,
+                              out->h3,   out->h4,  out->gap};
+    for (int f = 0; f < 13; f++)
+        for (ct_idx q = 0; q < nr; q++)
+            dst[f][k0 + rq[q]] = o[f][q];
+    for (ct_idx q = 0; q < nr; q++)
+        b->flag[rq[q]] = c.flag[q];
+}
+
+void cti_nr_block_newton(const cti_nr_args *a, ct_idx k0, ct_idx n, cti_nr_blk *b)
+{
+    CTI_NR_OUTPTRS(a, k0);
+    CTI_NR_INPTRS(a, k0);
+    int two = a->two_sided;
+    ct_real sv[CTI_NR_BLOCK], tv[CTI_NR_BLOCK];
+    cti_nr_int redo[CTI_NR_BLOCK];
+    CTI_NR_SIMD
+    for (ct_idx j = 0; j < n; j++) {
+        CTI_NR_LOAD(j);
+        cti_v3 X2 = v3(x2, y2, z2), X3 = v3(x3, y3, z3), X4 = v3(x4, y4, z4),
+               P = v3(px, py, pz);
+        CTI_QUAD_MAKE(X2, X3, X4);
+        ct_real s, t, st = 0;
+        cti_newton_start(CTI_QARGS, &s, &t);
+        _Pragma("GCC unroll 8")
+        for (int it = 0; it < CTI_NR_NEWTON_VEC_IT; it++)
+            cti_newton_step(CTI_QARGS, &s, &t, &st);
+        cti_nr_int conv = st <= CTI_NR_NEWTON_TOL;
+        sv[j] = s;
+        tv[j] = t;
+        redo[j] = !conv;
+        ct_real cx, cy, cz, nx, ny, nz;
+        ct_real h1, h2, h3, h4, dist, pen;
+        cti_nr_int degen, flag;
+        cti_quad_end(CTI_QARGS, s, t, 1, g, two, &cx, &cy, &cz, &h1, &h2, &h3, &h4, &dist, &pen, &nx, &ny, &nz, &degen, &flag);
+        cti_nr_int bad = nonfin ? CTI_NR_F(NONFINITE) : (degen ? CTI_NR_F(DEGENERATE) : 0);
+        CTI_NR_STORE(j, bad, dist, pen, nx, ny, nz, cx, cy, cz, h1, h2, h3, h4,
+                     g, flag);
+    }
+    newton_redo(a, k0, n, b, redo, sv, tv);
+    cti_nr_flags_out(b->flag, a->out->flag + k0, n);
+}
