@@ -30,6 +30,17 @@ double ctb_median(double *v, int n)
     return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
+void ctb_minmax(const double *v, int n, double *lo, double *hi)
+{
+    double a = v[0], b = v[0];
+    for (int i = 1; i < n; i++) {
+        a = v[i] < a ? v[i] : a;
+        b = v[i] > b ? v[i] : b;
+    }
+    *lo = a;
+    *hi = b;
+}
+
 void ctb_mesh_clear(ctb_mesh *m)
 {
     ctb_free(m->x);

@@ -20,6 +20,9 @@ double ctb_now_s(void);
 /* The median of v[0..n-1] (n >= 1; v is sorted in place). */
 double ctb_median(double *v, int n);
 
+/* The smallest and largest of v[0..n-1] (n >= 1). */
+void ctb_minmax(const double *v, int n, double *lo, double *hi);
+
 /* The search input of a mesh, its arrays first-touch copies (ctb_free),
  * and the reference pairs of the topological search's misses. */
 typedef struct ctb_mesh {

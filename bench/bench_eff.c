@@ -83,13 +83,10 @@ int ctb_eff_run(gb_state *st, ctb_eff_call call, void *arg, double units, int nt
     set_threads(nthreads);
     if (rc != 0 || r != EFF_ROUNDS)
         return rc;
-    double emin = e[0], emax = e[0], b1 = t1[0], bn = tn[0];
-    for (int i = 1; i < r; i++) {
-        emin = e[i] < emin ? e[i] : emin;
-        emax = e[i] > emax ? e[i] : emax;
-        b1 = t1[i] < b1 ? t1[i] : b1;
-        bn = tn[i] < bn ? tn[i] : bn;
-    }
+    double emin, emax, b1, bn, unused;
+    ctb_minmax(e, r, &emin, &emax);
+    ctb_minmax(t1, r, &b1, &unused);
+    ctb_minmax(tn, r, &bn, &unused);
     /* From the best times (a busy host only ever adds time, STREAM's
      * rule): the efficiency the machine gives when left alone. */
     gb_set_counter(st, "eff_best", b1 / ((double)nthreads * bn), GB_PLAIN);

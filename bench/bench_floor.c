@@ -194,15 +194,24 @@ static double triad_measure(int kind, int threads, int passes)
     return best;
 }
 
+/* Bind d's threads and make its arrays (first touched by them); 0, or -1
+ * with the benchmark marked failed. */
+static int triad_ready(gb_state *st, const floor_desc *d, char *where, size_t len)
+{
+    ctb_bind_threads(cfg.bind, d->threads, where, len);
+    if (triad_arrays(d->n, d->threads) != 0) {
+        gb_skip_with_error(st, "triad: out of memory");
+        return -1;
+    }
+    return 0;
+}
+
 static void bm_triad(gb_state *st, void *arg)
 {
     const floor_desc *d = arg;
     char where[256], msg[400];
-    ctb_bind_threads(cfg.bind, d->threads, where, sizeof where);
-    if (triad_arrays(d->n, d->threads) != 0) {
-        gb_skip_with_error(st, "triad: out of memory");
+    if (triad_ready(st, d, where, sizeof where) != 0)
         return;
-    }
     triad(d->n, tri.a, tri.b, tri.c, 3.0); /* warm-up */
     double t0 = ctb_now_s();
     while (gb_keep_running(st))
@@ -344,11 +353,8 @@ static void bm_triad_eff(gb_state *st, void *arg)
 {
     const floor_desc *d = arg;
     char where[256], msg[400];
-    ctb_bind_threads(cfg.bind, d->threads, where, sizeof where);
-    if (triad_arrays(d->n, d->threads) != 0) {
-        gb_skip_with_error(st, "triad: out of memory");
+    if (triad_ready(st, d, where, sizeof where) != 0)
         return;
-    }
     ctb_eff_run(st, triad_call, (void *)d, (double)ctb_triad_bytes(d->n, sizeof(double)),
                 d->threads, cfg.bind, where, sizeof where);
     snprintf(msg, sizeof msg, "triad %s, %.0f MiB per array; ns_t1 and ns_tn per byte; "

@@ -175,11 +175,8 @@ static void bm_paired(gb_state *st, void *arg)
         }
     }
     if (rc == CT_OK && n == PAIRED_ROUNDS) {
-        double rmin = r[0], rmax = r[0];
-        for (int i = 1; i < n; i++) {
-            rmin = r[i] < rmin ? r[i] : rmin;
-            rmax = r[i] > rmax ? r[i] : rmax;
-        }
+        double rmin, rmax;
+        ctb_minmax(r, n, &rmin, &rmax);
         const double na = (double)ia->nsec, nb = (double)ib->nsec;
         gb_set_counter(st, "ns_a", ctb_median(ta, n) * 1e9 / na, GB_PLAIN);
         gb_set_counter(st, "ns_b", ctb_median(tb, n) * 1e9 / nb, GB_PLAIN);

@@ -194,4 +194,20 @@ CTI_NR_INLINE void cti_quad_end(CTI_QPARAMS, ct_real s, ct_real t, cti_nr_int tr
 }
 
 
+/* The outputs of pair j at (s, t) by cti_quad_end, with `extra` added to its
+ * flag, stored by CTI_NR_STORE: in a block loop after CTI_NR_LOAD(j) and
+ * CTI_QUAD_MAKE, with `two` (two-sided) in scope. */
+#define CTI_QUAD_STORE(j, s, t, trusted, extra)                                            \
+    do {                                                                                  \
+        ct_real cx_, cy_, cz_, nx_, ny_, nz_, h1_, h2_, h3_, h4_, dist_, pen_;             \
+        cti_nr_int degen_, flag_;                                                         \
+        cti_quad_end(CTI_QARGS, s, t, trusted, g, two, &cx_, &cy_, &cz_, &h1_, &h2_, &h3_, \
+                     &h4_, &dist_, &pen_, &nx_, &ny_, &nz_, &degen_, &flag_);             \
+        cti_nr_int bad_ =                                                                 \
+            nonfin ? CTI_NR_F(NONFINITE) : (degen_ ? CTI_NR_F(DEGENERATE) : 0);           \
+        flag_ |= (extra);                                                                 \
+        CTI_NR_STORE(j, bad_, dist_, pen_, nx_, ny_, nz_, cx_, cy_, cz_, h1_, h2_, h3_, h4_, \
+                     g, flag_);                                                           \
+    } while (0)
+
 #endif /* NARROW_QUAD_H */

@@ -148,14 +148,7 @@ CTI_NR_NOINLINE static void newton_finish(const cti_nr_args *a, ct_idx m, cti_nr
          * like quad_end's test, gcc 12 merges the two into a select of
          * masks it cannot vectorise.) */
         cti_nr_int fb = (!conv) & (s * s <= 1) & (t * t <= 1);
-        ct_real cx, cy, cz, nx, ny, nz;
-        ct_real h1, h2, h3, h4, dist, pen;
-        cti_nr_int degen, flag;
-        cti_quad_end(CTI_QARGS, s, t, conv | fb, g, two, &cx, &cy, &cz, &h1, &h2, &h3, &h4,
-                     &dist, &pen, &nx, &ny, &nz, &degen, &flag);
-        cti_nr_int bad = nonfin ? CTI_NR_F(NONFINITE) : (degen ? CTI_NR_F(DEGENERATE) : 0);
-        flag |= fb ? CTI_NR_F(FALLBACK) : 0;
-        CTI_NR_STORE(q, bad, dist, pen, nx, ny, nz, cx, cy, cz, h1, h2, h3, h4, g, flag);
+        CTI_QUAD_STORE(q, s, t, conv | fb, fb ? CTI_NR_F(FALLBACK) : 0);
     }
 }
 
@@ -260,13 +253,7 @@ void cti_nr_block_newton(const cti_nr_args *a, ct_idx k0, ct_idx n, cti_nr_blk *
         sv[j] = s;
         tv[j] = t;
         redo[j] = !conv;
-        ct_real cx, cy, cz, nx, ny, nz;
-        ct_real h1, h2, h3, h4, dist, pen;
-        cti_nr_int degen, flag;
-        cti_quad_end(CTI_QARGS, s, t, 1, g, two, &cx, &cy, &cz, &h1, &h2, &h3, &h4, &dist, &pen, &nx, &ny, &nz, &degen, &flag);
-        cti_nr_int bad = nonfin ? CTI_NR_F(NONFINITE) : (degen ? CTI_NR_F(DEGENERATE) : 0);
-        CTI_NR_STORE(j, bad, dist, pen, nx, ny, nz, cx, cy, cz, h1, h2, h3, h4,
-                     g, flag);
+        CTI_QUAD_STORE(j, s, t, 1, 0);
     }
     newton_redo(a, k0, n, b, redo, sv, tv);
     cti_nr_flags_out(b->flag, a->out->flag + k0, n);

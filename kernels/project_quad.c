@@ -118,13 +118,7 @@ void cti_nr_block_closed(const cti_nr_args *a, ct_idx k0, ct_idx n, cti_nr_blk *
         t = dent > 0 ? t : 2;
         s = s < -2 ? -2 : (s > 2 ? 2 : s);
         t = t < -2 ? -2 : (t > 2 ? 2 : t);
-        ct_real cx, cy, cz, nx, ny, nz;
-        ct_real h1, h2, h3, h4, dist, pen;
-        cti_nr_int degen, flag;
-        cti_quad_end(CTI_QARGS, s, t, 1, g, two, &cx, &cy, &cz, &h1, &h2, &h3, &h4, &dist, &pen, &nx, &ny, &nz, &degen, &flag);
-        cti_nr_int bad = nonfin ? CTI_NR_F(NONFINITE) : (degen ? CTI_NR_F(DEGENERATE) : 0);
-        CTI_NR_STORE(j, bad, dist, pen, nx, ny, nz, cx, cy, cz, h1, h2, h3, h4,
-                     g, flag);
+        CTI_QUAD_STORE(j, s, t, 1, 0);
     }
     cti_nr_flags_out(b->flag, a->out->flag + k0, n);
 }

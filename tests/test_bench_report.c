@@ -37,6 +37,19 @@ static char *run_report(const char *arg, int *status)
     return ctt_run_cmd(cmd, status);
 }
 
+/* The report of the sample file plus `more` (other files, or ""), which
+ * must succeed. */
+static char *sample_report(const char *more)
+{
+    cr_assert(access(SAMPLE, R_OK) == 0, "%s not found", SAMPLE);
+    char arg[256];
+    snprintf(arg, sizeof arg, "%s %s", SAMPLE, more);
+    int status = -1;
+    char *out = run_report(arg, &status);
+    cr_assert_eq(status, 0, "report.py failed:\n%s", out);
+    return out;
+}
+
 static void expect_line(const char *out, const char *line)
 {
     cr_expect(strstr(out, line) != NULL, "missing line:\n%s\nin the report:\n%s", line, out);
@@ -141,10 +154,7 @@ Test(bench_report, missing_file_fails)
 
 Test(bench_report, paired_ratio_table_from_sample)
 {
-    cr_assert(access(SAMPLE, R_OK) == 0, "%s not found", SAMPLE);
-    int status = -1;
-    char *out = run_report(SAMPLE, &status);
-    cr_assert_eq(status, 0, "report.py failed:\n%s", out);
+    char *out = sample_report("");
 
     expect_line(out, "## Ratio targets, measured in interleaved rounds");
     expect_line(out, "| family | nodes | threads | b vs a | a ns/node | b ns/node | ratio b/a "
@@ -173,9 +183,7 @@ Test(bench_report, paired_ratio_table_from_sample)
 Test(bench_report, interleaved_table_from_sample)
 {
     cr_assert(access(INTER, R_OK) == 0, "%s not found", INTER);
-    int status = -1;
-    char *out = run_report(SAMPLE " " INTER, &status);
-    cr_assert_eq(status, 0, "report.py failed:\n%s", out);
+    char *out = sample_report(INTER);
 
     expect_line(out, "## Single-precision speed-up, measured in interleaved rounds");
     expect_line(out, "| benchmark | a (double) | b (single) | speed-up a/b | range | ≥ 1.6? |");
@@ -189,8 +197,7 @@ Test(bench_report, interleaved_table_from_sample)
                      "| yes |");
     /* Without the file, no such table. */
     free(out);
-    out = run_report(SAMPLE, &status);
-    cr_assert_eq(status, 0, "report.py failed:\n%s", out);
+    out = sample_report("");
     cr_expect(strstr(out, "Single-precision speed-up, measured") == NULL,
               "interleaved table without its file:\n%s", out);
     free(out);
@@ -265,10 +272,7 @@ Test(bench_report, interleave_alternates_and_takes_medians)
 
 Test(bench_report, efficiency_table_from_sample)
 {
-    cr_assert(access(SAMPLE, R_OK) == 0, "%s not found", SAMPLE);
-    int status = -1;
-    char *out = run_report(SAMPLE, &status);
-    cr_assert_eq(status, 0, "report.py failed:\n%s", out);
+    char *out = sample_report("");
 
     expect_line(out, "## Parallel efficiency, measured in interleaved rounds");
     expect_line(out, "| benchmark | size | threads | 1 thread | all threads | efficiency | range "
