@@ -86,6 +86,18 @@ static void newton_pick(const cti_nr_blk *b, const ct_idx *idx, ct_idx m, cti_nr
     }
 }
 
+/* Whether a and b have the same bits (not ==, which takes 0 for -0 and
+ * no NaN for itself). */
+static inline cti_nr_int cti_same_bits(ct_real a, ct_real b)
+{
+    union {
+        ct_real r;
+        cti_nr_int i;
+    } ua = {a}, ub = {b};
+    _Static_assert(sizeof(ct_real) == sizeof(cti_nr_int), "cti_nr_int is ct_real's width");
+    return ua.i == ub.i;
+}
+
 /* A round of further steps of the m compacted pairs of b (see
  * newton_redo): the first `left` of CTI_NR_NEWTON_VEC_IT steps (the round's
  * length is a constant, which both compilers need to vectorise it); s, t
@@ -93,7 +105,8 @@ static void newton_pick(const cti_nr_blk *b, const ct_idx *idx, ct_idx m, cti_nr
  * keeps its values from then on; so does every lane past `left`. */
 CTI_NR_NOINLINE static void newton_round(const cti_nr_args *a, ct_idx m, const cti_nr_blk *b,
                                          int left, ct_real *restrict sv,
-                                         ct_real *restrict tv, ct_real *restrict stv)
+                                         ct_real *restrict tv, ct_real *restrict stv,
+                                         ct_real *restrict fin)
 {
     CTI_NR_INPTRS(a, 0);
     CTI_NR_SIMD
@@ -112,15 +125,22 @@ CTI_NR_NOINLINE static void newton_round(const cti_nr_args *a, ct_idx m, const c
             done = i >= left ? 1 : done;
             ct_real s2 = s, t2 = t, st2;
             cti_newton_step(CTI_QARGS, &s2, &t2, &st2);
+            /* A step that left the bits of s and t as they were will be that
+             * same step every time after (it is a function of those bits):
+             * the cap would end there too, with this step's size. (Whether
+             * the lane was done already does not matter: done stays 1.) */
+            ct_real same = cti_same_bits(s2, s) & cti_same_bits(t2, t) ? 1 : 0;
             cti_nr_int keep = done != 0;
             s = keep ? s : s2;
             t = keep ? t : t2;
             st = keep ? st : st2;
             done = st <= CTI_NR_NEWTON_TOL ? 1 : done;
+            done = same != 0 ? 1 : done;
         }
         sv[q] = s;
         tv[q] = t;
         stv[q] = st;
+        fin[q] = done;
     }
 }
 
@@ -189,7 +209,7 @@ static void newton_redo(const cti_nr_args *a, ct_idx k0, ct_idx n, cti_nr_blk *b
         st[q] = 1;
     }
     ct_idx nl = nr;
-    ct_real ls[CTI_NR_BLOCK], lt[CTI_NR_BLOCK], lst[CTI_NR_BLOCK];
+    ct_real ls[CTI_NR_BLOCK], lt[CTI_NR_BLOCK], lst[CTI_NR_BLOCK], lfin[CTI_NR_BLOCK];
     for (int it0 = CTI_NR_NEWTON_VEC_IT; nl > 0 && it0 < CTI_NR_NEWTON_MAX_IT;
          it0 += CTI_NR_NEWTON_VEC_IT) {
         newton_pick(b, live, nl, &c);
@@ -198,7 +218,7 @@ static void newton_redo(const cti_nr_args *a, ct_idx k0, ct_idx n, cti_nr_blk *b
             lt[q] = t[pos[q]];
             lst[q] = st[pos[q]];
         }
-        newton_round(a, nl, &c, CTI_NR_NEWTON_MAX_IT - it0, ls, lt, lst);
+        newton_round(a, nl, &c, CTI_NR_NEWTON_MAX_IT - it0, ls, lt, lst, lfin);
         ct_idx m = 0;
         for (ct_idx q = 0; q < nl; q++) {
             const ct_idx p = pos[q];
@@ -207,7 +227,7 @@ static void newton_redo(const cti_nr_args *a, ct_idx k0, ct_idx n, cti_nr_blk *b
             st[p] = lst[q];
             live[m] = live[q];
             pos[m] = p;
-            m += !(lst[q] <= CTI_NR_NEWTON_TOL);
+            m += lfin[q] == 0;
         }
         nl = m;
     }
