@@ -99,50 +99,53 @@ static inline cti_nr_int cti_same_bits(ct_real a, ct_real b)
 }
 
 /* A round of further steps of the m compacted pairs of b (see
- * newton_redo): the first `left` of CTI_NR_NEWTON_VEC_IT steps (the round's
- * length is a constant, which both compilers need to vectorise it); s, t
- * and the last step size st updated in place. A lane whose step converged
- * keeps its values from then on; so does every lane past `left`. */
-CTI_NR_NOINLINE static void newton_round(const cti_nr_args *a, ct_idx m, const cti_nr_blk *b,
-                                         int left, ct_real *restrict sv,
-                                         ct_real *restrict tv, ct_real *restrict stv,
-                                         ct_real *restrict fin)
-{
-    CTI_NR_INPTRS(a, 0);
-    CTI_NR_SIMD
-    for (ct_idx q = 0; q < m; q++) {
-        CTI_NR_LOAD(q);
-        (void)g, (void)nonfin;
-        cti_v3 X2 = v3(x2, y2, z2), X3 = v3(x3, y3, z3), X4 = v3(x4, y4, z4),
-               P = v3(px, py, pz);
-        CTI_QUAD_MAKE(X2, X3, X4);
-        ct_real s = sv[q], t = tv[q], st = stv[q];
-        /* done: 1 once a step converged or the steps ran out, a real rather
-         * than a mask (gcc 12 does not vectorise a select between masks). */
-        ct_real done = 0;
-        _Pragma("GCC unroll 8")
-        for (int i = 0; i < CTI_NR_NEWTON_VEC_IT; i++) {
-            done = i >= left ? 1 : done;
-            ct_real s2 = s, t2 = t, st2;
-            cti_newton_step(CTI_QARGS, &s2, &t2, &st2);
-            /* A step that left the bits of s and t as they were will be that
-             * same step every time after (it is a function of those bits):
-             * the cap would end there too, with this step's size. (Whether
-             * the lane was done already does not matter: done stays 1.) */
-            ct_real same = cti_same_bits(s2, s) & cti_same_bits(t2, t) ? 1 : 0;
-            cti_nr_int keep = done != 0;
-            s = keep ? s : s2;
-            t = keep ? t : t2;
-            st = keep ? st : st2;
-            done = st <= CTI_NR_NEWTON_TOL ? 1 : done;
-            done = same != 0 ? 1 : done;
-        }
-        sv[q] = s;
-        tv[q] = t;
-        stv[q] = st;
-        fin[q] = done;
+ * newton_redo): the first `left` of NSTEP steps (a constant: both compilers
+ * vectorise only a constant inner count); s, t and the last step size st
+ * updated in place, fin set to 1 for the pairs done. A lane whose step
+ * converged keeps its values from then on; so does every lane past `left`. */
+#define CTI_NEWTON_ROUND(NAME, NSTEP)                                                      \
+    CTI_NR_NOINLINE static void NAME(const cti_nr_args *a, ct_idx m, const cti_nr_blk *b,  \
+                                     int left, ct_real *restrict sv, ct_real *restrict tv, \
+                                     ct_real *restrict stv, ct_real *restrict fin)         \
+    {                                                                                     \
+        CTI_NR_INPTRS(a, 0);                                                              \
+        CTI_NR_SIMD                                                                       \
+        for (ct_idx q = 0; q < m; q++) {                                                  \
+            CTI_NR_LOAD(q);                                                               \
+            (void)g, (void)nonfin;                                                        \
+            cti_v3 X2 = v3(x2, y2, z2), X3 = v3(x3, y3, z3), X4 = v3(x4, y4, z4),         \
+                   P = v3(px, py, pz);                                                    \
+            CTI_QUAD_MAKE(X2, X3, X4);                                                    \
+            ct_real s = sv[q], t = tv[q], st = stv[q];                                    \
+            ct_real done = 0;                                                             \
+            _Pragma("GCC unroll 8")                                                       \
+            for (int i = 0; i < (NSTEP); i++) {                                           \
+                done = i >= left ? 1 : done;                                              \
+                ct_real s2 = s, t2 = t, st2;                                              \
+                cti_newton_step(CTI_QARGS, &s2, &t2, &st2);                               \
+                ct_real same = cti_same_bits(s2, s) & cti_same_bits(t2, t) ? 1 : 0;        \
+                cti_nr_int keep = done != 0;                                              \
+                s = keep ? s : s2;                                                        \
+                t = keep ? t : t2;                                                        \
+                st = keep ? st : st2;                                                     \
+                done = st <= CTI_NR_NEWTON_TOL ? 1 : done;                                \
+                done = same != 0 ? 1 : done;                                              \
+            }                                                                             \
+            sv[q] = s;                                                                    \
+            tv[q] = t;                                                                    \
+            stv[q] = st;                                                                  \
+            fin[q] = done;                                                                \
+        }                                                                                 \
     }
-}
+/* done: 1 once a step converged or the steps ran out, a real rather than a
+ * mask (gcc 12 does not vectorise a select between masks). same: a step
+ * that left the bits of s and t as they were will be that same step every
+ * time after (it is a function of those bits), so the cap would end there
+ * too, with this step's size (whether the lane was done already does not
+ * matter: done stays 1). The first round is one step (most pairs of a
+ * crumpled sheet converge at the fifth), the others CTI_NR_NEWTON_VEC_IT. */
+CTI_NEWTON_ROUND(newton_round1, 1)
+CTI_NEWTON_ROUND(newton_round, CTI_NR_NEWTON_VEC_IT)
 
 /* The end of Newton for the m compacted pairs of b whose iterations ended
  * at (s, t) with last step st: into a's outputs, offset 0 (the caller's
@@ -211,14 +214,15 @@ static void newton_redo(const cti_nr_args *a, ct_idx k0, ct_idx n, cti_nr_blk *b
     ct_idx nl = nr;
     ct_real ls[CTI_NR_BLOCK], lt[CTI_NR_BLOCK], lst[CTI_NR_BLOCK], lfin[CTI_NR_BLOCK];
     for (int it0 = CTI_NR_NEWTON_VEC_IT; nl > 0 && it0 < CTI_NR_NEWTON_MAX_IT;
-         it0 += CTI_NR_NEWTON_VEC_IT) {
+         it0 += it0 == CTI_NR_NEWTON_VEC_IT ? 1 : CTI_NR_NEWTON_VEC_IT) {
         newton_pick(b, live, nl, &c);
         for (ct_idx q = 0; q < nl; q++) {
             ls[q] = s[pos[q]];
             lt[q] = t[pos[q]];
             lst[q] = st[pos[q]];
         }
-        newton_round(a, nl, &c, CTI_NR_NEWTON_MAX_IT - it0, ls, lt, lst, lfin);
+        (it0 == CTI_NR_NEWTON_VEC_IT ? newton_round1 : newton_round)(
+            a, nl, &c, CTI_NR_NEWTON_MAX_IT - it0, ls, lt, lst, lfin);
         ct_idx m = 0;
         for (ct_idx q = 0; q < nl; q++) {
             const ct_idx p = pos[q];
