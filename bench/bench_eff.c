@@ -4,7 +4,8 @@
  *
  * The kernel table's efficiency divides the 1-thread row by the all-threads
  * row, two runs made one after the other; on a shared host their
- * conditions differ (the same kernel read 59 % and 110 % in two runs).
+ * conditions differ (the kernel rows read 59 % to 110 % across runs of the
+ * same code).
  * Here one benchmark times the same call with 1 thread and with all
  * threads, round after round, alternating which goes first, and reports
  * the median of the rounds' efficiencies with their range. Each timing is
