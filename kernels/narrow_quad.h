@@ -194,6 +194,15 @@ CTI_NR_INLINE void cti_quad_end(CTI_QPARAMS, ct_real s, ct_real t, cti_nr_int tr
 }
 
 
+/* Pair j of a block as the bilinear quadrangle's helpers take it: the
+ * scalars of CTI_NR_LOAD(j), the corners X2..X4 and the node P as
+ * 3-vectors, and x0, a1, a2, a3 (CTI_QUAD_MAKE). */
+#define CTI_QUAD_LOAD(j)                                                                   \
+    CTI_NR_LOAD(j);                                                                       \
+    cti_v3 X2 = v3(x2, y2, z2), X3 = v3(x3, y3, z3), X4 = v3(x4, y4, z4),                 \
+           P = v3(px, py, pz);                                                            \
+    CTI_QUAD_MAKE(X2, X3, X4)
+
 /* The outputs of pair j at (s, t) by cti_quad_end, with `extra` added to its
  * flag, stored by CTI_NR_STORE: in a block loop after CTI_NR_LOAD(j) and
  * CTI_QUAD_MAKE, with `two` (two-sided) in scope. */

@@ -111,11 +111,8 @@ static inline cti_nr_int cti_same_bits(ct_real a, ct_real b)
         CTI_NR_INPTRS(a, 0);                                                              \
         CTI_NR_SIMD                                                                       \
         for (ct_idx q = 0; q < m; q++) {                                                  \
-            CTI_NR_LOAD(q);                                                               \
+            CTI_QUAD_LOAD(q);                                                             \
             (void)g, (void)nonfin;                                                        \
-            cti_v3 X2 = v3(x2, y2, z2), X3 = v3(x3, y3, z3), X4 = v3(x4, y4, z4),         \
-                   P = v3(px, py, pz);                                                    \
-            CTI_QUAD_MAKE(X2, X3, X4);                                                    \
             ct_real s = sv[q], t = tv[q], st = stv[q];                                    \
             ct_real done = 0;                                                             \
             _Pragma("GCC unroll 8")                                                       \
@@ -159,10 +156,7 @@ CTI_NR_NOINLINE static void newton_finish(const cti_nr_args *a, ct_idx m, cti_nr
     int two = a->two_sided;
     CTI_NR_SIMD
     for (ct_idx q = 0; q < m; q++) {
-        CTI_NR_LOAD(q);
-        cti_v3 X2 = v3(x2, y2, z2), X3 = v3(x3, y3, z3), X4 = v3(x4, y4, z4),
-               P = v3(px, py, pz);
-        CTI_QUAD_MAKE(X2, X3, X4);
+        CTI_QUAD_LOAD(q);
         ct_real s = sv[q], t = tv[q];
         cti_nr_int conv = stv[q] <= CTI_NR_NEWTON_TOL;
         /* Not converged inside the square: keep the best of the iterate and
@@ -264,10 +258,7 @@ void cti_nr_block_newton(const cti_nr_args *a, ct_idx k0, ct_idx n, cti_nr_blk *
     cti_nr_int redo[CTI_NR_BLOCK];
     CTI_NR_SIMD
     for (ct_idx j = 0; j < n; j++) {
-        CTI_NR_LOAD(j);
-        cti_v3 X2 = v3(x2, y2, z2), X3 = v3(x3, y3, z3), X4 = v3(x4, y4, z4),
-               P = v3(px, py, pz);
-        CTI_QUAD_MAKE(X2, X3, X4);
+        CTI_QUAD_LOAD(j);
         ct_real s, t, st = 0;
         cti_newton_start(CTI_QARGS, &s, &t);
         _Pragma("GCC unroll 8")
