@@ -160,8 +160,8 @@ CTI_NR_NOINLINE static void newton_finish(const cti_nr_args *a, ct_idx m, cti_nr
         ct_real s = sv[q], t = tv[q];
         cti_nr_int conv = stv[q] <= CTI_NR_NEWTON_TOL;
         /* Not converged inside the square: keep the best of the iterate and
-         * the boundary, and say so. Not converged outside: the boundary. */
-        /* (|s| <= 1 as s^2 <= 1, the same answer, NaN included: written
+         * the boundary, and say so. Not converged outside: the boundary.
+         * (|s| <= 1 as s^2 <= 1, the same answer, NaN included: written
          * like quad_end's test, gcc 12 merges the two into a select of
          * masks it cannot vectorise.) */
         cti_nr_int fb = (!conv) & (s * s <= 1) & (t * t <= 1);
@@ -171,12 +171,13 @@ CTI_NR_NOINLINE static void newton_finish(const cti_nr_args *a, ct_idx m, cti_nr
 
 /*
  * The pairs of block k0 that the vector steps left unconverged (redo[j];
- * their iterates in sv, tv) take further steps in SIMD lanes, in rounds of
- * CTI_NR_NEWTON_VEC_IT steps over those still not converged, up to
- * CTI_NR_NEWTON_MAX_IT steps in all; then their outputs are computed. A
- * lane keeps its values from the step that converged, so each pair gets
- * the steps and the values of a scalar loop that stops there (and the same
- * bytes: a pair's arithmetic does not depend on its lane). Each round and
+ * their iterates in sv, tv) take further steps in SIMD lanes, a round of
+ * one step and then rounds of CTI_NR_NEWTON_VEC_IT steps over those still
+ * iterating, up to CTI_NR_NEWTON_MAX_IT steps in all; then their outputs
+ * are computed. A lane keeps its values from the step that converged, or
+ * from the step that returned its (s, t) unchanged, so each pair gets the
+ * values of a scalar loop that stops at convergence or at the cap (and the
+ * same bytes: a pair's arithmetic does not depend on its lane). Each round and
  * the end work on the pairs' inputs copied into a compact scratch, as the
  * block's own copy does (vector gathers cost more). On a crumpled sheet
  * about half of the candidates come here (nodes off the quadrangle, where
