@@ -16,7 +16,11 @@
  *  5. the search runs on that copy, whose numbering is local;
  *  6. its pairs are mapped back: each secondary's list moves to the
  *     secondary's original position, its segments get their original
- *     numbers and are sorted (insertion sort: a few per node).
+ *     numbers and are sorted (up to four by a branch-free network, more by
+ *     insertion).
+ * The passes whose reads or writes land at random places (the scatter of
+ * step 1, the corner and secondary lookups of steps 3 and 4, step 6)
+ * prefetch the lines of later iterations, so that their misses overlap.
  * The predicate sees the same coordinates in the same corner order, so the
  * result is the canonical pair list of the original input, bit for bit.
  * Every sort is a stable counting sort over contiguous blocks of the input
@@ -46,9 +50,21 @@
 
 /* Loops of random reads prefetch this many iterations ahead. */
 #define CTI_RN_AHEAD 16
+#define CTI_RN_AHEAD_W 32
+/* A compare-exchange of two indices, by min and max (no branch). */
+#define CTI_RN_IDX_MAX ((ct_idx)INT32_MAX)
+#define CTI_RN_CSWAP(a, b)                 \
+    do {                                   \
+        const ct_idx lo_ = a < b ? a : b; \
+        const ct_idx hi_ = a < b ? b : a; \
+        a = lo_;                           \
+        b = hi_;                           \
+    } while (0)
 #if defined(__GNUC__)
 #define CTI_RN_PREFETCH(p) __builtin_prefetch(p)
+#define CTI_RN_PREFETCHW(p) __builtin_prefetch(p, 1)
 #else
+#define CTI_RN_PREFETCHW(p) ((void)(p))
 #define CTI_RN_PREFETCH(p) ((void)(p))
 #endif
 
@@ -240,6 +256,8 @@ static void rn_nodes(cti_renum *r, const ct_search_input *in, int nb, size_t str
         ct_idx lo_, hi_;
         rn_block(nn, nb, b, &lo_, &hi_);
         for (ct_idx i = lo_; i < hi_; i++) {
+            if (i + CTI_RN_AHEAD_W < hi_)
+                CTI_RN_PREFETCHW(w4 + 4 * (size_t)c[key[i + CTI_RN_AHEAD_W]]);
             const ct_idx k = c[key[i]]++;
             Q[i] = k;
             ct_real *restrict w = w4 + 4 * (size_t)k;
@@ -271,6 +289,13 @@ static int rn_lists(cti_renum *r, const ct_search_input *in, int nb, size_t stri
     ct_idx *restrict skey = r->skey, *restrict c4 = r->c4;
 #pragma omp parallel for schedule(static)
     for (ct_idx j = 0; j < ng; j++) {
+        if (j + CTI_RN_AHEAD < ng) {
+            const size_t a = (size_t)j + CTI_RN_AHEAD;
+            CTI_RN_PREFETCH(Q + in->n1[a]);
+            CTI_RN_PREFETCH(Q + in->n2[a]);
+            CTI_RN_PREFETCH(Q + in->n3[a]);
+            CTI_RN_PREFETCH(Q + in->n4[a]);
+        }
         const ct_idx q1 = Q[in->n1[j]];
         skey[j] = q1 >> CTI_RN_SHIFT;
         c4[4 * (size_t)j] = q1;
@@ -300,6 +325,10 @@ static int rn_lists(cti_renum *r, const ct_search_input *in, int nb, size_t stri
         rank[i] = -1;
 #pragma omp parallel for schedule(static)
     for (ct_idx i = 0; i < ns; i++) {
+        if (i + 2 * CTI_RN_AHEAD < ns)
+            CTI_RN_PREFETCH(Q + in->sec[i + 2 * CTI_RN_AHEAD]);
+        if (i + CTI_RN_AHEAD < ns)
+            CTI_RN_PREFETCHW(rank + Q[in->sec[i + CTI_RN_AHEAD]]);
         /* Atomic: a twice-listed secondary's two writes may meet. */
 #pragma omp atomic write
         rank[Q[in->sec[i]]] = i;
@@ -396,25 +425,61 @@ static int rn_map_back(cti_renum *r, const ct_search_input *in, ct_pairs *out)
     for (int64_t q = 0; q < np; q++)
         ps[q] = smap[ps[q]];
     ct_idx *restrict on = out->node, *restrict os = out->seg;
-#pragma omp parallel for schedule(static)
-    for (ct_idx i = 0; i < ns; i++) {
-        /* Two random reads per secondary (its group's start, the group):
-         * prefetched ahead, two levels deep, so that they overlap. */
-        if (i + 2 * CTI_RN_AHEAD < ns)
-            CTI_RN_PREFETCH(gstart + kpos[i + 2 * CTI_RN_AHEAD]);
-        if (i + CTI_RN_AHEAD < ns)
-            CTI_RN_PREFETCH(ps + gstart[kpos[i + CTI_RN_AHEAD]]);
-        const ct_idx n = ocnt[i], node = sec[i];
-        const int64_t src = gstart[kpos[i]], dst = off[i];
-        for (ct_idx q = 0; q < n; q++) {
-            /* Insertion by original segment number. */
-            ct_idx sg = ps[src + q], w = q;
-            while (w > 0 && os[dst + w - 1] > sg) {
-                os[dst + w] = os[dst + w - 1];
-                w--;
+#pragma omp parallel
+    {
+        /* Each thread's secondaries [lo, hi) write the output [off[lo],
+         * off[hi]). */
+        const int nt = cti_team_size(), t = cti_thread_id();
+        const ct_idx lo = (ct_idx)((int64_t)ns * t / nt), hi = (ct_idx)((int64_t)ns * (t + 1) / nt);
+        const int64_t end = off[hi];
+        for (ct_idx i = lo; i < hi; i++) {
+            /* Two random reads per secondary (its group's start, the
+             * group): prefetched ahead, two levels deep, so that they
+             * overlap. */
+            if (i + 2 * CTI_RN_AHEAD < ns)
+                CTI_RN_PREFETCH(gstart + kpos[i + 2 * CTI_RN_AHEAD]);
+            if (i + CTI_RN_AHEAD < ns)
+                CTI_RN_PREFETCH(ps + gstart[kpos[i + CTI_RN_AHEAD]]);
+            const ct_idx n = ocnt[i], node = sec[i];
+            if (n == 0)
+                continue;
+            const int64_t src = gstart[kpos[i]], dst = off[i];
+            if (n <= 4 && dst + 4 <= end) {
+                /* Up to four segments (most secondaries): sorted by a
+                 * network of min and max, without a branch, padded with
+                 * the largest number, and all four slots written; those
+                 * past the group are this thread's next groups' slots,
+                 * written again when their turn comes. (An insertion
+                 * sort's branches were mispredicted about once per
+                 * segment.) */
+                ct_idx v[4];
+                for (int q = 0; q < 4; q++) {
+                    /* (A load inside the group in every case, so that
+                     * the choice needs no branch.) */
+                    const ct_idx e = ps[src + (q < n ? q : n - 1)];
+                    v[q] = q < n ? e : CTI_RN_IDX_MAX;
+                }
+                CTI_RN_CSWAP(v[0], v[1]);
+                CTI_RN_CSWAP(v[2], v[3]);
+                CTI_RN_CSWAP(v[0], v[2]);
+                CTI_RN_CSWAP(v[1], v[3]);
+                CTI_RN_CSWAP(v[1], v[2]);
+                for (int q = 0; q < 4; q++) {
+                    os[dst + q] = v[q];
+                    on[dst + q] = node;
+                }
+                continue;
             }
-            os[dst + w] = sg;
-            on[dst + q] = node;
+            for (ct_idx q = 0; q < n; q++) {
+                /* Insertion by original segment number. */
+                ct_idx sg = ps[src + q], w = q;
+                while (w > 0 && os[dst + w - 1] > sg) {
+                    os[dst + w] = os[dst + w - 1];
+                    w--;
+                }
+                os[dst + w] = sg;
+                on[dst + q] = node;
+            }
         }
     }
     out->n = (ct_idx)np;
