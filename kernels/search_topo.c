@@ -219,6 +219,16 @@ static int topo_full(topo_state *st, const ct_search_input *in)
             continue;
         }
         int64_t c0[3] = {TOPO_CELL(px, 0), TOPO_CELL(py, 1), TOPO_CELL(pz, 2)};
+        /* The squared distance from the node to the main nodes' box: every
+         * main node is at least that far away. */
+        double E = 0;
+        {
+            const double pc[3] = {(double)px, (double)py, (double)pz};
+            for (int k = 0; k < 3; k++) {
+                double e = CTI_MAX(0.0, CTI_MAX((double)lo[k] - pc[k], pc[k] - (double)hi[k]));
+                E += e * e;
+            }
+        }
         for (int64_t r = 0; r <= rmax; r++) {
             int64_t a[3], b[3];
             for (int k = 0; k < 3; k++) {
@@ -249,10 +259,18 @@ static int topo_full(topo_state *st, const ct_search_input *in)
                         }
                     }
                 }
-            /* Nodes in cells beyond ring r are at least about r*h away
-             * (half a cell of slack covers the rounding of the binning). */
+            /* A node in a cell beyond ring r lies, along some axis, at
+             * least about r*h beyond the node's own cell (half a cell of
+             * slack covers the rounding of the binning), and along every
+             * axis at least the node's distance to the main box: its
+             * squared distance is at least E + reach^2 (shrunk by a few
+             * roundings of that sum). Without E, a node far from the main
+             * surface (a ball dropped from a height onto a plate) scanned
+             * every cell within its height: a first search of 10^5 nodes
+             * took 40 s. */
             double reach = ((double)r - 0.5) * h;
-            if (best >= 0 && reach > 0 && (double)bd < reach * reach)
+            if (best >= 0 && reach > 0 &&
+                (double)bd < (E + reach * reach) * (1 - 64 * (double)CTI_EPS))
                 break;
         }
         st->closest[i] = best;
