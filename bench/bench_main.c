@@ -13,7 +13,7 @@
  *                                (default 2e8, 4e9 with --full;
  *                                CT_BENCH_DIRECT_BUDGET)
  * Defaults added unless given: --benchmark_repetitions=3
- * --benchmark_report_aggregates_only=true --benchmark_min_time=0.1
+ * --benchmark_report_aggregates_only=true --benchmark_min_time=0.05
  * --benchmark_out=build/bench.json --benchmark_out_format=json.
  * Every other --benchmark_* flag (e.g. --benchmark_filter=REGEX) passes
  * through.
@@ -126,7 +126,7 @@ int main(int argc, char **argv)
         !has_flag(argc, argv, "--benchmark_display_aggregates_only"))
         args[nargs++] = "--benchmark_report_aggregates_only=true";
     if (!has_flag(argc, argv, "--benchmark_min_time"))
-        args[nargs++] = "--benchmark_min_time=0.1";
+        args[nargs++] = "--benchmark_min_time=0.05";
     if (!has_flag(argc, argv, "--benchmark_out=")) {
         if (mkdir("build", 0777) != 0 && errno != EEXIST)
             fprintf(stderr, "bench: cannot create build/: %s\n", strerror(errno));
