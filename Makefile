@@ -120,6 +120,17 @@ $(BUILD)/%.o: %.c
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_ALL) $(PROV) $(INC) $(PKGS_CFLAGS) -MMD -MP -c $< -o $@
 
+# The Bullet peer compiles to a stub that refuses to run when Bullet's
+# headers are missing (bench/peers/bullet_peer.cc). A stub built before the
+# package was installed must be rebuilt (the headers keep the package's own,
+# older dates, so they cannot be the prerequisite): the object depends on a
+# stamp whose name says whether the headers are there, created when that
+# changes.
+BULLET_STAMP := $(BUILD)/bench/peers/bullet-headers-$(if $(wildcard /usr/include/bullet/btBulletCollisionCommon.h),yes,no)
+$(BULLET_STAMP):
+	@mkdir -p $(dir $@) && rm -f $(BUILD)/bench/peers/bullet-headers-* && touch $@
+$(BUILD)/bench/peers/bullet_peer.o: $(BULLET_STAMP)
+
 $(BUILD)/%.o: %.cc
 	@mkdir -p $(dir $@)
 	$(CXX) -std=c++17 $(OPT) $(ARCH) -fopenmp -Wall -Wextra -Werror $(PREC_FLAGS) $(SAN_FLAGS) $(PROV) $(INC) $(PKGS_CFLAGS) $(PEER_CXXFLAGS) -MMD -MP -c $< -o $@
