@@ -53,12 +53,12 @@
 #define CTI_RN_AHEAD_W 32
 /* A compare-exchange of two indices, by min and max (no branch). */
 #define CTI_RN_IDX_MAX ((ct_idx)INT32_MAX)
-#define CTI_RN_CSWAP(a, b)                 \
-    do {                                   \
-        const ct_idx lo_ = a < b ? a : b; \
-        const ct_idx hi_ = a < b ? b : a; \
-        a = lo_;                           \
-        b = hi_;                           \
+#define CTI_RN_CSWAP(a, b)                       \
+    do {                                         \
+        const ct_idx lo_ = (a) < (b) ? (a) : (b); \
+        const ct_idx hi_ = (a) < (b) ? (b) : (a); \
+        (a) = lo_;                               \
+        (b) = hi_;                               \
     } while (0)
 #if defined(__GNUC__)
 #define CTI_RN_PREFETCH(p) __builtin_prefetch(p)
