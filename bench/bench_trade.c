@@ -23,12 +23,14 @@
  *             amortised ns per node per step; accuracy the pairs within
  *             the gap missing from the stored candidates (must be 0);
  *             x_pairs_per_node, x_resorts_per_100.
- *  renumber   "off" and "auto" (ct_search_params.renumber) for the bucket
- *             and bsp searches on shuffled plates (RN_TARGET secondaries,
- *             static, gap 0.3 h + margin 0.2 h): cost ns per node per
- *             search; accuracy the pairs that differ from the bucket
- *             search with renumbering off (must be 0: the renumbering
- *             returns the same list, bit for bit).
+ *  renumber   "off", "auto" and "fresh" (ct_search_params.renumber; fresh:
+ *             auto with renumber_keep -1, a new numbering every search
+ *             instead of the kept one) for the bucket and bsp searches on
+ *             shuffled plates (RN_TARGET secondaries, static, gap 0.3 h +
+ *             margin 0.2 h): cost ns per node per search; accuracy the
+ *             pairs that differ from the bucket search with renumbering
+ *             off (must be 0: the renumbering returns the same list, bit
+ *             for bit).
  *  dense      "off", "auto" and "on" (ct_search_params.dense) for the bsp
  *             search on the graded mesh (DN_TARGET secondaries, natural
  *             numbering, gap 0.3 h + margin 0.2 h): cost ns per node per
@@ -480,8 +482,8 @@ int ctb_trade_register(const ctb_search_config *c)
         ADD(K_MARGIN, i, 0);
     }
     for (int a = CT_SEARCH_BUCKET; a <= CT_SEARCH_BSP; a++)
-        for (int r = 0; r < 2; r++) {
-            snprintf(name, sizeof name, "renumber/%s@%s", r ? "auto" : "off",
+        for (int r = 0; r < 3; r++) {
+            snprintf(name, sizeof name, "renumber/%s@%s", ctbt_renum_name(r),
                      ct_search_algo_name((ct_search_algo)a));
             ADD(K_RENUM, a, r);
         }

@@ -105,6 +105,7 @@ void ctbt_bm_filter(gb_state *st, const tdesc *d);
 void ctbt_bm_margin(gb_state *st, const tdesc *d);
 void ctbt_bm_static_search(gb_state *st, const tdesc *d);
 const char *ctbt_dense_name(int dense);
+const char *ctbt_renum_name(int variant); /* 0 off, 1 auto, 2 fresh */
 void ctbt_rn_free(void);
 void ctbt_bm_quad(gb_state *st, const tdesc *d);
 void ctbt_bm_prec(gb_state *st, const tdesc *d);

@@ -291,12 +291,13 @@ void ctbt_rn_free(void)
     }
 }
 
-/* A search of algorithm a with renumber and dense set. */
-static int sk_run(ct_search_algo a, int renumber, int dense, const ct_search_input *in,
+/* A search of algorithm a with renumber, renumber_keep and dense set. */
+static int sk_run(ct_search_algo a, int renumber, int keep, int dense, const ct_search_input *in,
                   ct_search **s, ct_pairs *out)
 {
     ct_search_params p = ct_search_default_params(a);
     p.renumber = renumber;
+    p.renumber_keep = keep;
     p.dense = dense;
     int rc = ct_search_init(s, &p);
     return rc == CT_OK ? ct_search_run(*s, in, out) : rc;
@@ -340,8 +341,8 @@ static struct skcase *sk_get(int which)
                        &k->in);
         rc = ct_pairs_init(&k->ref, 0);
         if (rc == CT_OK)
-            rc = which == SK_RENUM ? sk_run(CT_SEARCH_BUCKET, -1, 0, &k->in, &s, &k->ref)
-                                   : sk_run(CT_SEARCH_BSP, 0, -1, &k->in, &s, &k->ref);
+            rc = which == SK_RENUM ? sk_run(CT_SEARCH_BUCKET, -1, 0, 0, &k->in, &s, &k->ref)
+                                   : sk_run(CT_SEARCH_BSP, 0, 0, -1, &k->in, &s, &k->ref);
         ct_search_destroy(s);
     }
     if (rc == CT_OK)
@@ -353,8 +354,14 @@ static struct skcase *sk_get(int which)
     return k;
 }
 
-/* renumber: d->sub the algorithm, d->variant 0 off, 1 auto. dense: bsp,
- * d->variant -1 off, 0 auto, 1 on. */
+const char *ctbt_renum_name(int variant)
+{
+    return variant == 0 ? "off" : variant == 1 ? "auto" : "fresh";
+}
+
+/* renumber: d->sub the algorithm, d->variant 0 off, 1 auto, 2 fresh (auto,
+ * a new numbering every search). dense: bsp, d->variant -1 off, 0 auto,
+ * 1 on. */
 void ctbt_bm_static_search(gb_state *st, const tdesc *d)
 {
     ctb_bind_threads(ctbt_cfg.bind, ctbt_cfg.max_threads, NULL, 0);
@@ -366,10 +373,11 @@ void ctbt_bm_static_search(gb_state *st, const tdesc *d)
     }
     const ct_search_algo a = which == SK_RENUM ? (ct_search_algo)d->sub : CT_SEARCH_BSP;
     const int renumber = which == SK_RENUM ? (d->variant ? 0 : -1) : 0;
+    const int keep = which == SK_RENUM && d->variant == 2 ? -1 : 0;
     const int dense = which == SK_DENSE ? d->variant : 0;
     char name[64];
     if (which == SK_RENUM)
-        snprintf(name, sizeof name, "%s@%s", d->variant ? "auto" : "off", ct_search_algo_name(a));
+        snprintf(name, sizeof name, "%s@%s", ctbt_renum_name(d->variant), ct_search_algo_name(a));
     else
         snprintf(name, sizeof name, "%s@graded", ctbt_dense_name(dense));
     ct_search *s = NULL;
@@ -377,7 +385,7 @@ void ctbt_bm_static_search(gb_state *st, const tdesc *d)
     memset(&out, 0, sizeof out);
     int rc = ct_pairs_init(&out, 0);
     if (rc == CT_OK)
-        rc = sk_run(a, renumber, dense, &k->in, &s, &out); /* also the untimed warm-up */
+        rc = sk_run(a, renumber, keep, dense, &k->in, &s, &out); /* also the untimed warm-up */
     const int64_t differ = rc == CT_OK ? sk_differ(&out, &k->ref) : 0;
     const double mem = (double)ct_search_memory(s);
     int64_t it = 0;

@@ -304,6 +304,11 @@ size_t cti_collect_memory(const cti_collect *c);
 typedef struct cti_renum cti_renum;
 void cti_renum_free(cti_renum *r);
 size_t cti_renum_memory(const cti_renum *r);
+/* The next renumbered search makes its numbering again. */
+void cti_renum_forget(cti_renum *r);
+/* The searches that have used the kept numbering, 0 when none is kept (for
+ * the tests). */
+int cti_renum_uses(const cti_renum *r);
 
 struct ct_search {
     ct_search_params p;

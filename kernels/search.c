@@ -46,7 +46,7 @@ int ct_search_init(ct_search **s, const ct_search_params *p)
     if (p && (p->algo < 0 || p->algo >= CT_SEARCH_NALGO || p->variant < 0 || p->variant > 1 ||
               !(p->cell_factor >= 0) ||
               p->max_cells < 0 || p->leaf_size < 0 || !(p->min_box >= 0) || p->dense < -1 || p->dense > 1 ||
-              p->renumber < -1 || p->renumber > 1))
+              p->renumber < -1 || p->renumber > 1 || p->renumber_keep < -1))
         return CT_ERR_ARG;
     ct_search *w = calloc(1, sizeof *w);
     if (!w)
@@ -58,6 +58,8 @@ int ct_search_init(ct_search **s, const ct_search_params *p)
 
 void ct_search_reset(ct_search *s)
 {
+    if (s)
+        cti_renum_forget(s->rn);
     if (s && s->algo_free && s->algo_state)
         s->algo_free(s->algo_state);
     if (s) {

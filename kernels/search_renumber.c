@@ -33,6 +33,19 @@
  * 8 nodes): O(N), about 240 bytes per secondary on two plates (two mesh
  * nodes and one segment per secondary; measured with contact search).
  *
+ * Reuse: steps 1 to 4 depend on the topology (the secondaries and the
+ * segments' corners) and, for locality only, on the positions. Explicit
+ * dynamics searches the same mesh again every few cycles, and continuum
+ * motion keeps neighbours neighbours, so the renumbering made for one
+ * search stays local for many. It is kept with a copy of the topology it
+ * was made for; a later search whose topology is equal (compared in full,
+ * one streaming pass) only copies the coordinates through the kept
+ * numbers (the scatter of step 2) and maps its pairs back, for up to
+ * ct_search_params.renumber_keep searches (default CTI_RN_KEEP), after
+ * which the numbering is made again from the current positions. Any
+ * numbering gives the same canonical list, so reuse changes the cost,
+ * never the pairs. ct_search_reset forgets the numbering.
+ *
  * Cases left to the plain search, which handles or reports them: a
  * secondary listed twice, an empty input.
  */
@@ -47,6 +60,10 @@
  * (new node numbers >> CTI_RN_SHIFT), about. */
 #define CTI_RN_CELL 8
 #define CTI_RN_SHIFT 3
+
+/* Searches a renumbering serves, by default, while the topology is the
+ * same (ct_search_params.renumber_keep == 0). */
+#define CTI_RN_KEEP 64
 
 /* Loops of random reads prefetch this many iterations ahead. */
 #define CTI_RN_AHEAD 16
@@ -80,14 +97,33 @@ struct cti_renum {
     ct_idx *cnt;                  /* counting sort counters */
     ct_pairs inner;
     int inner_ok;
+    /* The topology the numbering was made for (copies of the input's
+     * lists), whether Q .. rank hold that numbering, and how many
+     * searches have used it. */
+    ct_idx *tsec, *t1, *t2, *t3, *t4;
+    size_t tcap_sec, tcap_seg;
+    ct_idx tnnode, tnsec, tnseg;
+    int valid, uses;
 };
+
+void cti_renum_forget(cti_renum *r)
+{
+    if (r)
+        r->valid = 0;
+}
+
+int cti_renum_uses(const cti_renum *r)
+{
+    return r && r->valid ? r->uses : 0;
+}
 
 void cti_renum_free(cti_renum *r)
 {
     if (!r)
         return;
-    ct_idx *ip[] = {r->Q,  r->key, r->rank, r->smap, r->n1,  r->n2,  r->n3,
-                    r->n4, r->skey, r->c4, r->spos, r->sec, r->gcnt, r->cnt};
+    ct_idx *ip[] = {r->Q,    r->key, r->rank, r->smap, r->n1,  r->n2,  r->n3,
+                    r->n4,   r->skey, r->c4,  r->spos, r->sec, r->gcnt, r->cnt,
+                    r->tsec, r->t1,  r->t2,   r->t3,   r->t4};
     for (size_t i = 0; i < sizeof ip / sizeof ip[0]; i++)
         ct_free(ip[i]);
     ct_free(r->x);
@@ -108,7 +144,8 @@ size_t cti_renum_memory(const cti_renum *r)
     return r->cap_node * (3 * sizeof(ct_idx) + 7 * sizeof(ct_real)) +
            r->cap_seg * 10 * sizeof(ct_idx) +
            r->cap_sec * (3 * sizeof(ct_idx) + 2 * sizeof(int64_t)) +
-           r->cap_cnt * sizeof(ct_idx) + (size_t)r->inner.cap * 2 * sizeof(ct_idx);
+           r->cap_cnt * sizeof(ct_idx) + (size_t)r->inner.cap * 2 * sizeof(ct_idx) +
+           (r->tcap_sec + 4 * r->tcap_seg) * sizeof(ct_idx);
 }
 
 /* Grow the arrays to n nodes, m segments, s secondaries and c counters
@@ -116,6 +153,8 @@ size_t cti_renum_memory(const cti_renum *r)
 static int rn_grow(cti_renum *r, size_t n, size_t m, size_t s, size_t c)
 {
     int ok = 1;
+    if (n > r->cap_node || m > r->cap_seg || s > r->cap_sec)
+        r->valid = 0; /* the kept numbering is lost */
     if (n > r->cap_node) {
         ct_idx **ip[] = {&r->Q, &r->key, &r->rank};
         ct_real **rp[] = {&r->x, &r->y, &r->z};
@@ -205,6 +244,20 @@ static void rn_sort(ct_idx n, const ct_idx *restrict key, int64_t nkey, int nb, 
     }
 }
 
+/* The packed coordinates (x y z 0 per node, new order) into the new
+ * x, y, z arrays, in sequence. */
+static void rn_unpack(cti_renum *r, ct_idx nn)
+{
+    const ct_real *restrict w4 = r->w4;
+    ct_real *restrict X = r->x, *restrict Y = r->y, *restrict Z = r->z;
+#pragma omp parallel for schedule(static)
+    for (ct_idx k = 0; k < nn; k++) {
+        X[k] = w4[4 * (size_t)k];
+        Y[k] = w4[4 * (size_t)k + 1];
+        Z[k] = w4[4 * (size_t)k + 2];
+    }
+}
+
 /* Steps 1 and 2: the node order by grid cell, and the coordinates in it. */
 static void rn_nodes(cti_renum *r, const ct_search_input *in, int nb, size_t stride)
 {
@@ -267,13 +320,89 @@ static void rn_nodes(cti_renum *r, const ct_search_input *in, int nb, size_t str
             w[3] = 0;
         }
     }
-    ct_real *restrict X = r->x, *restrict Y = r->y, *restrict Z = r->z;
+    rn_unpack(r, nn);
+}
+
+/* Step 2 alone, with the kept numbers Q (a search that reuses the
+ * numbering): the coordinates scattered to their new places, packed, and
+ * unpacked. */
+static void rn_coords(cti_renum *r, const ct_search_input *in)
+{
+    const ct_idx nn = in->nnode;
+    const ct_real *restrict x = in->x, *restrict y = in->y, *restrict z = in->z;
+    const ct_idx *restrict Q = r->Q;
+    ct_real *restrict w4 = r->w4;
 #pragma omp parallel for schedule(static)
-    for (ct_idx k = 0; k < nn; k++) {
-        X[k] = w4[4 * (size_t)k];
-        Y[k] = w4[4 * (size_t)k + 1];
-        Z[k] = w4[4 * (size_t)k + 2];
+    for (ct_idx i = 0; i < nn; i++) {
+        if (i + CTI_RN_AHEAD_W < nn)
+            CTI_RN_PREFETCHW(w4 + 4 * (size_t)Q[i + CTI_RN_AHEAD_W]);
+        ct_real *restrict w = w4 + 4 * (size_t)Q[i];
+        w[0] = x[i];
+        w[1] = y[i];
+        w[2] = z[i];
+        w[3] = 0;
     }
+    rn_unpack(r, nn);
+}
+
+/* Whether the input's topology is the one the kept numbering was made for:
+ * the same counts, secondaries and corners (one streaming pass). */
+static int rn_same_topology(const cti_renum *r, const ct_search_input *in)
+{
+    if (!r->valid || in->nnode != r->tnnode || in->nsec != r->tnsec || in->nseg != r->tnseg)
+        return 0;
+    const ct_idx *restrict a1 = in->n1, *restrict a2 = in->n2, *restrict a3 = in->n3,
+                           *restrict a4 = in->n4, *restrict as = in->sec;
+    const ct_idx *restrict b1 = r->t1, *restrict b2 = r->t2, *restrict b3 = r->t3,
+                           *restrict b4 = r->t4, *restrict bs = r->tsec;
+    int diff = 0;
+#pragma omp parallel for simd schedule(static) reduction(| : diff)
+    for (ct_idx j = 0; j < in->nseg; j++)
+        diff |= (a1[j] != b1[j]) | (a2[j] != b2[j]) | (a3[j] != b3[j]) | (a4[j] != b4[j]);
+#pragma omp parallel for simd schedule(static) reduction(| : diff)
+    for (ct_idx i = 0; i < in->nsec; i++)
+        diff |= as[i] != bs[i];
+    return !diff;
+}
+
+/* Keep a copy of the input's topology with the numbering just made. */
+static int rn_store_topology(cti_renum *r, const ct_search_input *in)
+{
+    const size_t ns = (size_t)in->nsec, ng = (size_t)in->nseg;
+    int ok = 1;
+    if (ns > r->tcap_sec) {
+        ct_free(r->tsec);
+        ok &= (r->tsec = ct_calloc(ns, sizeof(ct_idx))) != NULL;
+        r->tcap_sec = ok ? ns : 0;
+    }
+    if (ok && ng > r->tcap_seg) {
+        ct_idx **ip[] = {&r->t1, &r->t2, &r->t3, &r->t4};
+        for (int i = 0; i < 4; i++) {
+            ct_free(*ip[i]);
+            ok &= (*ip[i] = ct_calloc(ng, sizeof(ct_idx))) != NULL;
+        }
+        r->tcap_seg = ok ? ng : 0;
+    }
+    if (!ok)
+        return CT_ERR_NOMEM;
+    const ct_idx *restrict a1 = in->n1, *restrict a2 = in->n2, *restrict a3 = in->n3,
+                           *restrict a4 = in->n4, *restrict as = in->sec;
+    ct_idx *restrict b1 = r->t1, *restrict b2 = r->t2, *restrict b3 = r->t3, *restrict b4 = r->t4,
+                     *restrict bs = r->tsec;
+#pragma omp parallel for simd schedule(static)
+    for (ct_idx j = 0; j < in->nseg; j++) {
+        b1[j] = a1[j];
+        b2[j] = a2[j];
+        b3[j] = a3[j];
+        b4[j] = a4[j];
+    }
+#pragma omp parallel for simd schedule(static)
+    for (ct_idx i = 0; i < in->nsec; i++)
+        bs[i] = as[i];
+    r->tnnode = in->nnode;
+    r->tnsec = in->nsec;
+    r->tnseg = in->nseg;
+    return CT_OK;
 }
 
 /* Steps 3 and 4: segments by the new number of their first corner (to
@@ -505,9 +634,23 @@ int cti_search_renumbered(ct_search *s, const ct_search_input *in, ct_pairs *out
                      stride * (size_t)nb);
     if (rc)
         return rc;
-    rn_nodes(r, in, nb, stride);
-    if (!rn_lists(r, in, nb, stride))
-        return CT_OK; /* a secondary listed twice: the plain search */
+    const int keep = s->p.renumber_keep == 0 ? CTI_RN_KEEP : s->p.renumber_keep;
+    if (keep > 0 && r->uses < keep && rn_same_topology(r, in)) {
+        rn_coords(r, in);
+        r->uses++;
+    } else {
+        r->valid = 0;
+        rn_nodes(r, in, nb, stride);
+        if (!rn_lists(r, in, nb, stride))
+            return CT_OK; /* a secondary listed twice: the plain search */
+        if (keep > 0) {
+            rc = rn_store_topology(r, in);
+            if (rc)
+                return rc;
+            r->valid = 1;
+        }
+        r->uses = 1;
+    }
     ct_search_input in2 = *in;
     in2.x = r->x;
     in2.y = r->y;
