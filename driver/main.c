@@ -48,6 +48,7 @@ typedef struct search_opts {
     ct_search_filter filter;
     int check; /* 0: no direct reference, even when affordable */
     int renumber; /* ct_search_params.renumber: 0 auto, 1 on, -1 off */
+    int renumber_keep; /* ct_search_params.renumber_keep: 0 default, -1 fresh */
     int dense;    /* ct_search_params.dense: 0 auto, 1 on, -1 off */
 } search_opts;
 
@@ -57,7 +58,7 @@ static void usage_search(FILE *f)
                "                      [--numbering natural|shuffled|sfc] [--gap G] [--margin M]\n"
                "                      [--filter hull|box] [--repeat R] [--seed S] [--threads T]\n"
                "                      [--check auto|off] [--renumber auto|on|off]\n"
-               "                      [--dense auto|on|off]\n"
+               "                      [--renumber-keep K|fresh] [--dense auto|on|off]\n"
                "Runs each search on a synthetic case, checks its pair set against the direct\n"
                "search (when affordable; --check off skips it, for timing runs) and prints\n"
                "the median time per secondary node.\n"
@@ -69,7 +70,9 @@ static void usage_search(FILE *f)
     fprintf(f, "\nDefaults: --family plates --n 100000 --algo all --numbering natural,\n"
                "gap 0.4 h and margin 0.1 h (h: mean main edge length), filter hull\n"
                "(hull: exact distance to the segment's corners' hull; box: distance to its\n"
-               "bounding box, looser and cheaper).\n");
+               "bounding box, looser and cheaper). A renumbered search (scattered numbering)\n"
+               "reuses its numbering for --renumber-keep searches of the same topology\n"
+               "(default 64; fresh: a new numbering every search).\n");
 }
 
 static int cmp_double(const void *a, const void *b)
@@ -153,6 +156,7 @@ static int run_search(const search_opts *o)
             continue;
         ct_search_params p = ct_search_default_params((ct_search_algo)a);
         p.renumber = o->renumber;
+        p.renumber_keep = o->renumber_keep;
         p.dense = o->dense;
         ct_search *s;
         if ((rc = ct_search_init(&s, &p)) != CT_OK)
@@ -231,7 +235,7 @@ static int parse_dbl(const char *s, double *v)
 
 static int cmd_search(int argc, char **argv)
 {
-    search_opts o = {"plates", 100000, -1, CTD_NUM_NATURAL, -1, -1, 5, 1, CT_FILTER_HULL, 1, 0, 0};
+    search_opts o = {"plates", 100000, -1, CTD_NUM_NATURAL, -1, -1, 5, 1, CT_FILTER_HULL, 1, 0, 0, 0};
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         int64_t iv;
@@ -298,6 +302,16 @@ static int cmd_search(int argc, char **argv)
                 return EXIT_USAGE;
             }
             o.dense = !strcmp(v, "on") ? 1 : !strcmp(v, "off") ? -1 : 0;
+        } else if (!strcmp(a, "--renumber-keep")) {
+            if (!strcmp(v, "fresh"))
+                o.renumber_keep = -1;
+            else if (parse_i64(v, &iv) || iv < 1 || iv > 1000000) {
+                fprintf(stderr,
+                        "contact search: --renumber-keep expects 1..1000000 or fresh, got '%s'\n",
+                        v);
+                return EXIT_USAGE;
+            } else
+                o.renumber_keep = (int)iv;
         } else if (!strcmp(a, "--repeat")) {
             if (parse_i64(v, &iv) || iv < 1 || iv > 1000) {
                 fprintf(stderr, "contact search: --repeat expects 1..1000, got '%s'\n", v);
@@ -333,10 +347,10 @@ static int cmd_demo(void)
     printf("\nContact search comparison: every search is checked pair for pair against\n"
            "the direct (all pairs) search; times are medians of 5 runs.\n\n");
     search_opts cases[] = {
-        {"folded", 20000, -1, CTD_NUM_NATURAL, -1, -1, 5, 1, CT_FILTER_HULL, 1, 0, 0},
-        {"plates", 100000, -1, CTD_NUM_NATURAL, -1, -1, 5, 1, CT_FILTER_HULL, 1, 0, 0},
-        {"plates", 100000, -1, CTD_NUM_SHUFFLED, -1, -1, 5, 1, CT_FILTER_HULL, 1, 0, 0},
-        {"graded", 50000, -1, CTD_NUM_NATURAL, -1, -1, 5, 1, CT_FILTER_HULL, 1, 0, 0},
+        {"folded", 20000, -1, CTD_NUM_NATURAL, -1, -1, 5, 1, CT_FILTER_HULL, 1, 0, 0, 0},
+        {"plates", 100000, -1, CTD_NUM_NATURAL, -1, -1, 5, 1, CT_FILTER_HULL, 1, 0, 0, 0},
+        {"plates", 100000, -1, CTD_NUM_SHUFFLED, -1, -1, 5, 1, CT_FILTER_HULL, 1, 0, 0, 0},
+        {"graded", 50000, -1, CTD_NUM_NATURAL, -1, -1, 5, 1, CT_FILTER_HULL, 1, 0, 0, 0},
     };
     int worst = 0;
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
