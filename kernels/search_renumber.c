@@ -346,7 +346,10 @@ static void rn_coords(cti_renum *r, const ct_search_input *in)
 }
 
 /* Whether the input's topology is the one the kept numbering was made for:
- * the same counts, secondaries and corners (one streaming pass). */
+ * the same counts, secondaries and corners (one streaming pass). The loops
+ * here and in rn_store_topology carry no simd pragma: clang turns the copies
+ * into memcpy calls and does not vectorise the comparisons, and -Werror
+ * then rejects a pragma it could not honour. */
 static int rn_same_topology(const cti_renum *r, const ct_search_input *in)
 {
     if (!r->valid || in->nnode != r->tnnode || in->nsec != r->tnsec || in->nseg != r->tnseg)
@@ -356,10 +359,10 @@ static int rn_same_topology(const cti_renum *r, const ct_search_input *in)
     const ct_idx *restrict b1 = r->t1, *restrict b2 = r->t2, *restrict b3 = r->t3,
                            *restrict b4 = r->t4, *restrict bs = r->tsec;
     int diff = 0;
-#pragma omp parallel for simd schedule(static) reduction(| : diff)
+#pragma omp parallel for schedule(static) reduction(| : diff)
     for (ct_idx j = 0; j < in->nseg; j++)
         diff |= (a1[j] != b1[j]) | (a2[j] != b2[j]) | (a3[j] != b3[j]) | (a4[j] != b4[j]);
-#pragma omp parallel for simd schedule(static) reduction(| : diff)
+#pragma omp parallel for schedule(static) reduction(| : diff)
     for (ct_idx i = 0; i < in->nsec; i++)
         diff |= as[i] != bs[i];
     return !diff;
@@ -389,14 +392,14 @@ static int rn_store_topology(cti_renum *r, const ct_search_input *in)
                            *restrict a4 = in->n4, *restrict as = in->sec;
     ct_idx *restrict b1 = r->t1, *restrict b2 = r->t2, *restrict b3 = r->t3, *restrict b4 = r->t4,
                      *restrict bs = r->tsec;
-#pragma omp parallel for simd schedule(static)
+#pragma omp parallel for schedule(static)
     for (ct_idx j = 0; j < in->nseg; j++) {
         b1[j] = a1[j];
         b2[j] = a2[j];
         b3[j] = a3[j];
         b4[j] = a4[j];
     }
-#pragma omp parallel for simd schedule(static)
+#pragma omp parallel for schedule(static)
     for (ct_idx i = 0; i < in->nsec; i++)
         bs[i] = as[i];
     r->tnnode = in->nnode;

@@ -99,6 +99,22 @@ static void check_searches(void)
                   fams[f % 5], filt, rc);
             rc = search(CT_SEARCH_TOPO, &in, &got);
             CHECK(rc == CT_OK, "topological on %s: %s", fams[f % 5], ct_strerror(rc));
+            /* A forced renumbering, searched twice by one workspace: the
+             * second search reuses the kept numbering (its comparison of
+             * the topology and its coordinate scatter in parallel). */
+            for (int a = CT_SEARCH_BUCKET; a <= CT_SEARCH_BSP; a++) {
+                ct_search_params p = ct_search_default_params((ct_search_algo)a);
+                p.renumber = 1;
+                ct_search *w;
+                rc = ct_search_init(&w, &p);
+                for (int k = 0; k < 2 && rc == CT_OK; k++) {
+                    rc = ct_search_run(w, &in, &got);
+                    CHECK(rc == CT_OK && same_pairs(&ref, &got),
+                          "renumbered %s on %s, search %d: rc %d", ct_search_algo_name(a),
+                          fams[f % 5], k, rc);
+                }
+                ct_search_destroy(w);
+            }
             ct_pairs_destroy(&ref);
             ct_pairs_destroy(&got);
         }
