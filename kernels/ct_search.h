@@ -102,7 +102,7 @@ typedef struct ct_search_params {
      * never. The
      * search then runs on a renumbered copy (nodes by grid cell, segments
      * by their first corner, secondaries by number) and its pairs are
-     * mapped back: the same canonical list, bit for bit, for about 240
+     * mapped back: the same canonical list, bit for bit, for about 260
      * bytes of workspace per secondary on two plates. */
     int renumber;
     /* With renumbering: a numbering is reused by the searches that follow

@@ -27,11 +27,12 @@
  * (a stable sort has one result), so nothing depends on the thread count.
  *
  * The copy costs per node 3 numbers (Q, key, rank) and 7 coordinates (the
- * new x, y, z, and x y z 0 packed by the sort), per segment 10 numbers,
- * per secondary 3 numbers and 2 offsets, plus the inner pair list and the
- * counting sorts' counters (at most CTI_RN_MAXBLK blocks of one counter per
- * CTI_RN_CELL nodes): O(N), about 240 bytes per secondary on two plates (two mesh
- * nodes and one segment per secondary; measured with contact search).
+ * new x, y, z, and x y z 0 packed by the sort), per segment 10 numbers and
+ * 4 more for the kept topology, per secondary 4 numbers and 2 offsets, plus
+ * the inner pair list and the counting sorts' counters (at most
+ * CTI_RN_MAXBLK blocks of one counter per CTI_RN_CELL nodes): O(N), about
+ * 260 bytes per secondary on two plates (two mesh nodes and one segment per
+ * secondary; measured with contact search).
  *
  * Reuse: steps 1 to 4 depend on the topology (the secondaries and the
  * segments' corners) and, for locality only, on the positions. Explicit
