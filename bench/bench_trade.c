@@ -481,7 +481,7 @@ int ctb_trade_register(const ctb_search_config *c)
         snprintf(name, sizeof name, "margin/%gh", ctbt_margins[i]);
         ADD(K_MARGIN, i, 0);
     }
-    for (int a = CT_SEARCH_BUCKET; a <= CT_SEARCH_BSP; a++)
+    for (int a = CT_SEARCH_TOPO; a <= CT_SEARCH_BSP; a++)
         for (int r = 0; r < 3; r++) {
             snprintf(name, sizeof name, "renumber/%s@%s", ctbt_renum_name(r),
                      ct_search_algo_name((ct_search_algo)a));

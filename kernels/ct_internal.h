@@ -300,6 +300,21 @@ size_t cti_collect_memory(const cti_collect *c);
 
 /* ---- Per-algorithm entry points (search.c dispatches) ------------------ */
 
+/* A kept copy of a search input's topology: the secondaries, the segment
+ * corners and the counts (search_key.c). Zero-initialised: empty. */
+typedef struct cti_topo_key {
+    ct_idx *sec, *n1, *n2, *n3, *n4;
+    size_t cap_sec, cap_seg;
+    ct_idx nnode, nsec, nseg;
+    int valid;
+} cti_topo_key;
+void cti_topo_key_free(cti_topo_key *k);
+size_t cti_topo_key_memory(const cti_topo_key *k);
+/* 1 when k holds a copy of in's topology (compared in full). */
+int cti_topo_key_same(const cti_topo_key *k, const ct_search_input *in);
+/* Copy in's topology into k (k is invalid on CT_ERR_NOMEM). */
+int cti_topo_key_store(cti_topo_key *k, const ct_search_input *in);
+
 /* The spatial renumbering of scattered inputs (search_renumber.c). */
 typedef struct cti_renum cti_renum;
 void cti_renum_free(cti_renum *r);
@@ -314,6 +329,10 @@ struct ct_search {
     ct_search_params p;
     cti_collect col;
     cti_renum *rn; /* created on first use */
+    /* During a search on a renumbered copy: the original number of each
+     * node of the copy, by which the topological search breaks ties (NULL
+     * otherwise). */
+    const ct_idx *tie;
     void *algo_state; /* owned by the algorithm */
     void (*algo_free)(void *state);
     size_t (*algo_memory)(const void *state);
@@ -321,6 +340,19 @@ struct ct_search {
 
 int cti_search_direct(ct_search *s, const ct_search_input *in, ct_pairs *out);
 int cti_search_topo(ct_search *s, const ct_search_input *in, ct_pairs *out);
+/* The topological history across a new numbering of the same topology
+ * (search_topo.c, used by search_renumber.c). Export: when the workspace
+ * holds a history for the renumbered input in, hist[o] = the original
+ * number of the closest main node of the secondary at original position o
+ * (kpos: original position -> position in in; old_of_new: node of in ->
+ * original node), and returns 1; 0 when there is none. Import: the history
+ * of the new renumbered input in from hist (new_of_old: original node ->
+ * node of in). Forget: the next topological search is a full one. */
+int cti_topo_history_export(ct_search *s, const ct_search_input *in, const ct_idx *kpos,
+                            const ct_idx *old_of_new, ct_idx *hist);
+int cti_topo_history_import(ct_search *s, const ct_search_input *in, const ct_idx *kpos,
+                            const ct_idx *new_of_old, const ct_idx *hist);
+void cti_topo_forget(ct_search *s);
 int cti_search_bucket(ct_search *s, const ct_search_input *in, ct_pairs *out);
 int cti_search_bsp(ct_search *s, const ct_search_input *in, ct_pairs *out);
 

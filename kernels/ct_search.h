@@ -94,23 +94,27 @@ typedef struct ct_search_params {
      * leaf of up to 2048 segments dense, -1 none. The same pairs, bit for
      * bit; a knob for tests and measurements. */
     int dense;
-    /* bucket and bsp: 0 (default) renumber the input spatially when its
-     * numbering is scattered (segment corners far apart in number) and the
-     * interface uses a fair share of the node arrays (nnode <= 4 x (nsec +
-     * 4 nseg): the copy's cost grows with nnode), for the bucket only from
-     * 2^19 nodes (below, its own scattered path is as fast); 1 always, -1
-     * never. The
-     * search then runs on a renumbered copy (nodes by grid cell, segments
+    /* bucket, bsp and topological: 0 (default) renumber the input
+     * spatially when its numbering is scattered (segment corners far apart
+     * in number) and the interface uses a fair share of the node arrays
+     * (nnode <= 4 x (nsec + 4 nseg): the copy's cost grows with nnode), for
+     * the bucket only from 2^19 nodes (below, its own scattered path is as
+     * fast); 1 always, -1 never. The search then runs on a renumbered copy (nodes by grid cell, segments
      * by their first corner, secondaries by number) and its pairs are
      * mapped back: the same canonical list, bit for bit, for about 260
-     * bytes of workspace per secondary on two plates. */
+     * bytes of workspace per secondary on two plates. The topological
+     * search breaks its ties by the original node numbers and carries its
+     * history to each new numbering: its pairs too are those of the plain
+     * search. */
     int renumber;
     /* With renumbering: a numbering is reused by the searches that follow
      * while the topology (secondaries, segment corners; compared in full
      * every search) is unchanged, for up to renumber_keep searches (0 ->
      * 64), then made again from the current positions; -1 makes it anew
      * every search. Only the cost changes, never the pairs. Adds 4 bytes
-     * per secondary and 16 per segment (the copy of the topology). */
+     * per secondary and 16 per segment (the copy of the topology; the
+     * topological search always keeps it, and 4 bytes per node and per
+     * secondary more for its ties and history). */
     int renumber_keep;
 } ct_search_params;
 

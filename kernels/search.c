@@ -162,7 +162,7 @@ int ct_search_run(ct_search *s, const ct_search_input *in, ct_pairs *out)
     int (*run)(ct_search *, const ct_search_input *, ct_pairs *) = NULL;
     switch (s->p.algo) {
     case CT_SEARCH_DIRECT: return cti_search_direct(s, in, out);
-    case CT_SEARCH_TOPO: return cti_search_topo(s, in, out);
+    case CT_SEARCH_TOPO: run = cti_search_topo; break;
     case CT_SEARCH_BUCKET: run = cti_search_bucket; break;
     case CT_SEARCH_BSP: run = cti_search_bsp; break;
     default: return CT_ERR_ARG;

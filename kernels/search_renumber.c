@@ -103,13 +103,15 @@ struct cti_renum {
     ct_idx *cnt;                  /* counting sort counters */
     ct_pairs inner;
     int inner_ok;
-    /* The topology the numbering was made for (copies of the input's
+    /* The topology the numbering was made for (a copy of the input's
      * lists), whether Q .. rank hold that numbering, and how many
      * searches have used it. */
-    ct_idx *tsec, *t1, *t2, *t3, *t4;
-    size_t tcap_sec, tcap_seg;
-    ct_idx tnnode, tnsec, tnseg;
+    cti_topo_key tk;
     int valid, uses;
+    /* Topological search only: per new node its original number (P), per
+     * secondary the history carried to a new numbering (hist). */
+    ct_idx *P, *hist;
+    size_t cap_P, cap_hist;
 };
 
 void cti_renum_forget(cti_renum *r)
@@ -127,9 +129,8 @@ void cti_renum_free(cti_renum *r)
 {
     if (!r)
         return;
-    ct_idx *ip[] = {r->Q,    r->key, r->rank, r->smap, r->n1,  r->n2,  r->n3,
-                    r->n4,   r->skey, r->c4,  r->spos, r->sec, r->gcnt, r->cnt,
-                    r->tsec, r->t1,  r->t2,   r->t3,   r->t4};
+    ct_idx *ip[] = {r->Q,  r->key,  r->rank, r->smap, r->n1, r->n2, r->n3, r->n4,
+                    r->skey, r->c4, r->spos, r->sec, r->gcnt, r->cnt, r->P, r->hist};
     for (size_t i = 0; i < sizeof ip / sizeof ip[0]; i++)
         ct_free(ip[i]);
     ct_free(r->x);
@@ -140,6 +141,7 @@ void cti_renum_free(cti_renum *r)
     ct_free(r->off);
     if (r->inner_ok)
         ct_pairs_destroy(&r->inner);
+    cti_topo_key_free(&r->tk);
     free(r);
 }
 
@@ -151,7 +153,7 @@ size_t cti_renum_memory(const cti_renum *r)
            r->cap_seg * 10 * sizeof(ct_idx) +
            r->cap_sec * (3 * sizeof(ct_idx) + 2 * sizeof(int64_t)) +
            r->cap_cnt * sizeof(ct_idx) + (size_t)r->inner.cap * 2 * sizeof(ct_idx) +
-           (r->tcap_sec + 4 * r->tcap_seg) * sizeof(ct_idx);
+           cti_topo_key_memory(&r->tk) + (r->cap_P + r->cap_hist) * sizeof(ct_idx);
 }
 
 /* Grow the arrays to n nodes, m segments, s secondaries and c counters
@@ -264,8 +266,10 @@ static void rn_unpack(cti_renum *r, ct_idx nn)
     }
 }
 
-/* Steps 1 and 2: the node order by grid cell, and the coordinates in it. */
-static void rn_nodes(cti_renum *r, const ct_search_input *in, int nb, size_t stride)
+/* Steps 1 and 2: the node order by grid cell, and the coordinates in it;
+ * with P, also each new node's original number. */
+static void rn_nodes(cti_renum *r, const ct_search_input *in, int nb, size_t stride,
+                     ct_idx *restrict P)
 {
     const ct_idx nn = in->nnode;
     const ct_real *restrict x = in->x, *restrict y = in->y, *restrict z = in->z;
@@ -319,6 +323,8 @@ static void rn_nodes(cti_renum *r, const ct_search_input *in, int nb, size_t str
                 CTI_RN_PREFETCHW(w4 + 4 * (size_t)c[key[i + CTI_RN_AHEAD_W]]);
             const ct_idx k = c[key[i]]++;
             Q[i] = k;
+            if (P)
+                P[k] = i;
             ct_real *restrict w = w4 + 4 * (size_t)k;
             w[0] = x[i];
             w[1] = y[i];
@@ -351,67 +357,11 @@ static void rn_coords(cti_renum *r, const ct_search_input *in)
     rn_unpack(r, nn);
 }
 
-/* Whether the input's topology is the one the kept numbering was made for:
- * the same counts, secondaries and corners (one streaming pass). The loops
- * here and in rn_store_topology carry no simd pragma: clang turns the copies
- * into memcpy calls and does not vectorise the comparisons, and -Werror
- * then rejects a pragma it could not honour. */
+/* Whether the input's topology is the one the kept numbering was made for
+ * (one streaming pass). */
 static int rn_same_topology(const cti_renum *r, const ct_search_input *in)
 {
-    if (!r->valid || in->nnode != r->tnnode || in->nsec != r->tnsec || in->nseg != r->tnseg)
-        return 0;
-    const ct_idx *restrict a1 = in->n1, *restrict a2 = in->n2, *restrict a3 = in->n3,
-                           *restrict a4 = in->n4, *restrict as = in->sec;
-    const ct_idx *restrict b1 = r->t1, *restrict b2 = r->t2, *restrict b3 = r->t3,
-                           *restrict b4 = r->t4, *restrict bs = r->tsec;
-    int diff = 0;
-#pragma omp parallel for schedule(static) reduction(| : diff)
-    for (ct_idx j = 0; j < in->nseg; j++)
-        diff |= (a1[j] != b1[j]) | (a2[j] != b2[j]) | (a3[j] != b3[j]) | (a4[j] != b4[j]);
-#pragma omp parallel for schedule(static) reduction(| : diff)
-    for (ct_idx i = 0; i < in->nsec; i++)
-        diff |= as[i] != bs[i];
-    return !diff;
-}
-
-/* Keep a copy of the input's topology with the numbering just made. */
-static int rn_store_topology(cti_renum *r, const ct_search_input *in)
-{
-    const size_t ns = (size_t)in->nsec, ng = (size_t)in->nseg;
-    int ok = 1;
-    if (ns > r->tcap_sec) {
-        ct_free(r->tsec);
-        ok &= (r->tsec = ct_calloc(ns, sizeof(ct_idx))) != NULL;
-        r->tcap_sec = ok ? ns : 0;
-    }
-    if (ok && ng > r->tcap_seg) {
-        ct_idx **ip[] = {&r->t1, &r->t2, &r->t3, &r->t4};
-        for (int i = 0; i < 4; i++) {
-            ct_free(*ip[i]);
-            ok &= (*ip[i] = ct_calloc(ng, sizeof(ct_idx))) != NULL;
-        }
-        r->tcap_seg = ok ? ng : 0;
-    }
-    if (!ok)
-        return CT_ERR_NOMEM;
-    const ct_idx *restrict a1 = in->n1, *restrict a2 = in->n2, *restrict a3 = in->n3,
-                           *restrict a4 = in->n4, *restrict as = in->sec;
-    ct_idx *restrict b1 = r->t1, *restrict b2 = r->t2, *restrict b3 = r->t3, *restrict b4 = r->t4,
-                     *restrict bs = r->tsec;
-#pragma omp parallel for schedule(static)
-    for (ct_idx j = 0; j < in->nseg; j++) {
-        b1[j] = a1[j];
-        b2[j] = a2[j];
-        b3[j] = a3[j];
-        b4[j] = a4[j];
-    }
-#pragma omp parallel for schedule(static)
-    for (ct_idx i = 0; i < in->nsec; i++)
-        bs[i] = as[i];
-    r->tnnode = in->nnode;
-    r->tnsec = in->nsec;
-    r->tnseg = in->nseg;
-    return CT_OK;
+    return r->valid && cti_topo_key_same(&r->tk, in);
 }
 
 /* Steps 3 and 4: segments by the new number of their first corner (to
@@ -644,23 +594,59 @@ int cti_search_renumbered(ct_search *s, const ct_search_input *in, ct_pairs *out
     if (rc)
         return rc;
     const int keep = s->p.renumber_keep == 0 ? CTI_RN_KEEP : s->p.renumber_keep;
-    if (keep > 0 && r->uses < keep && rn_same_topology(r, in)) {
+    /* The topological search needs the original numbers (its ties) and,
+     * when a numbering is made again for the same topology, its history
+     * carried over (see below): it always keeps the topology. */
+    const int topo = s->p.algo == CT_SEARCH_TOPO;
+    if (topo && (cti_grow((void **)&r->P, &r->cap_P, (size_t)in->nnode, sizeof(ct_idx), 0) ||
+                 cti_grow((void **)&r->hist, &r->cap_hist, (size_t)in->nsec, sizeof(ct_idx), 0)))
+        return CT_ERR_NOMEM;
+    const int same = rn_same_topology(r, in);
+    ct_search_input in2 = *in;
+    if (keep > 0 && r->uses < keep && same) {
         rn_coords(r, in);
         r->uses++;
     } else {
+        /* The old numbering's copy, for the history's export: the key
+         * (r->key, original position -> position in the copy) and P are
+         * intact until rn_nodes. */
+        int carry = 0;
+        if (topo && same) {
+            in2.sec = r->sec;
+            in2.n1 = r->n1;
+            in2.n2 = r->n2;
+            in2.n3 = r->n3;
+            in2.n4 = r->n4;
+            carry = cti_topo_history_export(s, &in2, r->key, r->P, r->hist);
+        }
         r->valid = 0;
-        rn_nodes(r, in, nb, stride);
-        if (!rn_lists(r, in, nb, stride))
+        rn_nodes(r, in, nb, stride, topo ? r->P : NULL);
+        if (!rn_lists(r, in, nb, stride)) {
+            if (topo)
+                cti_topo_forget(s);
             return CT_OK; /* a secondary listed twice: the plain search */
-        if (keep > 0) {
-            rc = rn_store_topology(r, in);
+        }
+        if (keep > 0 || topo) {
+            rc = cti_topo_key_store(&r->tk, in);
             if (rc)
                 return rc;
             r->valid = 1;
         }
         r->uses = 1;
+        if (topo) {
+            in2.sec = r->sec;
+            in2.n1 = r->n1;
+            in2.n2 = r->n2;
+            in2.n3 = r->n3;
+            in2.n4 = r->n4;
+            if (carry)
+                rc = cti_topo_history_import(s, &in2, r->key, r->Q, r->hist);
+            else
+                cti_topo_forget(s);
+            if (rc)
+                return rc;
+        }
     }
-    ct_search_input in2 = *in;
     in2.x = r->x;
     in2.y = r->y;
     in2.z = r->z;
@@ -670,7 +656,9 @@ int cti_search_renumbered(ct_search *s, const ct_search_input *in, ct_pairs *out
     in2.n3 = r->n3;
     in2.n4 = r->n4;
     *done = 1;
+    s->tie = topo ? r->P : NULL;
     rc = run(s, &in2, &r->inner);
+    s->tie = NULL;
     if (rc) {
         out->n = 0;
         return rc;

@@ -9,12 +9,21 @@
  * segments attached to the new M that pass the shared predicate, in
  * increasing segment order. The cost is O(secondaries x node degree).
  *
- * The first call, a call after ct_search_reset(), and a call whose nnode,
- * nsec, nseg or secondary/segment arrays (sizes or pointers) differ from
- * the last one do a full search instead: the exact closest main node of
- * every secondary (Euclidean, ties to the smaller node index, the same
- * answer as trying every main node), found with a uniform grid and
- * expanding rings of cells.
+ * The first call, a call after ct_search_reset(), and a call whose topology
+ * (nnode, the secondaries, the segment corners) differs from the last one's
+ * do a full search instead: the exact closest main node of every secondary
+ * (Euclidean, ties to the smaller node index, the same answer as trying
+ * every main node), found with a uniform grid and expanding rings of cells.
+ * The topology is compared in full with a kept copy (search_key.c), not by
+ * its pointers: a caller that rewrites its arrays in place would otherwise
+ * get hops along a stale node -> segment map.
+ *
+ * On a scattered numbering the search runs on a spatially renumbered copy
+ * (search_renumber.c, as the bucket and bsp searches). Ties are then broken
+ * by the original node numbers (ct_search.tie), and when the copy's
+ * numbering is made again the history is carried over to it
+ * (cti_topo_history_export / import), so the pairs are those of the plain
+ * search, bit for bit.
  *
  * Known weakness (the seed's Figure 4, "Undetected Impact"): a node that
  * moves more than about one element per call, or onto a part of the surface
@@ -28,8 +37,7 @@
 
 typedef struct topo_state {
     /* What the history belongs to. */
-    ct_idx nnode, nsec, nseg;
-    const ct_idx *sec, *n1, *n2, *n3, *n4;
+    cti_topo_key key;
     int valid;
     /* Main node -> segments (CSR over global node indices, segments in
      * increasing order), built once per key. */
@@ -48,13 +56,22 @@ static void topo_free(void *p)
     ct_free(st->off);
     ct_free(st->adj);
     ct_free(st->closest);
+    cti_topo_key_free(&st->key);
     free(st);
 }
 
 static size_t topo_memory(const void *p)
 {
     const topo_state *st = p;
-    return (st->offcap + st->adjcap + st->clcap) * sizeof(ct_idx);
+    return (st->offcap + st->adjcap + st->clcap) * sizeof(ct_idx) +
+           cti_topo_key_memory(&st->key);
+}
+
+/* Whether node a precedes node b in the tie-break order: the original
+ * numbers (tie, new -> original, on a renumbered copy) or the numbers. */
+static inline int topo_before(const ct_idx *tie, ct_idx a, ct_idx b)
+{
+    return tie ? tie[a] < tie[b] : a < b;
 }
 
 static inline ct_real topo_d2(const ct_real *restrict x, const ct_real *restrict y,
@@ -135,7 +152,7 @@ static inline int topo_excluded(const ct_search_input *in, const ct_idx *restric
     return 0;
 }
 
-static int topo_full(topo_state *st, const ct_search_input *in)
+static int topo_full(topo_state *st, const ct_search_input *in, const ct_idx *tie)
 {
     const ct_real *restrict x = in->x, *restrict y = in->y, *restrict z = in->z;
     const ct_idx nn = in->nnode;
@@ -251,7 +268,7 @@ static int topo_full(topo_state *st, const ct_search_input *in)
                         for (ct_idx q = c ? cnt[c - 1] : 0; q < cnt[c]; q++) {
                             ct_idx m = item[q];
                             ct_real d2 = topo_d2(x, y, z, m, px, py, pz);
-                            if ((best < 0 || d2 < bd || (d2 == bd && m < best)) &&
+                            if ((best < 0 || d2 < bd || (d2 == bd && topo_before(tie, m, best))) &&
                                 !topo_excluded(in, off, st->adj, node, m)) {
                                 best = m;
                                 bd = d2;
@@ -281,7 +298,8 @@ static int topo_full(topo_state *st, const ct_search_input *in)
     return CT_OK;
 }
 
-int cti_search_topo(ct_search *s, const ct_search_input *in, ct_pairs *out)
+/* The workspace's topological state, created on first use. */
+static topo_state *topo_get(ct_search *s)
 {
     if (s->algo_state && s->algo_free != topo_free)
         ct_search_reset(s);
@@ -289,35 +307,85 @@ int cti_search_topo(ct_search *s, const ct_search_input *in, ct_pairs *out)
     if (!st) {
         st = calloc(1, sizeof *st);
         if (!st)
-            return CT_ERR_NOMEM;
+            return NULL;
         s->algo_state = st;
         s->algo_free = topo_free;
         s->algo_memory = topo_memory;
     }
-    int full = !st->valid || st->nnode != in->nnode || st->nsec != in->nsec ||
-               st->nseg != in->nseg || st->sec != in->sec || st->n1 != in->n1 ||
-               st->n2 != in->n2 || st->n3 != in->n3 || st->n4 != in->n4;
+    return st;
+}
+
+/* The node -> segment map, the key and room for the history of input in
+ * (the history's contents are left to the caller). */
+static int topo_rebuild(topo_state *st, const ct_search_input *in)
+{
+    st->valid = 0;
+    int rc = topo_build_csr(st, in);
+    if (rc)
+        return rc;
+    void *p = st->closest;
+    if (cti_grow(&p, &st->clcap, (size_t)in->nsec, sizeof(ct_idx), 0))
+        return CT_ERR_NOMEM;
+    st->closest = p;
+    return cti_topo_key_store(&st->key, in);
+}
+
+void cti_topo_forget(ct_search *s)
+{
+    if (s->algo_state && s->algo_free == topo_free)
+        ((topo_state *)s->algo_state)->valid = 0;
+}
+
+int cti_topo_history_export(ct_search *s, const ct_search_input *in, const ct_idx *kpos,
+                            const ct_idx *old_of_new, ct_idx *hist)
+{
+    const topo_state *st =
+        s->algo_state && s->algo_free == topo_free ? s->algo_state : NULL;
+    if (!st || !st->valid || !cti_topo_key_same(&st->key, in))
+        return 0;
+    const ct_idx *restrict cl = st->closest;
+#pragma omp parallel for schedule(static)
+    for (ct_idx o = 0; o < in->nsec; o++) {
+        const ct_idx m = cl[kpos[o]];
+        hist[o] = m >= 0 ? old_of_new[m] : -1;
+    }
+    return 1;
+}
+
+int cti_topo_history_import(ct_search *s, const ct_search_input *in, const ct_idx *kpos,
+                            const ct_idx *new_of_old, const ct_idx *hist)
+{
+    topo_state *st = topo_get(s);
+    if (!st)
+        return CT_ERR_NOMEM;
+    int rc = topo_rebuild(st, in);
+    if (rc)
+        return rc;
+    ct_idx *restrict cl = st->closest;
+#pragma omp parallel for schedule(static)
+    for (ct_idx o = 0; o < in->nsec; o++) {
+        const ct_idx m = hist[o];
+        cl[kpos[o]] = m >= 0 ? new_of_old[m] : -1;
+    }
+    st->valid = 1;
+    return CT_OK;
+}
+
+int cti_search_topo(ct_search *s, const ct_search_input *in, ct_pairs *out)
+{
+    topo_state *st = topo_get(s);
+    if (!st)
+        return CT_ERR_NOMEM;
+    const ct_idx *tie = s->tie;
+    int full = !st->valid || !cti_topo_key_same(&st->key, in);
     int rc;
     if (full) {
-        st->valid = 0;
-        rc = topo_build_csr(st, in);
+        rc = topo_rebuild(st, in);
         if (rc)
             return rc;
-        void *p = st->closest;
-        if (cti_grow(&p, &st->clcap, (size_t)in->nsec, sizeof(ct_idx), 0))
-            return CT_ERR_NOMEM;
-        st->closest = p;
-        rc = topo_full(st, in);
+        rc = topo_full(st, in, tie);
         if (rc)
             return rc;
-        st->nnode = in->nnode;
-        st->nsec = in->nsec;
-        st->nseg = in->nseg;
-        st->sec = in->sec;
-        st->n1 = in->n1;
-        st->n2 = in->n2;
-        st->n3 = in->n3;
-        st->n4 = in->n4;
         st->valid = 1;
     }
     cti_collect *col = &s->col;
@@ -352,7 +420,7 @@ int cti_search_topo(ct_search *s, const ct_search_input *in, ct_pairs *out)
                     ct_idx v[4] = {in->n1[j], in->n2[j], in->n3[j], in->n4[j]};
                     for (int k = 0; k < 4; k++) {
                         ct_real d2 = topo_d2(x, y, z, v[k], px, py, pz);
-                        if ((d2 < bd || (d2 == bd && v[k] < best)) &&
+                        if ((d2 < bd || (d2 == bd && topo_before(tie, v[k], best))) &&
                             !topo_excluded(in, off, adj, node, v[k])) {
                             best = v[k];
                             bd = d2;

@@ -3,7 +3,9 @@
  * it follows a smoothly sliding sheet exactly, its first search finds the
  * brute-force closest main node, it misses the impact of seed 000's
  * "Undetected Impact" figure (which the bucket search finds), and a reset
- * forces a full search.
+ * forces a full search, as does a changed topology (secondaries or
+ * corners, in new arrays or rewritten in place; the same contents in a new
+ * array keep the history).
  */
 #include <stdint.h>
 #include <string.h>
@@ -282,8 +284,9 @@ Test(search_topo, full_search_is_brute_force_closest)
 
 /*
  * History: a node jumping 12 elements in one call is lost by the one-hop
- * update (the pair direct finds is missing); ct_search_reset(), or handing
- * a different secondary array, forces a full search that finds it again.
+ * update (the pair direct finds is missing); ct_search_reset(), a changed
+ * secondary list or a corner rewritten in place forces a full search that
+ * finds it again; the same secondaries in a new array do not.
  */
 Test(search_topo, reset_forces_full_search)
 {
@@ -293,6 +296,7 @@ Test(search_topo, reset_forces_full_search)
     ts_main(&s, 20, 20);
     ct_idx N = ctt_scene_node(&s, 2.3, 2.4, 0.2);
     s.sec[s.nsec++] = N;
+    ct_idx M2 = ctt_scene_node(&s, 7.6, 3.5, 0.1); /* a secondary later */
     ct_search_params p = ct_search_default_params(CT_SEARCH_TOPO);
     ct_search *w;
     cr_assert_eq(ct_search_init(&w, &p), CT_OK);
@@ -313,13 +317,32 @@ Test(search_topo, reset_forces_full_search)
     ct_search_reset(w);
     cr_assert_eq(ct_search_run(w, &in, &got), CT_OK);
     cr_assert(ctt_same_pairs(&got, &ref), "after a reset: %d pairs, direct %d", got.n, ref.n);
-    /* Jump back; then a new secondary array (same content) also restarts. */
+    /* Jump back. A new secondary array with the same contents keeps the
+     * history (it belongs to the topology, not to the array's address):
+     * one hop cannot follow the jump. A different secondary list restarts
+     * the search. */
     s.x[N] = 2.3, s.y[N] = 2.4;
     ctt_search(CT_SEARCH_DIRECT, &in, &ref);
-    ct_idx sec2[1] = {N};
+    ct_idx sec2[2] = {N, 0};
     in.sec = sec2;
     cr_assert_eq(ct_search_run(w, &in, &got), CT_OK);
-    cr_assert(ctt_same_pairs(&got, &ref), "a new secondary array must force a full search");
+    cr_assert(!ctt_same_pairs(&got, &ref), "the same secondaries in a new array keep the history");
+    sec2[1] = M2;
+    in.nsec = 2;
+    ctt_search(CT_SEARCH_DIRECT, &in, &ref);
+    cr_assert_eq(ct_search_run(w, &in, &got), CT_OK);
+    cr_assert(ctt_same_pairs(&got, &ref), "a changed secondary list must force a full search");
+    /* And a corner rewritten in place, in the same arrays: quad (7, 3) turned
+     * (same nodes, another first corner) is a new topology. */
+    s.x[N] = 15.3, s.y[N] = 14.4;
+    ctt_search(CT_SEARCH_DIRECT, &in, &ref);
+    const ct_idx q73 = 3 * 20 + 7;
+    ct_idx c1 = s.n1[q73];
+    s.n1[q73] = s.n2[q73], s.n2[q73] = s.n3[q73], s.n3[q73] = s.n4[q73], s.n4[q73] = c1;
+    cr_assert_eq(ct_search_run(w, &in, &got), CT_OK);
+    ctt_search(CT_SEARCH_DIRECT, &in, &ref);
+    cr_assert(has_pair(&ref, N, Q));
+    cr_assert(ctt_same_pairs(&got, &ref), "a corner rewritten in place must force a full search");
     ct_pairs_destroy(&got);
     ct_pairs_destroy(&ref);
     ct_search_destroy(w);

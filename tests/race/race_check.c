@@ -115,6 +115,30 @@ static void check_searches(void)
                 }
                 ct_search_destroy(w);
             }
+            /* The topological search on a copy made anew every search (its
+             * history carried over, in parallel), against the plain one. */
+            {
+                ct_search_params p = ct_search_default_params(CT_SEARCH_TOPO);
+                ct_search *w[2] = {NULL, NULL};
+                p.renumber = -1;
+                rc = ct_search_init(&w[0], &p);
+                p.renumber = 1;
+                p.renumber_keep = -1;
+                if (rc == CT_OK)
+                    rc = ct_search_init(&w[1], &p);
+                ct_pairs tp;
+                ct_pairs_init(&tp, 0);
+                for (int k = 0; k < 3 && rc == CT_OK; k++) {
+                    rc = ct_search_run(w[0], &in, &tp);
+                    if (rc == CT_OK)
+                        rc = ct_search_run(w[1], &in, &got);
+                    CHECK(rc == CT_OK && same_pairs(&tp, &got),
+                          "renumbered topological on %s, search %d: rc %d", fams[f % 5], k, rc);
+                }
+                ct_pairs_destroy(&tp);
+                ct_search_destroy(w[0]);
+                ct_search_destroy(w[1]);
+            }
             ct_pairs_destroy(&ref);
             ct_pairs_destroy(&got);
         }
