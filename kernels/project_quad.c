@@ -14,146 +14,64 @@
 
 /* Four triangles (O, X_k, X_k+1) around the centroid O; the closest point of
  * their union (ties keep the first). Weights: H_i = u/4 + v [i == k] +
- * w [i == k+1].
- *
- * The block runs as separate SIMD loops: one forms the centroid and the
- * corners relative to it, one per triangle folds that triangle's closest
- * point into the best so far (kept in the block's arrays, in L1), and one
- * finishes. Written as one loop over the four triangles, a pair's live
- * values (the four corners, the best point, normal and weights, and one
- * triangle's own) did not fit the 16 vector registers of AVX2 and spilled;
- * split, each loop holds one triangle's values: 0.63-0.76 of the single
- * loop's time on plates, 0.86-0.90 on the folded sheet (10^4 and 6 10^5
- * pairs, 1 thread, alternating in one process). The arithmetic of every
- * pair is that of the single loop, operation for operation: the same
- * results, bit for bit. (Two sets of best arrays, read from one and written
- * to the other, avoid gcc's masked stores of `cond ? new : old` but made
- * masked loads instead, and the working set outgrew L1: slower.) */
-typedef struct cti_4tri_scr {
-    _Alignas(64) ct_real O[3][CTI_NR_BLOCK];    /* centroid, relative to X1 */
-    _Alignas(64) ct_real op[3][CTI_NR_BLOCK];   /* node - O */
-    _Alignas(64) ct_real o[4][3][CTI_NR_BLOCK]; /* X_k - O */
-    /* The best so far: squared distance, normal and its squared length,
-     * contact point (relative to O), weights; over all four triangles, the
-     * smallest squared normal, the longest squared edge, the footprint. */
-    _Alignas(64) ct_real q[CTI_NR_BLOCK], nn[CTI_NR_BLOCK], nnmin[CTI_NR_BLOCK];
-    _Alignas(64) ct_real lmax[CTI_NR_BLOCK];
-    _Alignas(64) ct_real n[3][CTI_NR_BLOCK], c[3][CTI_NR_BLOCK], h[4][CTI_NR_BLOCK];
-    _Alignas(64) cti_nr_int inside[CTI_NR_BLOCK];
-} cti_4tri_scr;
-
-/* Triangle k of every pair of the block folded into the best (k == 0
- * starts it). */
-static inline __attribute__((always_inline)) void cti_4tri_fold(cti_4tri_scr *restrict S,
-                                                                 const int k, ct_idx n)
-{
-    const int k1 = (k + 1) & 3;
-    const ct_real *restrict ax = S->o[k][0], *restrict ay = S->o[k][1], *restrict az = S->o[k][2];
-    const ct_real *restrict bx = S->o[k1][0], *restrict by = S->o[k1][1],
-                            *restrict bz = S->o[k1][2];
-    const ct_real *restrict qx = S->op[0], *restrict qy = S->op[1], *restrict qz = S->op[2];
-    ct_real *restrict Bq = S->q, *restrict Bnn = S->nn, *restrict Nmin = S->nnmin;
-    ct_real *restrict Lmax = S->lmax;
-    ct_real *restrict Nx = S->n[0], *restrict Ny = S->n[1], *restrict Nz = S->n[2];
-    ct_real *restrict Cx = S->c[0], *restrict Cy = S->c[1], *restrict Cz = S->c[2];
-    ct_real *restrict H0 = S->h[0], *restrict H1 = S->h[1], *restrict H2 = S->h[2],
-                      *restrict H3 = S->h[3];
-    cti_nr_int *restrict In = S->inside;
-    CTI_NR_SIMD
-    for (ct_idx j = 0; j < n; j++) {
-        const ct_real Ax = ax[j], Ay = ay[j], Az = az[j], Bx = bx[j], By = by[j], Bz = bz[j];
-        ct_real q, u, v, w, nx, ny, nz, nn, l2;
-        cti_nr_int in;
-        cti_nr_tri(Ax, Ay, Az, Bx, By, Bz, qx[j], qy[j], qz[j], &q, &u, &v, &w, &nx, &ny, &nz,
-                   &nn, &l2, &in);
-        /* The best so far, read whole (k == 0: nothing to read). */
-        const ct_real oq = k == 0 ? 0 : Bq[j], onx = k == 0 ? 0 : Nx[j],
-                      ony = k == 0 ? 0 : Ny[j], onz = k == 0 ? 0 : Nz[j],
-                      onn = k == 0 ? 0 : Bnn[j], ocx = k == 0 ? 0 : Cx[j],
-                      ocy = k == 0 ? 0 : Cy[j], ocz = k == 0 ? 0 : Cz[j],
-                      oh0 = k == 0 ? 0 : H0[j], oh1 = k == 0 ? 0 : H1[j],
-                      oh2 = k == 0 ? 0 : H2[j], oh3 = k == 0 ? 0 : H3[j];
-        const ct_real nmin = k == 0 ? CTI_HUGE : Nmin[j], lm = k == 0 ? 0 : Lmax[j];
-        const cti_nr_int oin = k == 0 ? 0 : In[j];
-        const cti_nr_int take = k == 0 ? 1 : q < oq;
-        Bq[j] = take ? q : oq;
-        Nx[j] = take ? nx : onx;
-        Ny[j] = take ? ny : ony;
-        Nz[j] = take ? nz : onz;
-        Bnn[j] = take ? nn : onn;
-        Cx[j] = take ? v * Ax + w * Bx : ocx;
-        Cy[j] = take ? v * Ay + w * By : ocy;
-        Cz[j] = take ? v * Az + w * Bz : ocz;
-        /* Corner weights of this candidate. */
-        const ct_real hu = (ct_real)0.25 * u;
-        const ct_real h0 = hu + (0 == k ? v : 0) + (0 == k1 ? w : 0);
-        const ct_real h1 = hu + (1 == k ? v : 0) + (1 == k1 ? w : 0);
-        const ct_real h2 = hu + (2 == k ? v : 0) + (2 == k1 ? w : 0);
-        const ct_real h3 = hu + (3 == k ? v : 0) + (3 == k1 ? w : 0);
-        H0[j] = take ? h0 : oh0;
-        H1[j] = take ? h1 : oh1;
-        H2[j] = take ? h2 : oh2;
-        H3[j] = take ? h3 : oh3;
-        Nmin[j] = nn < nmin ? nn : nmin;
-        Lmax[j] = l2 > lm ? l2 : lm;
-        In[j] = oin | in;
-    }
-}
-
+ * w [i == k+1]. */
 void cti_nr_block_4tri(const cti_nr_args *a, ct_idx k0, ct_idx n, cti_nr_blk *b)
 {
     CTI_NR_OUTPTRS(a, k0);
     CTI_NR_INPTRS(a, k0);
     int two = a->two_sided;
-    cti_4tri_scr S;
-    {
-        ct_real *restrict Ox = S.O[0], *restrict Oy = S.O[1], *restrict Oz = S.O[2];
-        ct_real *restrict qx = S.op[0], *restrict qy = S.op[1], *restrict qz = S.op[2];
-        ct_real(*restrict o)[3][CTI_NR_BLOCK] = S.o;
-        CTI_NR_SIMD
-        for (ct_idx j = 0; j < n; j++) {
-            CTI_NR_LOAD(j);
-            (void)nonfin;
-            /* X1 is the origin. */
-            const ct_real Px = (ct_real)0.25 * (x2 + (x3 + x4));
-            const ct_real Py = (ct_real)0.25 * (y2 + (y3 + y4));
-            const ct_real Pz = (ct_real)0.25 * (z2 + (z3 + z4));
-            Ox[j] = Px, Oy[j] = Py, Oz[j] = Pz;
-            o[0][0][j] = -Px, o[0][1][j] = -Py, o[0][2][j] = -Pz;
-            o[1][0][j] = x2 - Px, o[1][1][j] = y2 - Py, o[1][2][j] = z2 - Pz;
-            o[2][0][j] = x3 - Px, o[2][1][j] = y3 - Py, o[2][2][j] = z3 - Pz;
-            o[3][0][j] = x4 - Px, o[3][1][j] = y4 - Py, o[3][2][j] = z4 - Pz;
-            qx[j] = px - Px, qy[j] = py - Py, qz[j] = pz - Pz;
-        }
-    }
-    cti_4tri_fold(&S, 0, n);
-    cti_4tri_fold(&S, 1, n);
-    cti_4tri_fold(&S, 2, n);
-    cti_4tri_fold(&S, 3, n);
-    const ct_real *restrict Ox = S.O[0], *restrict Oy = S.O[1], *restrict Oz = S.O[2];
-    const ct_real *restrict Nx = S.n[0], *restrict Ny = S.n[1], *restrict Nz = S.n[2];
-    const ct_real *restrict Cx = S.c[0], *restrict Cy = S.c[1], *restrict Cz = S.c[2];
-    const ct_real *restrict H0 = S.h[0], *restrict H1 = S.h[1], *restrict H2 = S.h[2],
-                            *restrict H3 = S.h[3];
-    const ct_real *restrict Bnn = S.nn, *restrict Nmin = S.nnmin, *restrict Lmax = S.lmax;
-    const cti_nr_int *restrict In = S.inside;
     CTI_NR_SIMD
     for (ct_idx j = 0; j < n; j++) {
         CTI_NR_LOAD(j);
-        const ct_real lmax = Lmax[j];
+        /* X1 is the origin. */
+        cti_v3 O = v3((ct_real)0.25 * (x2 + (x3 + x4)), (ct_real)0.25 * (y2 + (y3 + y4)),
+                      (ct_real)0.25 * (z2 + (z3 + z4)));
+        cti_v3 o[4] = {v3(-O.x, -O.y, -O.z), v3(x2 - O.x, y2 - O.y, z2 - O.z),
+                       v3(x3 - O.x, y3 - O.y, z3 - O.z), v3(x4 - O.x, y4 - O.y, z4 - O.z)};
+        cti_v3 op = v3(px - O.x, py - O.y, pz - O.z);
+        ct_real bq = 0, bv = 0, bw = 0, bnn = 0, nnmin = CTI_HUGE, lmax = 0;
+        ct_real h[4] = {0, 0, 0, 0};
+        cti_v3 bn = v3(0, 0, 0), bc = v3(0, 0, 0);
+        cti_nr_int inside = 0;
+        _Pragma("GCC unroll 4")
+        for (int k = 0; k < 4; k++) {
+            cti_v3 A = o[k], B = o[(k + 1) & 3];
+            ct_real q, u, v, w, nx, ny, nz, nn, l2;
+            cti_nr_int in;
+            cti_nr_tri(A.x, A.y, A.z, B.x, B.y, B.z, op.x, op.y, op.z, &q, &u, &v, &w, &nx, &ny,
+                       &nz, &nn, &l2, &in);
+            cti_nr_int take = (k == 0) | (q < bq);
+            bq = take ? q : bq;
+            bv = take ? v : bv;
+            bw = take ? w : bw;
+            bn = v3_sel(take, v3(nx, ny, nz), bn);
+            bnn = take ? nn : bnn;
+            bc = v3_sel(take, v3_add(v3_scale(v, A), v3_scale(w, B)), bc);
+            /* Corner weights of this candidate. */
+            ct_real hu = (ct_real)0.25 * u;
+            _Pragma("GCC unroll 4")
+            for (int i = 0; i < 4; i++) {
+                ct_real hi = hu + (i == k ? v : 0) + (i == ((k + 1) & 3) ? w : 0);
+                h[i] = take ? hi : h[i];
+            }
+            nnmin = nn < nnmin ? nn : nnmin;
+            lmax = l2 > lmax ? l2 : lmax;
+            inside = inside | in;
+        }
         ct_real lim = 2 * CTI_NR_AREA_TOL * lmax;
-        cti_nr_int degen = !(Nmin[j] > lim * lim);
+        cti_nr_int degen = !(nnmin > lim * lim);
         cti_nr_int bad = nonfin ? CTI_NR_F(NONFINITE) : (degen ? CTI_NR_F(DEGENERATE) : 0);
-        ct_real cx = Ox[j] + Cx[j], cy = Oy[j] + Cy[j], cz = Oz[j] + Cz[j];
+        ct_real cx = O.x + bc.x, cy = O.y + bc.y, cz = O.z + bc.z;
         ct_real dist, pen, mx, my, mz;
         cti_nr_int flag;
-        cti_nr_finish(px, py, pz, cx, cy, cz, Nx[j], Ny[j], Nz[j], Bnn[j], lmax, In[j], g, two,
+        cti_nr_finish(px, py, pz, cx, cy, cz, bn.x, bn.y, bn.z, bnn, lmax, inside, g, two,
                       &dist, &pen, &mx, &my, &mz, &flag);
-        CTI_NR_STORE(j, bad, dist, pen, mx, my, mz, cx, cy, cz, H0[j], H1[j], H2[j], H3[j], g,
+        CTI_NR_STORE(j, bad, dist, pen, mx, my, mz, cx, cy, cz, h[0], h[1], h[2], h[3], g,
                      flag);
     }
     cti_nr_flags_out(b->flag, a->out->flag + k0, n);
 }
+
 
 /* ---- Closed form ----------------------------------------------------------- */
 
