@@ -602,7 +602,14 @@ int cti_search_renumbered(ct_search *s, const ct_search_input *in, ct_pairs *out
                  cti_grow((void **)&r->hist, &r->cap_hist, (size_t)in->nsec, sizeof(ct_idx), 0)))
         return CT_ERR_NOMEM;
     const int same = rn_same_topology(r, in);
+    /* The copy's input: its topology arrays here (their contents are the
+     * kept numbering's until rn_nodes and rn_lists), its coordinates below. */
     ct_search_input in2 = *in;
+    in2.sec = r->sec;
+    in2.n1 = r->n1;
+    in2.n2 = r->n2;
+    in2.n3 = r->n3;
+    in2.n4 = r->n4;
     if (keep > 0 && r->uses < keep && same) {
         rn_coords(r, in);
         r->uses++;
@@ -610,15 +617,8 @@ int cti_search_renumbered(ct_search *s, const ct_search_input *in, ct_pairs *out
         /* The old numbering's copy, for the history's export: the key
          * (r->key, original position -> position in the copy) and P are
          * intact until rn_nodes. */
-        int carry = 0;
-        if (topo && same) {
-            in2.sec = r->sec;
-            in2.n1 = r->n1;
-            in2.n2 = r->n2;
-            in2.n3 = r->n3;
-            in2.n4 = r->n4;
-            carry = cti_topo_history_export(s, &in2, r->key, r->P, r->hist);
-        }
+        const int carry =
+            topo && same && cti_topo_history_export(s, &in2, r->key, r->P, r->hist);
         r->valid = 0;
         rn_nodes(r, in, nb, stride, topo ? r->P : NULL);
         if (!rn_lists(r, in, nb, stride)) {
@@ -634,11 +634,6 @@ int cti_search_renumbered(ct_search *s, const ct_search_input *in, ct_pairs *out
         }
         r->uses = 1;
         if (topo) {
-            in2.sec = r->sec;
-            in2.n1 = r->n1;
-            in2.n2 = r->n2;
-            in2.n3 = r->n3;
-            in2.n4 = r->n4;
             if (carry)
                 rc = cti_topo_history_import(s, &in2, r->key, r->Q, r->hist);
             else
@@ -650,11 +645,6 @@ int cti_search_renumbered(ct_search *s, const ct_search_input *in, ct_pairs *out
     in2.x = r->x;
     in2.y = r->y;
     in2.z = r->z;
-    in2.sec = r->sec;
-    in2.n1 = r->n1;
-    in2.n2 = r->n2;
-    in2.n3 = r->n3;
-    in2.n4 = r->n4;
     *done = 1;
     s->tie = topo ? r->P : NULL;
     rc = run(s, &in2, &r->inner);
