@@ -43,15 +43,35 @@ WARN = -Wall -Wextra -Werror
 # limits (TYPE7 squeeze, truss net energy, the stiffness trade).
 CFLAGS_BASE = -std=c11 $(OPT) $(ARCH) -fno-math-errno -fno-trapping-math -ffp-contract=off -fopenmp $(WARN) -D_POSIX_C_SOURCE=200809L $(PREC_FLAGS)
 CFLAGS_ALL = $(CFLAGS_BASE) $(SAN_FLAGS) $(EXTRA_CFLAGS)
+# gcc only: the narrow phase's pair loops without partial redundancy
+# elimination. Before if-conversion their selects are branches, and PRE
+# copies the arithmetic that follows a select into its arms (a clamped
+# weight times a coordinate becomes 0*a, 1*a and w*a, then a select), which,
+# vectorised, costs extra products and blends and more live values than
+# AVX2's 16 registers hold. The results are the same bit for bit; in
+# alternating runs the 4-triangle kernel took 0.81-0.85 of the time and
+# edge-edge 0.83-0.89; the contact cycle's change was within the host's
+# noise (BENCHMARKS.md, "gcc's PRE and the narrow phase").
+ifeq ($(findstring clang,$(CCNAME)),)
+NARROW_CFLAGS = -fno-tree-pre
+endif
+NARROW_SRC := kernels/project.c kernels/project_quad.c kernels/project_newton.c kernels/edge.c
 GIT_COMMIT := $(shell git rev-parse --short=12 HEAD 2>/dev/null || echo none)$(shell git diff --quiet HEAD 2>/dev/null || echo -dirty)
-PROV = -DCT_BUILD_CFLAGS='"$(strip $(CFLAGS_ALL))"' -DCT_BUILD_COMMIT='"$(GIT_COMMIT)"'
+PROV_FLAGS = $(strip $(CFLAGS_ALL))$(if $(NARROW_CFLAGS), (narrow phase: $(NARROW_CFLAGS)))
+PROV = -DCT_BUILD_CFLAGS='"$(PROV_FLAGS)"' -DCT_BUILD_COMMIT='"$(GIT_COMMIT)"'
 INC = -Ikernels -Idriver -Ibench
 
 # Provenance is compiled into kernels/common.o: rebuild it whenever the commit
 # or the flags change (a stamp file that is rewritten only when they differ).
 PROV_STAMP := $(BUILD)/provenance.stamp
-PROV_LINE := $(GIT_COMMIT) $(strip $(CFLAGS_ALL))
+PROV_LINE := $(GIT_COMMIT) $(PROV_FLAGS)
 $(shell mkdir -p $(BUILD) && (test -f $(PROV_STAMP) && [ "$$(cat $(PROV_STAMP))" = '$(PROV_LINE)' ] || echo '$(PROV_LINE)' > $(PROV_STAMP)))
+# The narrow-phase objects are rebuilt when their own flags change.
+NARROW_STAMP := $(BUILD)/narrow-flags.stamp
+$(shell test -f $(NARROW_STAMP) && [ "$$(cat $(NARROW_STAMP))" = 'x$(NARROW_CFLAGS)' ] || echo 'x$(NARROW_CFLAGS)' > $(NARROW_STAMP))
+NARROW_OBJ := $(NARROW_SRC:%.c=$(BUILD)/%.o)
+$(NARROW_OBJ): OBJ_CFLAGS = $(NARROW_CFLAGS)
+$(NARROW_OBJ): $(NARROW_STAMP)
 
 PKGS_CFLAGS = $(shell pkg-config --cflags hwloc libcyaml criterion 2>/dev/null)
 LIBS_HWLOC = $(shell pkg-config --libs hwloc 2>/dev/null || echo -lhwloc)
@@ -118,7 +138,7 @@ deps:
 
 $(BUILD)/%.o: %.c
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS_ALL) $(PROV) $(INC) $(PKGS_CFLAGS) -MMD -MP -c $< -o $@
+	$(CC) $(CFLAGS_ALL) $(OBJ_CFLAGS) $(PROV) $(INC) $(PKGS_CFLAGS) -MMD -MP -c $< -o $@
 
 # The Bullet peer compiles to a stub that refuses to run when Bullet's
 # headers are missing (bench/peers/bullet_peer.cc). A stub built before the
@@ -282,7 +302,8 @@ vecreport: deps
 	@mkdir -p $(BUILD)/vecreport
 	@for f in $(KERNEL_SRC); do \
 	  echo "== $$f"; \
-	  $(CC) $(CFLAGS_ALL) $(INC) -fopt-info-vec-optimized -c $$f -o /dev/null 2>&1 | grep -o '[a-z_]*\.c:[0-9]*:[0-9]*: optimized: loop vectorized.*' | sort -u; \
+	  case " $(NARROW_SRC) " in *" $$f "*) xf="$(NARROW_CFLAGS)";; *) xf="";; esac; \
+	  $(CC) $(CFLAGS_ALL) $$xf $(INC) -fopt-info-vec-optimized -c $$f -o /dev/null 2>&1 | grep -o '[a-z_]*\.c:[0-9]*:[0-9]*: optimized: loop vectorized.*' | sort -u; \
 	done
 
 clean:
