@@ -51,11 +51,13 @@ CFLAGS_ALL = $(CFLAGS_BASE) $(SAN_FLAGS) $(EXTRA_CFLAGS)
 # AVX2's 16 registers hold. The results are the same bit for bit; in
 # alternating runs the 4-triangle kernel took 0.81-0.85 of the time and
 # edge-edge 0.83-0.89; the contact cycle's change was within the host's
-# noise (BENCHMARKS.md, "gcc's PRE and the narrow phase").
+# noise (docs/DESIGN-CHANGES.md §6).
 ifeq ($(findstring clang,$(CCNAME)),)
 NARROW_CFLAGS = -fno-tree-pre
 endif
 NARROW_SRC := kernels/project.c kernels/project_quad.c kernels/project_newton.c kernels/edge.c
+# The flags of source file $(1) beyond CFLAGS_ALL.
+src_cflags = $(if $(filter $(1),$(NARROW_SRC)),$(NARROW_CFLAGS))
 GIT_COMMIT := $(shell git rev-parse --short=12 HEAD 2>/dev/null || echo none)$(shell git diff --quiet HEAD 2>/dev/null || echo -dirty)
 PROV_FLAGS = $(strip $(CFLAGS_ALL))$(if $(NARROW_CFLAGS), (narrow phase: $(NARROW_CFLAGS)))
 PROV = -DCT_BUILD_CFLAGS='"$(PROV_FLAGS)"' -DCT_BUILD_COMMIT='"$(GIT_COMMIT)"'
@@ -69,9 +71,7 @@ $(shell mkdir -p $(BUILD) && (test -f $(PROV_STAMP) && [ "$$(cat $(PROV_STAMP))"
 # The narrow-phase objects are rebuilt when their own flags change.
 NARROW_STAMP := $(BUILD)/narrow-flags.stamp
 $(shell test -f $(NARROW_STAMP) && [ "$$(cat $(NARROW_STAMP))" = 'x$(NARROW_CFLAGS)' ] || echo 'x$(NARROW_CFLAGS)' > $(NARROW_STAMP))
-NARROW_OBJ := $(NARROW_SRC:%.c=$(BUILD)/%.o)
-$(NARROW_OBJ): OBJ_CFLAGS = $(NARROW_CFLAGS)
-$(NARROW_OBJ): $(NARROW_STAMP)
+$(NARROW_SRC:%.c=$(BUILD)/%.o): $(NARROW_STAMP)
 
 PKGS_CFLAGS = $(shell pkg-config --cflags hwloc libcyaml criterion 2>/dev/null)
 LIBS_HWLOC = $(shell pkg-config --libs hwloc 2>/dev/null || echo -lhwloc)
@@ -138,7 +138,7 @@ deps:
 
 $(BUILD)/%.o: %.c
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS_ALL) $(OBJ_CFLAGS) $(PROV) $(INC) $(PKGS_CFLAGS) -MMD -MP -c $< -o $@
+	$(CC) $(CFLAGS_ALL) $(call src_cflags,$<) $(PROV) $(INC) $(PKGS_CFLAGS) -MMD -MP -c $< -o $@
 
 # The Bullet peer compiles to a stub that refuses to run when Bullet's
 # headers are missing (bench/peers/bullet_peer.cc). A stub built before the
@@ -300,11 +300,8 @@ run-tests:
 # Which loops the compiler vectorised, per kernel file.
 vecreport: deps
 	@mkdir -p $(BUILD)/vecreport
-	@for f in $(KERNEL_SRC); do \
-	  echo "== $$f"; \
-	  case " $(NARROW_SRC) " in *" $$f "*) xf="$(NARROW_CFLAGS)";; *) xf="";; esac; \
-	  $(CC) $(CFLAGS_ALL) $$xf $(INC) -fopt-info-vec-optimized -c $$f -o /dev/null 2>&1 | grep -o '[a-z_]*\.c:[0-9]*:[0-9]*: optimized: loop vectorized.*' | sort -u; \
-	done
+	@$(foreach f,$(KERNEL_SRC),echo "== $(f)"; \
+	  $(CC) $(CFLAGS_ALL) $(call src_cflags,$(f)) $(INC) -fopt-info-vec-optimized -c $(f) -o /dev/null 2>&1 | grep -o '[a-z_]*\.c:[0-9]*:[0-9]*: optimized: loop vectorized.*' | sort -u;)
 
 clean:
 	rm -rf build

@@ -25,12 +25,12 @@
  *             x_pairs_per_node, x_resorts_per_100.
  *  renumber   "off", "auto" and "fresh" (ct_search_params.renumber; fresh:
  *             auto with renumber_keep -1, a new numbering every search
- *             instead of the kept one) for the topological, bucket and bsp searches on
- *             shuffled plates (RN_TARGET secondaries, static, gap 0.3 h +
- *             margin 0.2 h): cost ns per node per search; accuracy the
- *             pairs that differ from the bucket search with renumbering
- *             off (must be 0: the renumbering returns the same list, bit
- *             for bit).
+ *             instead of the kept one) for the topological, bucket and
+ *             bsp searches on shuffled plates (RN_TARGET secondaries,
+ *             static, gap 0.3 h + margin 0.2 h): cost ns per node per
+ *             search; accuracy the pairs that differ from the bucket
+ *             search with renumbering off (must be 0: the renumbering
+ *             returns the same list, bit for bit).
  *  dense      "off", "auto" and "on" (ct_search_params.dense) for the bsp
  *             search on the graded mesh (DN_TARGET secondaries, natural
  *             numbering, gap 0.3 h + margin 0.2 h): cost ns per node per
