@@ -155,49 +155,20 @@ int ct_pair_box_near(const ct_real p[3], const ct_real a[3], const ct_real b[3],
  */
 
 /*
- * Step 4b, a reject: a lower bound of the distance to the hull, from the
- * slab of the corners' heights along n and the planes through the edges
- * along n. The hull lies in the slab, so its distance is at least q->h /
- * |n|. Edge k's plane has the normal m = n x (P_k+1 - P_k), which points
- * inward when the corners wind positively about n (as n, twice the vector
- * area, makes them do); s[k] = m . (p - P_k), so p is -s[k] / |m| outside
- * it. When the two other corners are on the inner side too (a convex
- * outline, checked), the whole hull is, and since m is orthogonal to n
- * the distance to the slab cut by that half-space is the root of the sum
- * of the squares. Reject when the bound exceeds d by more than rounding
- * (the factor 1 + 64 eps): only pairs truly farther than d are rejected,
- * where step 5 would have cost up to four point-triangle distances.
+ * Step 4b (cti_step_far, predicate_steps.h), a reject: a lower bound of the
+ * distance to the hull, from the slab of the corners' heights along n and the
+ * planes through the edges along n. The hull lies in the slab, so its distance
+ * is at least q.h / |n|. Edge k's plane has the normal m = n x (P_k+1 - P_k),
+ * which points inward when the corners wind positively about n (as n, twice the
+ * vector area, makes them do); s[k] = m . (p - P_k), so p is -s[k] / |m|
+ * outside it. When the two other corners are on the inner side too (a convex
+ * outline, checked), the whole hull is, and since m is orthogonal to n the
+ * distance to the slab cut by that half-space is the root of the sum of the
+ * squares. Reject when the bound exceeds d by more than rounding (the
+ * factor 1 + 64 eps): only pairs truly farther than d are rejected, where
+ * step 5 would have cost up to four point-triangle distances. The vector
+ * lanes of the batch predicate run this step too (predicate_batch.c).
  */
-static inline int hull_far(const ct_real *const corner[4], const ct_real s[4],
-                           const cti_prism *q, ct_real d2)
-{
-    if (!q->ok)
-        return 0;
-    const ct_real lim = d2 * (1 + 64 * CTI_EPS);
-    const ct_real hh = q->h * q->h / q->nn;
-    if (hh > lim)
-        return 1;
-    ct_real lat = 0;
-    for (int k = 0; k < 4; k++) {
-        if (!(s[k] < 0))
-            continue;
-        const ct_real *P = corner[k], *R = corner[(k + 1) & 3];
-        ct_real ek[3], m[3], u[3], v[3];
-        sub3(ek, R, P);
-        m[0] = q->n.y * ek[2] - q->n.z * ek[1];
-        m[1] = q->n.z * ek[0] - q->n.x * ek[2];
-        m[2] = q->n.x * ek[1] - q->n.y * ek[0];
-        ct_real mm = dot3(m, m);
-        sub3(u, corner[(k + 2) & 3], P);
-        sub3(v, corner[(k + 3) & 3], P);
-        if (!(mm > 0) || dot3(m, u) < 0 || dot3(m, v) < 0)
-            continue; /* a reflex outline: this plane bounds nothing */
-        ct_real l2 = s[k] * s[k] / mm;
-        lat = l2 > lat ? l2 : lat;
-    }
-    return lat + hh > lim;
-}
-
 #if defined(__GNUC__)
 #define PRED_NOINLINE __attribute__((noinline))
 #else
@@ -243,8 +214,7 @@ PRED_NOINLINE static int may_touch_past_box(const ct_real p[3], const ct_real a[
     for (int k = 0; k < 4; k++)
         if ((!q.ok || sv[k] < 0) && cti_step_edge2(P, cv[k], cv[(k + 1) & 3]) <= d2)
             return 1;
-    const ct_real *corner[4] = {a, b, c, e};
-    if (hull_far(corner, sv, &q, d2)) /* sv counts only when q.ok */
+    if (cti_step_far(A, B, C, E, q, d2))
         return 0;
     int tri = (c[0] == e[0] && c[1] == e[1] && c[2] == e[2]);
     if (tri)

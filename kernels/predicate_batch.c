@@ -12,18 +12,25 @@
  *  2. decide, in SIMD lanes and without branches, in two stages: first
  *     steps 1 and 2 (the box) reject and step 2b (a corner) accepts, then,
  *     on the lanes left (packed to the front when they are few), step 3
- *     (the prism) and step 4 (the edges) accept; after a batch where step
- *     2b left most lanes open, the next PB_SKIP batches run steps 1, 3 and
- *     4 in one loop instead; a lane they leave undecided, or with a
- *     coordinate that is not finite, goes to
+ *     (the prism) and step 4 (the edges) accept and step 4b (a lower
+ *     bound of the distance) rejects; after a batch where step 2b left
+ *     most lanes open, the next PB_SKIP batches run steps 1, 3 and 4 in one
+ *     loop instead, and the second stage, with step 2b, on the lanes that
+ *     loop leaves open; a lane still undecided, or with a coordinate that
+ *     is not finite, goes to
  *  3. the one-pair predicate, ct_pair_may_touch, on that pair alone.
- * Steps 1 to 4 are the inline functions of predicate_steps.h, the very ones
- * ct_pair_may_touch runs, on the same values: each lane's answer is the
- * one-pair answer, bit for bit, so the batch changes no search's pair set.
- * On smooth surfaces the lanes decide every pair (steps 1 to 4). On the
- * graded mesh (10^5) the corners accept 76 % of the candidates and the box
- * rejects 14 %, so the costly second stage runs on a tenth of them; on the
- * plates no corner is within d, and the batches run as one stage.
+ * Steps 1 to 4b are the inline functions of predicate_steps.h, the very
+ * ones ct_pair_may_touch runs, on the same values and in its order: each
+ * lane's answer is the one-pair answer, bit for bit, so the batch changes
+ * no search's pair set. On smooth surfaces the lanes decide every pair. On
+ * the graded mesh (10^5) the corners accept 76 % of the candidates and
+ * the box rejects 14 %, so the costly second stage runs on a tenth of
+ * them; on the plates no corner is within d, and the batches run as one
+ * stage. On self contact (a crumpled or folded sheet, a sphere) the box
+ * keeps many segments of a node's neighbourhood that lie just farther than
+ * d: step 4b rejects them in the lanes (before it moved here from the
+ * one-pair predicate, those pairs were 2 per node on the crumpled sheet,
+ * all sent to the one-pair predicate).
  *
  * Threads: a batch belongs to one thread (it lives on that thread's stack)
  * and is appended to that thread's own output (a query block's buffer or
@@ -136,9 +143,12 @@ CTI_STEP cti_lane pb_open(cti_pair_batch *restrict b, ct_real d, ct_real d2, con
             accept = cti_step_corners(P, A, B, C, E, d2);
         }
         /* In integer operations (selects between truth values of different
-         * origins do not vectorise): (reject - 1) is 0 or all ones. */
+         * origins do not vectorise): (reject - 1) is 0 or all ones. A lane
+         * with a coordinate that is not finite is 3 whatever the steps say
+         * (a NaN fails every comparison, but an infinity can pass step 4b's):
+         * the one-pair predicate decides it. */
         const cti_lane nf = !(fin == 0);
-        const cti_lane r = ((reject - 1) & (2 - accept)) | (nf << 1);
+        const cti_lane r = ((reject - 1) & (2 - accept)) | (nf * 3);
         ok[k] = r;
         nund += r >> 1;
     }
@@ -171,57 +181,21 @@ __attribute__((noinline)) static cti_lane pb_stage1(cti_pair_batch *restrict b, 
     return pb_open(b, d, d2, 0);
 }
 
-/* Steps 1 to 4 in one vector loop, without step 2b, then the one-pair
- * predicate on the lanes left: for batches where few corners are within d.
- * Leaving step 2b out changes no answer: steps 2b, 3 and 4 only accept and
- * no reject comes between them, so a pair 2b would accept is accepted by
- * 3, 4 or the one-pair predicate, which runs 2b. */
-__attribute__((noinline)) static void pb_one_stage(cti_pair_batch *restrict b, ct_real d,
-                                                   ct_real d2)
-{
-    if (pb_open(b, d, d2, 1))
-        pb_one_pair(b, b->ok, NULL, b->n, d);
-}
+/* The batch's coordinate arrays, read-only, for the loops over its lanes
+ * (in place, or on the lanes packed to the front). */
+#define PB_ARRAYS(b)                                                                    \
+    const ct_real *restrict px = (b)->px, *restrict py = (b)->py, *restrict pz = (b)->pz; \
+    const ct_real *restrict ax = (b)->ax, *restrict ay = (b)->ay, *restrict az = (b)->az; \
+    const ct_real *restrict bx = (b)->bx, *restrict by = (b)->by, *restrict bz = (b)->bz; \
+    const ct_real *restrict cx = (b)->cx, *restrict cy = (b)->cy, *restrict cz = (b)->cz; \
+    const ct_real *restrict ex = (b)->ex, *restrict ey = (b)->ey, *restrict ez = (b)->ez
 
-void cti_pair_batch_test(cti_pair_batch *restrict b, ct_real d)
+/* Steps 3 and 4 accept, on the undecided lanes (2) of o[0..m-1]; returns
+ * whether any lane is left undecided or not finite. */
+static cti_lane pb_accept(const cti_pair_batch *restrict b, cti_lane *restrict o, int m,
+                          ct_real d2)
 {
-    const int n = b->n;
-    const ct_real d2 = d * d;
-    cti_lane *restrict ok = b->ok;
-    ct_real *restrict px = b->px, *restrict py = b->py, *restrict pz = b->pz;
-    ct_real *restrict ax = b->ax, *restrict ay = b->ay, *restrict az = b->az;
-    ct_real *restrict bx = b->bx, *restrict by = b->by, *restrict bz = b->bz;
-    ct_real *restrict cx = b->cx, *restrict cy = b->cy, *restrict cz = b->cz;
-    ct_real *restrict ex = b->ex, *restrict ey = b->ey, *restrict ez = b->ez;
-    /* Step 2b pays only where it lets stage 2 run on few lanes; where it
-     * leaves most lanes undecided (no corner within d: elements large
-     * against d), the next PB_SKIP batches run steps 1 to 4 in one loop
-     * without it, as one stage. */
-    if (b->skip > 0) {
-        b->skip--;
-        pb_one_stage(b, d, d2);
-        return;
-    }
-    const cti_lane nund = pb_stage1(b, d, d2);
-    if (2 * nund > n)
-        b->skip = PB_SKIP;
-    if (!nund)
-        return;
-    /* Stage 2, the lanes left: the prism (step 3) and the edges (step 4)
-     * accept. Few lanes left (a fine mesh, where the corners decide) are
-     * first packed to the front so the vector loop runs over them only;
-     * many are tested in place, where packing would cost more than it
-     * saves. */
-    int idx[CTI_PAIR_BATCH];
-    cti_lane okc[CTI_PAIR_BATCH];
-    cti_lane *restrict o = ok;
-    int m = n;
-    if (2 * nund <= n) {
-        m = pb_compact(b, idx);
-        for (int k = 0; k < m; k++)
-            okc[k] = ok[idx[k]];
-        o = okc;
-    }
+    PB_ARRAYS(b);
     cti_lane left = 0;
 #pragma omp simd reduction(| : left)
     for (int k = 0; k < m; k++) {
@@ -235,14 +209,102 @@ void cti_pair_batch_test(cti_pair_batch *restrict b, ct_real d)
         o[k] = r;
         left |= r >> 1;
     }
+    return left;
+}
+
+/* On the lanes of o[0..m-1] that steps 3 and 4 left undecided (2): step
+ * 2b accepts when `corners` (the one-stage loop left it out), then step
+ * 4b rejects; returns whether any lane is left undecided or not finite. */
+static cti_lane pb_settle(const cti_pair_batch *restrict b, cti_lane *restrict o, int m,
+                          ct_real d2, const int corners)
+{
+    PB_ARRAYS(b);
+    cti_lane left = 0;
+#pragma omp simd reduction(| : left)
+    for (int k = 0; k < m; k++) {
+        const cti_pv P = {px[k], py[k], pz[k]}, A = {ax[k], ay[k], az[k]},
+                     B = {bx[k], by[k], bz[k]}, C = {cx[k], cy[k], cz[k]},
+                     E = {ex[k], ey[k], ez[k]};
+        const cti_lane accept = corners ? cti_step_corners(P, A, B, C, E, d2) : 0;
+        const cti_prism q = cti_step_prism(P, A, B, C, E, d2);
+        const cti_lane far = cti_step_far(A, B, C, E, q, d2);
+        /* 2 becomes 1 when accepted, else 0 when step 4b rejects. */
+        const cti_lane dec = accept | ((far & (1 - accept)) << 1);
+        const cti_lane r = o[k] - (o[k] == 2) * dec;
+        o[k] = r;
+        left |= r >> 1;
+    }
+    return left;
+}
+
+/*
+ * After the first loop left nund lanes undecided: steps 3 and 4 accept
+ * (unless `one`: the one-stage loop ran them), then on the lanes still
+ * open step 2b accepts (only if `one`: stage 1 ran it otherwise) and step
+ * 4b rejects, which is the one-pair predicate's order, so its answer. Few
+ * lanes left (a fine mesh, where the corners decide) are first packed to
+ * the front so the vector loops run over them only; many are tested in
+ * place, where packing would cost more than it saves. Whatever is still
+ * undecided, and every lane with a coordinate that is not finite, goes to
+ * the one-pair predicate. Step 4b's loop runs only when a lane is left
+ * for it (on the plates and the graded mesh, never).
+ */
+static void pb_stage2(cti_pair_batch *restrict b, cti_lane nund, ct_real d, ct_real d2,
+                      const int one)
+{
+    const int n = b->n;
+    cti_lane *restrict ok = b->ok;
+    int idx[CTI_PAIR_BATCH];
+    cti_lane okc[CTI_PAIR_BATCH];
+    cti_lane *restrict o = ok;
+    int m = n;
+    if (2 * nund <= n) {
+        m = pb_compact(b, idx);
+        for (int k = 0; k < m; k++)
+            okc[k] = ok[idx[k]];
+        o = okc;
+    }
+    cti_lane left = one ? 1 : pb_accept(b, o, m, d2);
+    if (left)
+        left = pb_settle(b, o, m, d2, one);
     if (o == okc)
         for (int k = 0; k < m; k++)
             ok[idx[k]] = okc[k];
-    if (!left)
+    if (left)
+        pb_one_pair(b, o, o == okc ? idx : NULL, m, d);
+}
+
+/* Steps 1, 3 and 4 in one vector loop, without step 2b, then step 2b and
+ * step 4b on the lanes left: for batches where few corners are within d.
+ * Leaving step 2b out of the first loop changes no answer: steps 2b, 3 and
+ * 4 only accept and no reject comes between them, and step 2b runs before
+ * step 4b rejects anything. */
+__attribute__((noinline)) static void pb_one_stage(cti_pair_batch *restrict b, ct_real d,
+                                                   ct_real d2)
+{
+    const cti_lane nund = pb_open(b, d, d2, 1);
+    if (nund)
+        pb_stage2(b, nund, d, d2, 1);
+}
+
+void cti_pair_batch_test(cti_pair_batch *restrict b, ct_real d)
+{
+    const int n = b->n;
+    const ct_real d2 = d * d;
+    /* Step 2b pays only where it lets stage 2 run on few lanes; where it
+     * leaves most lanes open (no corner within d: elements large against
+     * d), the next PB_SKIP batches run steps 1, 3 and 4 in one loop without
+     * it, as one stage. */
+    if (b->skip > 0) {
+        b->skip--;
+        pb_one_stage(b, d, d2);
         return;
-    /* Stage 3: what the lanes left undecided, and every lane with a
-     * coordinate that is not finite, goes to the one-pair predicate. */
-    pb_one_pair(b, o, o == okc ? idx : NULL, m, d);
+    }
+    const cti_lane nund = pb_stage1(b, d, d2);
+    if (2 * nund > n)
+        b->skip = PB_SKIP;
+    if (nund)
+        pb_stage2(b, nund, d, d2, 0);
 }
 
 void cti_pair_batch_decide(cti_pair_batch *restrict pb, const ct_search_input *in,

@@ -175,4 +175,42 @@ CTI_STEP cti_lane cti_step_edges(cti_pv p, cti_pv a, cti_pv b, cti_pv c, cti_pv 
     return (e0 | e1 | e2 | e3) & 1;
 }
 
+/* One edge's term of step 4b: edge P -> R of the outline, whose plane along
+ * n has the normal m = n x (R - P), inward when the corners wind positively
+ * about n; s = m . (p - P) (the prism test's side). When p is outside that
+ * plane (s < 0) and the two other corners U and V are inside it (so the
+ * whole hull is), p is at least |s| / |m| from the hull laterally: returns
+ * the larger of lat and s^2 / |m|^2 then, lat otherwise. */
+CTI_STEP ct_real cti_step_far_edge(cti_pv n, cti_pv P, cti_pv R, cti_pv U, cti_pv V, ct_real s,
+                                   ct_real lat)
+{
+    const cti_pv ek = cti_pv_sub(R, P);
+    const cti_pv m = {n.y * ek.z - n.z * ek.y, n.z * ek.x - n.x * ek.z, n.x * ek.y - n.y * ek.x};
+    const ct_real mm = cti_pv_dot(m, m);
+    const cti_pv u = cti_pv_sub(U, P), v = cti_pv_sub(V, P);
+    const ct_real mu = cti_pv_dot(m, u), mv = cti_pv_dot(m, v);
+    const cti_lane use = (s < 0) & (mm > 0) & !(mu < 0) & !(mv < 0);
+    const ct_real l2 = s * s / (mm > 0 ? mm : 1);
+    return (use & (l2 > lat)) ? l2 : lat;
+}
+
+/* Step 4b, a reject (the argument is at its use in predicate.c): 1 when the
+ * lower bound of the hull distance from the slab of the corners' heights
+ * and the edges' planes exceeds d by more than rounding. Every term is
+ * computed (no early exit, so that the step runs in vector lanes); the
+ * answer is that of stopping at the slab alone when it suffices, since
+ * adding the lateral term (>= 0) cannot lower the sum. */
+CTI_STEP cti_lane cti_step_far(cti_pv a, cti_pv b, cti_pv c, cti_pv e, const cti_prism q,
+                               ct_real d2)
+{
+    const ct_real lim = d2 * (1 + 64 * CTI_EPS);
+    const ct_real hh = q.h * q.h / (q.ok ? q.nn : 1);
+    ct_real lat = 0;
+    lat = cti_step_far_edge(q.n, a, b, c, e, q.s0, lat);
+    lat = cti_step_far_edge(q.n, b, c, e, a, q.s1, lat);
+    lat = cti_step_far_edge(q.n, c, e, a, b, q.s2, lat);
+    lat = cti_step_far_edge(q.n, e, a, b, c, q.s3, lat);
+    return q.ok & (lat + hh > lim);
+}
+
 #endif
