@@ -13,6 +13,10 @@
 #include <immintrin.h>
 #endif
 
+/* A batch with fewer free lanes than this is decided before more entries
+ * are tested (see bk_cands_batch). */
+enum { BK_BATCH_SLACK = 16 };
+
 /* What the candidate test needs. */
 typedef struct bk_ctx {
     const ct_real *x, *y, *z;
@@ -69,18 +73,31 @@ static inline bk_fpoint bk_fpoint_of(ct_real X, ct_real Y, ct_real Z)
 }
 #endif
 
-static inline int bk_pretest(const bk_ctx *restrict k, bk_fpoint pv, ct_idx node, ct_idx j)
+static inline int bk_pretest_box(const bk_ctx *restrict k, bk_fpoint pv, ct_idx j)
 {
 #if defined(__AVX__)
     const __m256 fb = _mm256_loadu_ps(k->fbox + (size_t)8 * j);
-    int pass = !_mm256_movemask_ps(_mm256_cmp_ps(pv, fb, _CMP_LT_OQ));
+    return !_mm256_movemask_ps(_mm256_cmp_ps(pv, fb, _CMP_LT_OQ));
 #else
     const float *restrict f = k->fbox + (size_t)8 * j;
-    int pass = !(pv.x < f[0] || pv.y < f[1] || pv.z < f[2] || -pv.x < f[4] || -pv.y < f[5] ||
-                 -pv.z < f[6]);
+    return !(pv.x < f[0] || pv.y < f[1] || pv.z < f[2] || -pv.x < f[4] || -pv.y < f[5] ||
+             -pv.z < f[6]);
 #endif
+}
+
+/* For self contact: 1 when j is not one of the node's own segments (no
+ * branch: about one entry in four is, which a branch would mispredict). */
+static inline int bk_not_own(const bk_ctx *restrict k, ct_idx node, ct_idx j)
+{
+    return !((node == k->n1[j]) | (node == k->n2[j]) | (node == k->n3[j]) |
+             (node == k->n4[j]));
+}
+
+static inline int bk_pretest(const bk_ctx *restrict k, bk_fpoint pv, ct_idx node, ct_idx j)
+{
+    int pass = bk_pretest_box(k, pv, j);
     if (k->self)
-        pass &= !(node == k->n1[j] || node == k->n2[j] || node == k->n3[j] || node == k->n4[j]);
+        pass &= bk_not_own(k, node, j);
     return pass;
 }
 
@@ -163,28 +180,48 @@ static void bk_sink_flush(const bk_ctx *restrict k, cti_pair_batch *restrict pb,
 
 /* As bk_cands_box for the hull filter, in batches: node `node`'s (at
  * secondary position pos) candidates of entries e0 to e1 - 1 that pass the
- * pre-test join the batch pb, which is decided whenever it fills; the sink
- * has room for pb's pending pairs and e1 - e0 more. */
+ * pre-test join the batch pb, which is decided when it is (nearly) full;
+ * the sink has room for pb's pending pairs and e1 - e0 more. The loop over
+ * the entries takes at most as many as the batch has room for, so it does
+ * not test the batch's count per entry, and writes only the segment per
+ * entry: the node and its position are filled in after it, once per run of
+ * accepted entries. */
 static inline void bk_cands_batch(const bk_ctx *restrict k, ct_idx node, ct_idx pos, ct_real X,
                                   ct_real Y, ct_real Z, ct_idx e0, ct_idx e1,
                                   cti_pair_batch *restrict pb, bk_sink *o)
 {
     const ct_idx *restrict ent = k->ent;
     const bk_fpoint pv = bk_fpoint_of(X, Y, Z);
-    int m = pb->n;
-    for (ct_idx e = e0; e < e1; e++) {
-        const ct_idx j = ent[e];
-        pb->node[m] = node;
-        pb->seg[m] = j;
-        o->bpos[m] = pos;
-        m += bk_pretest(k, pv, node, j);
-        if (m == CTI_PAIR_BATCH) {
-            pb->n = m;
-            bk_sink_flush(k, pb, o);
-            m = 0;
+    const int self = k->self;
+    ct_idx *restrict sg = pb->seg, *restrict nd = pb->node, *restrict bp = o->bpos;
+    ct_idx e = e0;
+    while (e < e1) {
+        int m = pb->n;
+        const int m0 = m;
+        const ct_idx ec = e1 - e < CTI_PAIR_BATCH - m ? e1 : e + (CTI_PAIR_BATCH - m);
+        if (self) {
+            for (; e < ec; e++) {
+                const ct_idx j = ent[e];
+                sg[m] = j;
+                m += bk_pretest_box(k, pv, j) & bk_not_own(k, node, j);
+            }
+        } else {
+            for (; e < ec; e++) {
+                const ct_idx j = ent[e];
+                sg[m] = j;
+                m += bk_pretest_box(k, pv, j);
+            }
         }
+        for (int q = m0; q < m; q++) {
+            nd[q] = node;
+            bp[q] = pos;
+        }
+        pb->n = m;
+        /* Decide the batch when it is full, or nearly: a batch left with
+         * little room would make the loop above take few entries a time. */
+        if (m > CTI_PAIR_BATCH - BK_BATCH_SLACK)
+            bk_sink_flush(k, pb, o);
     }
-    pb->n = m;
 }
 
 /* Pass 6, secondary order: blocks of consecutive positions; block 0 writes
