@@ -200,6 +200,11 @@ static inline ct_real cti_nr_clamp01(ct_real u)
     return u < 1 ? u : 1;
 }
 
+/* The three components of the cross product V x P of the vectors named by
+ * the scalars Vx, Vy, Vz and Px, Py, Pz, as a list of arguments. */
+#define CTI_NR_KROSS(V, P)                                                                \
+    V##y * P##z - V##z * P##y, V##z * P##x - V##x * P##z, V##x * P##y - V##y * P##x
+
 /*
  * Closest point of triangle (a, a + ab, a + ac) to a + ap, branch-free with
  * one division: the Voronoi region of the point (vertex, edge or face) is
@@ -210,12 +215,20 @@ static inline ct_real cti_nr_clamp01(ct_real u)
  * (*u, *v, *w, each in [0, 1], their sum 1 up to rounding), the unnormalised normal ab x ac and
  * its squared length *nn, the squared longest edge *l2, and *in = 1 when
  * the unclamped projection lies inside within CTI_NR_IN_TOL.
+ *
+ * kb = ab x ap and kc = ac x ap (CTI_NR_KROSS) are inputs. In a fan of
+ * triangles around one vertex (the 4-triangle quad, vertex a at the
+ * centroid) a corner's product is kc of one triangle and kb of the next:
+ * written the same way for both, the compiler forms it once, where the
+ * former ap x ac and ab x ap, the same products subtracted in the other
+ * order, were formed twice. cti_nr_tri computes them for a lone triangle.
  */
-CTI_NR_INLINE void cti_nr_tri(ct_real abx, ct_real aby, ct_real abz, ct_real acx,
-                              ct_real acy, ct_real acz, ct_real apx, ct_real apy,
-                              ct_real apz, ct_real *q, ct_real *u, ct_real *v, ct_real *w,
-                              ct_real *nx, ct_real *ny, ct_real *nz, ct_real *nn,
-                              ct_real *l2, cti_nr_int *in)
+CTI_NR_INLINE void cti_nr_tri_k(ct_real abx, ct_real aby, ct_real abz, ct_real acx,
+                                ct_real acy, ct_real acz, ct_real apx, ct_real apy,
+                                ct_real apz, ct_real kbx, ct_real kby, ct_real kbz,
+                                ct_real kcx, ct_real kcy, ct_real kcz, ct_real *q, ct_real *u,
+                                ct_real *v, ct_real *w, ct_real *nx, ct_real *ny,
+                                ct_real *nz, ct_real *nn, ct_real *l2, cti_nr_int *in)
 {
     ct_real cx = aby * acz - abz * acy;
     ct_real cy = abz * acx - abx * acz;
@@ -240,10 +253,10 @@ CTI_NR_INLINE void cti_nr_tri(ct_real abx, ct_real aby, ct_real abz, ct_real acx
      * needle (a long edge L over a height h) costs eps L^2/h^2 of the
      * weights: 0.3 of the height in single precision at L/h = 2000
      * (validation case c). */
-    ct_real fv = (apy * acz - apz * acy) * cx + (apz * acx - apx * acz) * cy +
-                 (apx * acy - apy * acx) * cz;
-    ct_real fw = (aby * apz - abz * apy) * cx + (abz * apx - abx * apz) * cy +
-                 (abx * apy - aby * apx) * cz;
+    /* (ap x ac).n = -(kc.n) exactly: ap x ac and ac x ap have the same
+     * products, subtracted in the other order. */
+    ct_real fv = -(kcx * cx + kcy * cy + kcz * cz);
+    ct_real fw = kbx * cx + kby * cy + kbz * cz;
     ct_real fu = n2 - fv - fw;
     ct_real lim = -CTI_NR_IN_TOL * n2;
     *in = (fv >= lim) & (fw >= lim) & (fu >= lim);
@@ -291,6 +304,17 @@ CTI_NR_INLINE void cti_nr_tri(ct_real abx, ct_real aby, ct_real abz, ct_real acx
     *nx = cx; *ny = cy; *nz = cz;
     *nn = n2;
     *l2 = lm;
+}
+
+/* cti_nr_tri_k for one triangle. */
+CTI_NR_INLINE void cti_nr_tri(ct_real abx, ct_real aby, ct_real abz, ct_real acx,
+                              ct_real acy, ct_real acz, ct_real apx, ct_real apy,
+                              ct_real apz, ct_real *q, ct_real *u, ct_real *v, ct_real *w,
+                              ct_real *nx, ct_real *ny, ct_real *nz, ct_real *nn,
+                              ct_real *l2, cti_nr_int *in)
+{
+    cti_nr_tri_k(abx, aby, abz, acx, acy, acz, apx, apy, apz, CTI_NR_KROSS(ab, ap),
+                 CTI_NR_KROSS(ac, ap), q, u, v, w, nx, ny, nz, nn, l2, in);
 }
 
 /*

@@ -38,8 +38,13 @@ void cti_nr_block_4tri(const cti_nr_args *a, ct_idx k0, ct_idx n, cti_nr_blk *b)
             cti_v3 A = o[k], B = o[(k + 1) & 3];
             ct_real q, u, v, w, nx, ny, nz, nn, l2;
             cti_nr_int in;
-            cti_nr_tri(A.x, A.y, A.z, B.x, B.y, B.z, op.x, op.y, op.z, &q, &u, &v, &w, &nx, &ny,
-                       &nz, &nn, &l2, &in);
+            /* A x op and B x op: triangle k + 1's A is this B, and the
+             * compiler forms each corner's product once for both. (Handed
+             * on from one triangle to the next in a variable, or kept in a
+             * second array, they stop gcc from vectorising the loop.) */
+            const cti_v3 KA = v3_cross(A, op), KB = v3_cross(B, op);
+            cti_nr_tri_k(A.x, A.y, A.z, B.x, B.y, B.z, op.x, op.y, op.z, KA.x, KA.y, KA.z, KB.x,
+                         KB.y, KB.z, &q, &u, &v, &w, &nx, &ny, &nz, &nn, &l2, &in);
             cti_nr_int take = (k == 0) | (q < bq);
             bq = take ? q : bq;
             bv = take ? v : bv;
