@@ -43,6 +43,10 @@ typedef struct topo_state {
      * increasing order), built once per key. */
     ct_idx *off, *adj;
     size_t offcap, adjcap;
+    /* Main node -> the other nodes of its segments, each once (CSR): the
+     * candidates of a hop. */
+    ct_idx *noff, *nbr;
+    size_t noffcap, nbrcap;
     /* Closest main node per secondary position, -1 when none. */
     ct_idx *closest;
     size_t clcap;
@@ -55,6 +59,8 @@ static void topo_free(void *p)
         return;
     ct_free(st->off);
     ct_free(st->adj);
+    ct_free(st->noff);
+    ct_free(st->nbr);
     ct_free(st->closest);
     cti_topo_key_free(&st->key);
     free(st);
@@ -63,7 +69,7 @@ static void topo_free(void *p)
 static size_t topo_memory(const void *p)
 {
     const topo_state *st = p;
-    return (st->offcap + st->adjcap + st->clcap) * sizeof(ct_idx) +
+    return (st->offcap + st->adjcap + st->noffcap + st->nbrcap + st->clcap) * sizeof(ct_idx) +
            cti_topo_key_memory(&st->key);
 }
 
@@ -126,6 +132,39 @@ static int topo_build_csr(topo_state *st, const ct_search_input *in)
     for (ct_idx i = nn; i > 0; i--)
         off[i] = off[i - 1];
     off[0] = 0;
+    /* The other nodes of each node's segments, each once, in the order
+     * first met: at most three per segment. */
+    p = st->noff;
+    if (cti_grow(&p, &st->noffcap, (size_t)nn + 1, sizeof(ct_idx), 0))
+        return CT_ERR_NOMEM;
+    st->noff = p;
+    p = st->nbr;
+    if (cti_grow(&p, &st->nbrcap, 3 * (size_t)off[nn] + 1, sizeof(ct_idx), 0))
+        return CT_ERR_NOMEM;
+    st->nbr = p;
+    /* seen[v] == i + 1: v is already in node i's list (a hub node with
+     * many segments costs its degree, not its square). Scratch of the
+     * rebuild, which runs once per topology. */
+    ct_idx *seen = calloc((size_t)nn + 1, sizeof *seen);
+    if (!seen)
+        return CT_ERR_NOMEM;
+    ct_idx *restrict noff = st->noff, *restrict nbr = st->nbr, cnt = 0;
+    for (ct_idx i = 0; i < nn; i++) {
+        noff[i] = cnt;
+        seen[i] = i + 1;
+        for (ct_idx q = off[i]; q < off[i + 1]; q++) {
+            const ct_idx j = st->adj[q];
+            const ct_idx v[4] = {in->n1[j], in->n2[j], in->n3[j], in->n4[j]};
+            for (int k = 0; k < 4; k++) {
+                if (seen[v[k]] == i + 1)
+                    continue;
+                seen[v[k]] = i + 1;
+                nbr[cnt++] = v[k];
+            }
+        }
+    }
+    noff[nn] = cnt;
+    free(seen);
     return CT_OK;
 }
 
@@ -394,6 +433,7 @@ int cti_search_topo(ct_search *s, const ct_search_input *in, ct_pairs *out)
         return rc;
     const ct_real *restrict x = in->x, *restrict y = in->y, *restrict z = in->z;
     const ct_idx *restrict off = st->off, *restrict adj = st->adj;
+    const ct_idx *restrict noff = st->noff, *restrict nbr = st->nbr;
     const ct_real d = in->gap + in->margin;
     /* Hull filter: a node's candidates go through the batch predicate. */
     const int batch = in->filter != CT_FILTER_BOX;
@@ -412,19 +452,19 @@ int cti_search_topo(ct_search *s, const ct_search_input *in, ct_pairs *out)
             const ct_idx node = in->sec[i];
             const ct_real px = x[node], py = y[node], pz = z[node];
             if (!full) {
-                /* One hop: the closest of the nodes of M's segments. */
+                /* One hop: the closest of the nodes of M's segments (each
+                 * once: the closest under (distance, tie order) does not
+                 * depend on the order or on repeats, and M itself never
+                 * beats itself). */
                 ct_idx best = m;
                 ct_real bd = topo_d2(x, y, z, m, px, py, pz);
-                for (ct_idx q = off[m]; q < off[m + 1]; q++) {
-                    ct_idx j = adj[q];
-                    ct_idx v[4] = {in->n1[j], in->n2[j], in->n3[j], in->n4[j]};
-                    for (int k = 0; k < 4; k++) {
-                        ct_real d2 = topo_d2(x, y, z, v[k], px, py, pz);
-                        if ((d2 < bd || (d2 == bd && topo_before(tie, v[k], best))) &&
-                            !topo_excluded(in, off, adj, node, v[k])) {
-                            best = v[k];
-                            bd = d2;
-                        }
+                for (ct_idx q = noff[m]; q < noff[m + 1]; q++) {
+                    const ct_idx v = nbr[q];
+                    const ct_real d2 = topo_d2(x, y, z, v, px, py, pz);
+                    if ((d2 < bd || (d2 == bd && topo_before(tie, v, best))) &&
+                        !topo_excluded(in, off, adj, node, v)) {
+                        best = v;
+                        bd = d2;
                     }
                 }
                 m = best;
