@@ -73,33 +73,86 @@ static inline ct_real cti_dt_type7_item(const struct cti_dt_type7_in *in, ct_idx
     return lim ? (gi - pi) / ((ct_real)2 * -v) : CT_DT_NONE;
 }
 
+/* Items per chunk of the scan. */
+#define CTI_DT_CHUNK 256
+
+/* The chunk's minimum as a vector reduction: gcc vectorises it; clang 14
+ * does not without -ffast-math (a compare-and-select minimum of doubles
+ * that may be NaN) and, asked to, fails the build under -Werror, so it
+ * gets the plain loop. */
+#ifdef __clang__
+#define CTI_DT_MIN_SIMD
+#else
+#define CTI_DT_MIN_SIMD _Pragma("omp simd reduction(min : cm)")
+#endif
+
+/* The steps of items [i0, i0 + n) (n <= CTI_DT_CHUNK) into d, their NaN
+ * flags into nan; returns whether any is NaN. One vector loop per kind. */
+static int cti_dt_chunk(const struct cti_dt_in *in, ct_idx i0, int n, ct_real *restrict d,
+                        cti_lane *restrict nan)
+{
+    cti_lane any = 0;
+    if (in->kind == CTI_DT_NODAL) {
+#pragma omp simd reduction(| : any)
+        for (int k = 0; k < n; k++) {
+            int f = 0;
+            d[k] = cti_dt_nodal_item(&in->nodal, i0 + k, &f);
+            nan[k] = f;
+            any |= f;
+        }
+    } else {
+#pragma omp simd reduction(| : any)
+        for (int k = 0; k < n; k++) {
+            int f = 0;
+            d[k] = cti_dt_type7_item(&in->type7, i0 + k, &f);
+            nan[k] = f;
+            any |= f;
+        }
+    }
+    return any != 0;
+}
+
 /* The scan shared by the per-item limits: dt[i] = the step of item i
  * (CT_DT_NONE where an input is NaN), the minimum and its lowest index, or
- * CT_ERR_NONFINITE with the first NaN item. (The kind is tested inside the
- * loop, which the compiler unswitches: no indirect call per item.) */
+ * CT_ERR_NONFINITE with the first NaN item. In chunks: the steps of a
+ * chunk in a vector loop, its minimum by a vector reduction (exact), then
+ * the first index holding it, so the answer is the item-by-item scan's. */
 static int cti_dt_scan(ct_idx n, const struct cti_dt_in *in, ct_real *dt, ct_real *dtmin,
                        ct_idx *imin)
 {
     ct_real best = CT_DT_NONE;
     ct_idx bi = -1, nan_idx = n;
+    const ct_idx nch = (n + CTI_DT_CHUNK - 1) / CTI_DT_CHUNK;
 #pragma omp parallel if (n > CTI_PAR_MIN)
     {
         ct_real lb = CT_DT_NONE;
         ct_idx li = -1, ln = n;
+        _Alignas(64) ct_real d[CTI_DT_CHUNK];
+        _Alignas(64) cti_lane nan[CTI_DT_CHUNK];
 #pragma omp for schedule(static) nowait
-        for (ct_idx i = 0; i < n; i++) {
-            int nan = 0;
-            ct_real d = in->kind == CTI_DT_NODAL ? cti_dt_nodal_item(&in->nodal, i, &nan)
-                                                 : cti_dt_type7_item(&in->type7, i, &nan);
-            if (nan) {
-                ln = i < ln ? i : ln;
-                d = CT_DT_NONE;
+        for (ct_idx c = 0; c < nch; c++) {
+            const ct_idx i0 = c * CTI_DT_CHUNK;
+            const int m = (int)(n - i0 < CTI_DT_CHUNK ? n - i0 : CTI_DT_CHUNK);
+            if (cti_dt_chunk(in, i0, m, d, nan)) {
+                for (int k = 0; k < m; k++)
+                    if (nan[k]) {
+                        d[k] = CT_DT_NONE;
+                        ln = i0 + k < ln ? i0 + k : ln;
+                    }
             }
             if (dt)
-                dt[i] = d;
-            if (d < lb) {
-                lb = d;
-                li = i;
+                for (int k = 0; k < m; k++)
+                    dt[i0 + k] = d[k];
+            ct_real cm = CT_DT_NONE;
+            CTI_DT_MIN_SIMD
+            for (int k = 0; k < m; k++)
+                cm = d[k] < cm ? d[k] : cm;
+            if (cm < lb) {
+                int k = 0;
+                while (!(d[k] == cm))
+                    k++;
+                lb = d[k];
+                li = i0 + k;
             }
         }
 #pragma omp critical(cti_dt)
