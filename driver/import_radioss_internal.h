@@ -190,6 +190,10 @@ typedef struct ctd_rad_res {
     ct_idx *gsegn;
     int32_t *stamp;      /* per node or segment */
     int32_t gen;
+    /* Per dense part or /GRSHEL index: the last list that used it (a list
+     * that repeats an id goes through its elements once). */
+    int32_t *idstamp;
+    int32_t idgen;
 } ctd_rad_res;
 
 /* Release the resolution state (nl: the number of list cards). */

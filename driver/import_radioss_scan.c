@@ -376,6 +376,14 @@ int ctd_rad_scan(ctd_rad_reader *r, const char *buf, size_t size, int32_t *nline
             return ctd_rad_fail(r, CT_ERR_ARG, ln,
                                 "line of %zu characters, longer than the %d allowed", n,
                                 CTD_DECK_MAXLINE);
+        /* A NUL byte is not text: the keyword and title code works on C
+         * strings, which would end there (and a keyword's id would then be
+         * looked for past its end). */
+        const char *nul = memchr(p, '\0', n);
+        if (nul)
+            return ctd_rad_fail(r, CT_ERR_ARG, ln,
+                                "a NUL byte in column %d (not a text deck)",
+                                (int)(nul - p) + 1);
         const char *s = p;
         int len = (int)n, rc;
         p = q + 1;

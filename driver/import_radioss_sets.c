@@ -45,6 +45,18 @@ static int push(ctd_rad_res *z, ilist *o, ct_idx v)
     return CT_OK;
 }
 
+/* 1 the first time the part or /GRSHEL index k is met since the last
+ * z->idgen++ (one list's pass over its ids), else 0: a repeated id adds
+ * nothing, and without this check a list that repeats the id of a large
+ * part n times would cost n times the part. */
+static int first_use(ctd_rad_res *z, ct_idx k)
+{
+    if (z->idstamp[k] == z->idgen)
+        return 0;
+    z->idstamp[k] = z->idgen;
+    return 1;
+}
+
 /* The index (in map m) of the id of entry i of list l; an unknown id is
  * CT_ERR_RANGE, "field 'F' (number K) of KW/ID: unknown WHAT ID". */
 static int list_ref(ctd_rad_reader *r, const ctd_rad_map *m, const ctd_rad_list *l, size_t i,
@@ -112,8 +124,11 @@ static int surf_brick_faces(ctd_rad_reader *r, ctd_rad_res *z, const ctd_rad_lis
     unsigned char *sel = calloc(r->nb + 1, 1);
     if (!sel)
         return ctd_rad_nomem(r, -1);
+    z->idgen++;
     for (size_t i = 0; i < l->n; i++) {
         ct_idx k = ctd_rad_map_get(&z->parts, l->ids[i]);
+        if (!first_use(z, k))
+            continue;
         for (ct_idx j = z->pk_boff[k]; j < z->pk_boff[k + 1]; j++)
             sel[z->pk_brk[j]] = 1;
     }
@@ -153,12 +168,15 @@ static int surf_brick_faces(ctd_rad_reader *r, ctd_rad_res *z, const ctd_rad_lis
 static int res_surf(ctd_rad_reader *r, ctd_rad_res *z, const ctd_rad_list *l, ilist *o)
 {
     z->gen++;
+    z->idgen++;
     if (l->type == CTD_RAD_L_SURF_GRSHEL) {
         for (size_t i = 0; i < l->n; i++) {
             ct_idx g;
             int rc = list_ref(r, &z->grshel, l, i, "/GRSHEL/SHEL", &g);
             if (rc != CT_OK)
                 return rc;
+            if (!first_use(z, g))
+                continue;
             for (ct_idx k = 0; k < z->gsegn[g]; k++)
                 if (push(z, o, z->gseg[g][k]))
                     return ctd_rad_nomem(r, -1);
@@ -170,6 +188,8 @@ static int res_surf(ctd_rad_reader *r, ctd_rad_res *z, const ctd_rad_list *l, il
         return rc;
     for (size_t i = 0; i < l->n; i++) {
         ct_idx k = ctd_rad_map_get(&z->parts, l->ids[i]);
+        if (!first_use(z, k))
+            continue;
         for (ct_idx j = z->pk_soff[k]; j < z->pk_soff[k + 1]; j++)
             if (push(z, o, z->pk_seg[j]))
                 return ctd_rad_nomem(r, -1);
@@ -195,6 +215,7 @@ static int push_nodes(ctd_rad_res *z, ilist *o, const ct_idx *conn, int stride, 
 static int res_group(ctd_rad_reader *r, ctd_rad_res *z, const ctd_rad_list *l, ilist *o)
 {
     z->gen++;
+    z->idgen++;
     int nomem = 0, any_brick, rc;
     if (l->type == CTD_RAD_L_GRNOD_PART && (rc = check_parts(r, z, l, &any_brick)) != CT_OK)
         return rc;
@@ -208,9 +229,12 @@ static int res_group(ctd_rad_reader *r, ctd_rad_res *z, const ctd_rad_list *l, i
             ct_idx g;
             if ((rc = list_ref(r, &z->grshel, l, i, "/GRSHEL/SHEL", &g)) != CT_OK)
                 return rc;
-            nomem = push_nodes(z, o, z->sn, 4, 4, z->gseg[g], z->gsegn[g]) != CT_OK;
+            if (first_use(z, g))
+                nomem = push_nodes(z, o, z->sn, 4, 4, z->gseg[g], z->gsegn[g]) != CT_OK;
         } else {
             ct_idx k = ctd_rad_map_get(&z->parts, l->ids[i]);
+            if (!first_use(z, k))
+                continue;
             nomem = push_nodes(z, o, z->sn, 4, 4, z->pk_seg + z->pk_soff[k],
                                z->pk_soff[k + 1] - z->pk_soff[k]) != CT_OK ||
                     push_nodes(z, o, z->bnode, 8, 8, z->pk_brk + z->pk_boff[k],
@@ -239,8 +263,9 @@ int ctd_rad_res_sets(ctd_rad_reader *r, ctd_rad_res *z, ctd_deck *d)
     d->surf = calloc(nsurf + 1, sizeof *d->surf);
     d->group = calloc(ngroup + 1, sizeof *d->group);
     z->stamp = calloc(nstamp, sizeof *z->stamp);
+    z->idstamp = calloc((z->npk > r->nl ? z->npk : r->nl) + 1, sizeof *z->idstamp);
     z->faceseg = malloc((6 * r->nb + 1) * sizeof *z->faceseg);
-    if (!d->surf || !d->group || !z->stamp || !z->faceseg)
+    if (!d->surf || !d->group || !z->stamp || !z->idstamp || !z->faceseg)
         return ctd_rad_nomem(r, -1);
     for (size_t i = 0; i < 6 * r->nb; i++)
         z->faceseg[i] = -1;

@@ -459,6 +459,30 @@ Test(import_radioss, long_line)
     unlink(path);
 }
 
+/* A NUL byte inside a keyword (found by fuzzing: the keyword's id was
+ * looked for with strchr, which stopped at the NUL and returned NULL) is an
+ * error naming the line and the column, not a crash; so is one in a data
+ * line (an error before too, but one that did not say why). */
+Test(import_radioss, nul_byte)
+{
+    char path[256];
+    tmp_path(path, sizeof path, "nul_byte.rad");
+    FILE *f = fopen(path, "wb");
+    cr_assert_not_null(f);
+    static const char kw[] = "/GRNOD/GRSHEL\0/9\n";
+    fwrite(kw, 1, sizeof kw - 1, f);
+    fclose(f);
+    expect_error(path, CT_ERR_ARG, 1, "NUL byte", "column 14");
+    f = fopen(path, "wb");
+    cr_assert_not_null(f);
+    static const char node[] = "/NODE\n         1                 1.5\0"
+                               "                   0                   0\n";
+    fwrite(node, 1, sizeof node - 1, f);
+    fclose(f);
+    expect_error(path, CT_ERR_ARG, 2, "NUL byte", "column 31");
+    unlink(path);
+}
+
 /* ---- Formats ----------------------------------------------------------- */
 
 static void check_formats(const ctd_deck *d)
@@ -591,5 +615,58 @@ Test(import_radioss, large_deck_linear_time, .timeout = 120)
     unlink(path);
     cr_log_info("import_radioss: %ld nodes and %ld quads read in %.3f s", nn, (long)n * n, sec);
     /* Linear time: about 0.3 s here; a quadratic id lookup would take minutes. */
+    cr_assert_lt(sec, ctt_checking() ? 20.0 : 5.0, "%.2f s", sec);
+}
+
+/* Lists that repeat one id (found by review while fuzzing): each
+ * repetition of a part or /GRSHEL id used to go through all its elements
+ * again, so a list naming a part of n elements n times took n^2 steps
+ * (55 s for this 7 MB deck, minutes for larger ones). */
+Test(import_radioss, repeated_list_ids_linear_time, .timeout = 120)
+{
+    int n = ctt_checking() ? 60 : 200; /* n x n quads of part 1 */
+    long ne = (long)n * n, nn = (long)(n + 1) * (n + 1);
+    char path[256];
+    tmp_path(path, sizeof path, "repeated_ids.rad");
+    FILE *f = fopen(path, "w");
+    cr_assert_not_null(f);
+    fprintf(f, "/NODE\n");
+    for (long i = 0; i < nn; i++)
+        fprintf(f, "%10ld%20.6f%20.6f%20.6f\n", i + 1, 0.1 * (double)(i % (n + 1)),
+                0.1 * (double)(i / (n + 1)), 0.0);
+    fprintf(f, "/SHELL/1\n");
+    for (long j = 0, e = 1; j < n; j++)
+        for (long i = 0; i < n; i++, e++) {
+            long a = i + (n + 1) * j;
+            fprintf(f, "%10ld%10ld%10ld%10ld%10ld\n", e, a + 1, a + 2, a + n + 3, a + n + 2);
+        }
+    fprintf(f, "/GRSHEL/SHEL/4\nall shells\n");
+    for (long e = 1; e <= ne; e++)
+        fprintf(f, "%10ld%s", e, e % 100 == 0 || e == ne ? "\n" : "");
+    /* Each list names its part or /GRSHEL ne times, 100 to a line. */
+    const char *lists[4][2] = {{"/GRNOD/PART/1", "1"},
+                               {"/SURF/PART/2", "1"},
+                               {"/SURF/GRSHEL/3", "4"},
+                               {"/GRNOD/GRSHEL/5", "4"}};
+    for (int k = 0; k < 4; k++) {
+        fprintf(f, "%s\nrepeated\n", lists[k][0]);
+        for (long e = 1; e <= ne; e++)
+            fprintf(f, "%10s%s", lists[k][1], e % 100 == 0 || e == ne ? "\n" : "");
+    }
+    fclose(f);
+    struct timespec t0, t1;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    ctd_deck d;
+    load(path, &d);
+    clock_gettime(CLOCK_MONOTONIC, &t1);
+    double sec = (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
+    cr_assert_eq(ctd_deck_group(&d, 1)->s.n, (ct_idx)nn);
+    cr_assert_eq(ctd_deck_surf(&d, 2)->s.n, (ct_idx)ne);
+    cr_assert_eq(ctd_deck_surf(&d, 3)->s.n, (ct_idx)ne);
+    cr_assert_eq(ctd_deck_group(&d, 5)->s.n, (ct_idx)nn);
+    ctd_deck_destroy(&d);
+    unlink(path);
+    cr_log_info("import_radioss: 4 lists of %ld repeated ids read in %.3f s", ne, sec);
+    /* Linear time: well under a second; the quadratic passes took minutes. */
     cr_assert_lt(sec, ctt_checking() ? 20.0 : 5.0, "%.2f s", sec);
 }
