@@ -25,15 +25,25 @@ static const struct {
     [CTD_GEN_NET] = {2, 2, 0, 0, 0, 0, LINE},    [CTD_GEN_ROD] = {1, 0, 0, 0, 1, 0, LINE},
 };
 
+/* The most nodes a generated mesh may have (meshgen's limit, ct_idx). */
+#define GEN_MAXNODES ((int64_t)INT32_MAX - 64)
+
+/* a b c, or INT64_MAX when it does not fit (cells are at most 1e8, so the
+ * product of two factors does). */
+static int64_t mul3(int64_t a, int64_t b, int64_t c)
+{
+    return a * b > INT64_MAX / c ? INT64_MAX : a * b * c;
+}
+
 static int64_t gen_nodes(const ctd_scene_generate *g)
 {
     const int64_t *c = g->cells_eff;
     switch (g->kind) {
     case CTD_GEN_PLATE:
     case CTD_GEN_NET: return (c[0] + 1) * (c[1] + 1);
-    case CTD_GEN_BLOCK: return (c[0] + 1) * (c[1] + 1) * (c[2] + 1);
+    case CTD_GEN_BLOCK: return mul3(c[0] + 1, c[1] + 1, c[2] + 1);
     case CTD_GEN_SPHERE: return 6 * c[0] * c[0] + 2;
-    case CTD_GEN_BALL: return (c[0] + 1) * (c[0] + 1) * (c[0] + 1);
+    case CTD_GEN_BALL: return mul3(c[0] + 1, c[0] + 1, c[0] + 1);
     case CTD_GEN_TUBE: return c[0] * (c[1] + 1);
     case CTD_GEN_ROD: return c[0] + 1;
     case CTD_GEN_FOLDED: {
@@ -60,7 +70,8 @@ static void check_generate(vctx *v, unsigned i, ctd_scene_generate *g)
     int nerr = v->e->count;
     int k = g->kind;
     const ctd_scene_part *part = ctd_scene_part_by_id(v->sc, g->part);
-    if (cti_vpart_ref(v, cti_vpath(v, "%s.part", b), g->part) &&
+    /* A part whose element is unknown (-1) has its own error already. */
+    if (cti_vpart_ref(v, cti_vpath(v, "%s.part", b), g->part) && part->element >= 0 &&
         !(kind_spec[k].elem_mask >> part->element & 1))
         cti_err(v->e, CT_ERR_ARG, 0, cti_vpath(v, "%s.part", b),
                 "part %lld has element %s, which a %s mesh cannot have (expected %s)",
@@ -119,6 +130,9 @@ static void check_generate(vctx *v, unsigned i, ctd_scene_generate *g)
     if (kind_spec[k].folded && (!cti_vhas(v, pl) || g->layers < 1))
         cti_err(v->e, CT_ERR_ARG, 0, pl, "expected an integer >= 1 for kind folded, got %s",
                 cti_vhas(v, pl) ? "less" : "nothing");
+    else if (kind_spec[k].folded && g->layers > 100000000)
+        cti_err(v->e, CT_ERR_ARG, 0, pl, "expected an integer in 1 .. 1e8, got %lld",
+                (long long)g->layers);
     const char *pt = cti_vpath(v, "%s.to", b);
     if (kind_spec[k].to && !cti_vhas(v, pt))
         cti_err(v->e, CT_ERR_ARG, 0, pt,
@@ -130,6 +144,12 @@ static void check_generate(vctx *v, unsigned i, ctd_scene_generate *g)
     if (g->tri && k != CTD_GEN_PLATE)
         cti_err(v->e, CT_ERR_ARG, 0, cti_vpath(v, "%s.tri", b), "only used by kind plate");
     v->sc->mesh[i].nnode = v->e->count == nerr ? gen_nodes(g) : -1;
+    if (v->sc->mesh[i].nnode > GEN_MAXNODES) {
+        cti_err(v->e, CT_ERR_ARG, 0, cti_vpath(v, "%s.cells", b),
+                "the mesh would have more than %lld nodes (expected fewer cells)",
+                (long long)GEN_MAXNODES);
+        v->sc->mesh[i].nnode = -1;
+    }
 }
 
 static void check_import(vctx *v, unsigned i, ctd_scene_import *im)

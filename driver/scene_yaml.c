@@ -66,9 +66,15 @@ static int ynode_push(cti_ynode *p, char *key, int key_line, cti_ynode *c)
     return 0;
 }
 
+/* The deepest nesting of sequences and mappings read. A scene needs four
+ * levels (interfaces[0].curve[0][0]); the tree is built recursively, so
+ * without a limit a file of a million '[' would overflow the stack. */
+#define YAML_MAXDEPTH 64
+
 typedef struct ybuild {
     yaml_parser_t parser;
     char path[512];
+    int depth;
     int err_line;
     char err[256];
 } ybuild;
@@ -108,9 +114,17 @@ static cti_ynode *build_node(ybuild *b, yaml_event_t *ev)
     }
     int seq = ev->type == YAML_SEQUENCE_START_EVENT;
     yaml_event_delete(ev);
+    if (b->depth >= YAML_MAXDEPTH) {
+        b->err_line = line;
+        snprintf(b->err, sizeof b->err,
+                 "malformed YAML: lists and mappings nested deeper than %d levels",
+                 YAML_MAXDEPTH);
+        return NULL;
+    }
     cti_ynode *n = ynode_new(seq ? CTI_Y_SEQ : CTI_Y_MAP, line);
     if (!n)
         return NULL;
+    b->depth++;
     size_t plen = strlen(b->path);
     for (;;) {
         yaml_event_t e;
@@ -142,8 +156,10 @@ static cti_ynode *build_node(ybuild *b, yaml_event_t *ev)
         }
         b->path[plen] = '\0';
     }
+    b->depth--;
     return n;
 fail:
+    b->depth--;
     cti_ynode_free(n);
     return NULL;
 }

@@ -7,6 +7,7 @@
  */
 #include <stdio.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "scene.h"
 #include "test_util.h"
@@ -303,4 +304,111 @@ Test(scene, refine_override)
     cr_expect_eq(ctd_scene_load_refined(p, 1001, &sc, &err), CT_ERR_ARG);
     cr_expect_null(sc);
     cr_expect_str_eq(err.msg[0].field, "refine");
+}
+
+/* Deeply nested lists (found by review while fuzzing: the YAML tree was
+ * built by a recursion without a limit, and 200000 '[' overflowed the
+ * stack) are an error naming the file, the line and the field, not a
+ * crash. */
+Test(scene, deep_nesting_is_an_error)
+{
+    char p[256];
+    snprintf(p, sizeof p, "/tmp/ct_scene_%ld_deep.yaml", (long)getpid());
+    FILE *f = fopen(p, "w");
+    cr_assert_not_null(f);
+    fprintf(f, "end_time: 1\nmesh: ");
+    for (int i = 0; i < 200000; i++)
+        fputc('[', f);
+    fputc('\n', f);
+    fclose(f);
+    static ctd_scene_err err;
+    ctd_scene *sc = (ctd_scene *)1;
+    int rc = ctd_scene_load(p, &sc, &err);
+    unlink(p);
+    cr_assert_eq(rc, CT_ERR_ARG, "code %d (%s)", rc, err.msg[0].text);
+    cr_assert_null(sc);
+    const ctd_scene_msg *m = &err.msg[0];
+    cr_assert_eq(m->line, 2, "%s", m->text);
+    cr_assert_eq(strncmp(m->field, "mesh[0][0]", 10), 0, "%s", m->text);
+    cr_assert_not_null(strstr(m->text, "nested deeper than 64 levels"), "%s", m->text);
+    char want[300];
+    snprintf(want, sizeof want, "%s:2: mesh[0][0]", p);
+    cr_assert_eq(strncmp(m->text, want, strlen(want)), 0, "%s", m->text);
+}
+
+/* Load the scene `text` from a temporary file; the load must fail with
+ * one error (err->msg[0]); returns its code. */
+static int load_text_fails(const char *text, ctd_scene_err *err)
+{
+    char p[256];
+    snprintf(p, sizeof p, "/tmp/ct_scene_%ld_text.yaml", (long)getpid());
+    FILE *f = fopen(p, "w");
+    cr_assert_not_null(f);
+    fputs(text, f);
+    fclose(f);
+    ctd_scene *sc = (ctd_scene *)1;
+    int rc = ctd_scene_load(p, &sc, err);
+    unlink(p);
+    cr_assert_neq(rc, CT_OK, "the scene was accepted:\n%s", text);
+    cr_assert_null(sc);
+    cr_assert_eq(err->count, 1, "%d errors: %s / %s", err->count, err->msg[0].text,
+                 err->msg[1].text);
+    return rc;
+}
+
+/* A generated mesh on a part whose element is unknown (found by fuzzing:
+ * the element's -1 was used as a shift count, undefined behaviour that
+ * UBSan reports) gets the one error on the element, nothing more. */
+Test(scene, unknown_element_of_generated_part)
+{
+    static ctd_scene_err err;
+    int rc = load_text_fails("end_time: 1\n"
+                             "mesh:\n"
+                             "  - generate: {kind: block, part: 1, cells: [1, 1, 1],"
+                             " size: [1, 1, 1]}\n"
+                             "parts:\n"
+                             "  - {id: 1, element: bric, material: {E: 1, nu: 0.3, rho: 1}}\n",
+                             &err);
+    cr_assert_eq(rc, CT_ERR_ARG, "code %d (%s)", rc, err.msg[0].text);
+    cr_assert_eq(err.msg[0].line, 5);
+    cr_assert_str_eq(err.msg[0].field, "parts[0].element");
+    cr_assert_not_null(strstr(err.msg[0].text, "got 'bric'"), "%s", err.msg[0].text);
+}
+
+/* Cells whose node count overflows (found by review while fuzzing: (n+1)^3
+ * with n = 1e8 overflowed int64, undefined behaviour, and the scene was
+ * accepted with a wrapped node count) or exceeds what a mesh can index are
+ * an error on the cells; so are folded layers beyond int (they were
+ * truncated: 4294967299 layers became 3). */
+Test(scene, generated_sizes_out_of_range)
+{
+    static ctd_scene_err err;
+    const char *parts = "parts:\n"
+                        "  - {id: 1, element: brick, material: {E: 1, nu: 0.3, rho: 1}}\n"
+                        "  - {id: 2, element: shell, thickness: 0.001,"
+                        " material: {E: 1, nu: 0.3, rho: 1}}\n";
+    const struct {
+        const char *mesh, *field, *what;
+    } c[] = {
+        {"  - generate: {kind: block, part: 1, cells: [100000000, 100000000, 100000000],"
+         " size: [1, 1, 1]}\n",
+         "mesh[0].generate.cells", "more than 2147483583 nodes"},
+        {"  - generate: {kind: ball, part: 1, cells: [100000000], radius: 1}\n",
+         "mesh[0].generate.cells", "more than 2147483583 nodes"},
+        {"  - generate: {kind: block, part: 1, cells: [2000, 2000, 1000], size: [1, 1, 1]}\n",
+         "mesh[0].generate.cells", "more than 2147483583 nodes"},
+        {"  - generate: {kind: folded, part: 2, cells: [8, 4], size: [0.005],"
+         " layers: 4294967299, spacing: 0.008}\n",
+         "mesh[0].generate.layers", "expected an integer in 1 .. 1e8, got 4294967299"},
+    };
+    for (size_t k = 0; k < sizeof c / sizeof c[0]; k++) {
+        char text[1024];
+        snprintf(text, sizeof text, "end_time: 1\nmesh:\n%s%s", c[k].mesh, parts);
+        int rc = load_text_fails(text, &err);
+        cr_assert_eq(rc, CT_ERR_ARG, "case %zu: code %d (%s)", k, rc, err.msg[0].text);
+        cr_assert_eq(err.msg[0].line, 3, "case %zu: %s", k, err.msg[0].text);
+        cr_assert_str_eq(err.msg[0].field, c[k].field, "case %zu: %s", k, err.msg[0].text);
+        cr_assert_not_null(strstr(err.msg[0].text, c[k].what), "case %zu: %s", k,
+                           err.msg[0].text);
+    }
 }
