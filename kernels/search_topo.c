@@ -133,34 +133,44 @@ static int topo_build_csr(topo_state *st, const ct_search_input *in)
         off[i] = off[i - 1];
     off[0] = 0;
     /* The other nodes of each node's segments, each once, in the order
-     * first met: at most three per segment. */
+     * first met: counted, then written (seen[v] == i + 1, then -(i + 1):
+     * v is already in node i's list; a hub node costs its degree, not its
+     * square). Scratch of the rebuild, which runs once per topology. */
     p = st->noff;
     if (cti_grow(&p, &st->noffcap, (size_t)nn + 1, sizeof(ct_idx), 0))
         return CT_ERR_NOMEM;
     st->noff = p;
-    p = st->nbr;
-    if (cti_grow(&p, &st->nbrcap, 3 * (size_t)off[nn] + 1, sizeof(ct_idx), 0))
-        return CT_ERR_NOMEM;
-    st->nbr = p;
-    /* seen[v] == i + 1: v is already in node i's list (a hub node with
-     * many segments costs its degree, not its square). Scratch of the
-     * rebuild, which runs once per topology. */
     ct_idx *seen = calloc((size_t)nn + 1, sizeof *seen);
     if (!seen)
         return CT_ERR_NOMEM;
-    ct_idx *restrict noff = st->noff, *restrict nbr = st->nbr, cnt = 0;
-    for (ct_idx i = 0; i < nn; i++) {
-        noff[i] = cnt;
-        seen[i] = i + 1;
-        for (ct_idx q = off[i]; q < off[i + 1]; q++) {
-            const ct_idx j = st->adj[q];
-            const ct_idx v[4] = {in->n1[j], in->n2[j], in->n3[j], in->n4[j]};
-            for (int k = 0; k < 4; k++) {
-                if (seen[v[k]] == i + 1)
-                    continue;
-                seen[v[k]] = i + 1;
-                nbr[cnt++] = v[k];
+    ct_idx *restrict noff = st->noff, cnt = 0;
+    for (int pass = 0; pass < 2; pass++) {
+        ct_idx *restrict nbr = st->nbr;
+        cnt = 0;
+        for (ct_idx i = 0; i < nn; i++) {
+            const ct_idx mark = pass ? -(i + 1) : i + 1;
+            noff[i] = cnt;
+            seen[i] = mark;
+            for (ct_idx q = off[i]; q < off[i + 1]; q++) {
+                const ct_idx j = st->adj[q];
+                const ct_idx v[4] = {in->n1[j], in->n2[j], in->n3[j], in->n4[j]};
+                for (int k = 0; k < 4; k++) {
+                    if (seen[v[k]] == mark)
+                        continue;
+                    seen[v[k]] = mark;
+                    if (pass)
+                        nbr[cnt] = v[k];
+                    cnt++;
+                }
             }
+        }
+        if (!pass) {
+            p = st->nbr;
+            if (cti_grow(&p, &st->nbrcap, (size_t)cnt + 1, sizeof(ct_idx), 0)) {
+                free(seen);
+                return CT_ERR_NOMEM;
+            }
+            st->nbr = p;
         }
     }
     noff[nn] = cnt;
