@@ -107,6 +107,13 @@ CTI_NOVEC static int pb_compact(cti_pair_batch *restrict b, int *restrict idx)
     return m;
 }
 
+/* Lane k's node P and corners A, B, C, E, from the batch's arrays (px ..
+ * ez, in scope as restrict pointers). */
+#define PB_LANE(k)                                                                      \
+    const cti_pv P = {px[k], py[k], pz[k]}, A = {ax[k], ay[k], az[k]},                 \
+                 B = {bx[k], by[k], bz[k]}, C = {cx[k], cy[k], cz[k]},                 \
+                 E = {ex[k], ey[k], ez[k]}
+
 /* Steps 1 and 2 reject, on every lane; what accepts is step 2b (`one` =
  * 0: stage 1 of two) or steps 3 and 4 (`one` = 1: the one-stage test).
  * ok[k] = 0 reject, 1 accept, 2 undecided, 3 not finite (undecided to the
@@ -124,9 +131,7 @@ CTI_STEP cti_lane pb_open(cti_pair_batch *restrict b, ct_real d, ct_real d2, con
     cti_lane nund = 0;
 #pragma omp simd reduction(+ : nund)
     for (int k = 0; k < n; k++) {
-        const cti_pv P = {px[k], py[k], pz[k]}, A = {ax[k], ay[k], az[k]},
-                     B = {bx[k], by[k], bz[k]}, C = {cx[k], cy[k], cz[k]},
-                     E = {ex[k], ey[k], ez[k]};
+        PB_LANE(k);
         /* v - v is 0 for a finite v, NaN otherwise. */
         const ct_real fin = ((P.x - P.x) + (P.y - P.y) + (P.z - P.z)) +
                             ((A.x - A.x) + (A.y - A.y) + (A.z - A.z)) +
@@ -199,9 +204,7 @@ static cti_lane pb_accept(const cti_pair_batch *restrict b, cti_lane *restrict o
     cti_lane left = 0;
 #pragma omp simd reduction(| : left)
     for (int k = 0; k < m; k++) {
-        const cti_pv P = {px[k], py[k], pz[k]}, A = {ax[k], ay[k], az[k]},
-                     B = {bx[k], by[k], bz[k]}, C = {cx[k], cy[k], cz[k]},
-                     E = {ex[k], ey[k], ez[k]};
+        PB_LANE(k);
         const cti_prism q = cti_step_prism(P, A, B, C, E, d2);
         const cti_lane accept = q.accept | cti_step_edges(P, A, B, C, E, d2, q);
         /* An undecided lane (2) becomes 1 when accepted; 0, 1 and 3 stay. */
@@ -222,9 +225,7 @@ static cti_lane pb_settle(const cti_pair_batch *restrict b, cti_lane *restrict o
     cti_lane left = 0;
 #pragma omp simd reduction(| : left)
     for (int k = 0; k < m; k++) {
-        const cti_pv P = {px[k], py[k], pz[k]}, A = {ax[k], ay[k], az[k]},
-                     B = {bx[k], by[k], bz[k]}, C = {cx[k], cy[k], cz[k]},
-                     E = {ex[k], ey[k], ez[k]};
+        PB_LANE(k);
         const cti_lane accept = corners ? cti_step_corners(P, A, B, C, E, d2) : 0;
         const cti_prism q = cti_step_prism(P, A, B, C, E, d2);
         const cti_lane far = cti_step_far(A, B, C, E, q, d2);

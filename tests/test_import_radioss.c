@@ -573,6 +573,16 @@ Test(import_radioss, crlf_line_ends)
 
 /* ---- Speed ------------------------------------------------------------- */
 
+/* load(), timed (seconds of wall clock). */
+static double load_timed(const char *path, ctd_deck *d)
+{
+    struct timespec t0, t1;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    load(path, d);
+    clock_gettime(CLOCK_MONOTONIC, &t1);
+    return (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
+}
+
 Test(import_radioss, large_deck_linear_time, .timeout = 120)
 {
     int n = ctt_checking() ? 100 : 500; /* n x n quads, (n+1)^2 nodes */
@@ -596,12 +606,8 @@ Test(import_radioss, large_deck_linear_time, .timeout = 120)
         }
     fprintf(f, "/SURF/PART/1\nall\n         1\n");
     fclose(f);
-    struct timespec t0, t1;
-    clock_gettime(CLOCK_MONOTONIC, &t0);
     ctd_deck d;
-    load(path, &d);
-    clock_gettime(CLOCK_MONOTONIC, &t1);
-    double sec = (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
+    double sec = load_timed(path, &d);
     cr_assert_eq(d.mesh.nodes.n, nn);
     cr_assert_eq(d.mesh.nseg, (ct_idx)n * n);
     cr_assert_eq(ctd_deck_surf(&d, 1)->s.n, (ct_idx)n * n);
@@ -654,12 +660,8 @@ Test(import_radioss, repeated_list_ids_linear_time, .timeout = 120)
             fprintf(f, "%10s%s", lists[k][1], e % 100 == 0 || e == ne ? "\n" : "");
     }
     fclose(f);
-    struct timespec t0, t1;
-    clock_gettime(CLOCK_MONOTONIC, &t0);
     ctd_deck d;
-    load(path, &d);
-    clock_gettime(CLOCK_MONOTONIC, &t1);
-    double sec = (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
+    double sec = load_timed(path, &d);
     cr_assert_eq(ctd_deck_group(&d, 1)->s.n, (ct_idx)nn);
     cr_assert_eq(ctd_deck_surf(&d, 2)->s.n, (ct_idx)ne);
     cr_assert_eq(ctd_deck_surf(&d, 3)->s.n, (ct_idx)ne);
