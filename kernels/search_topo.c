@@ -47,6 +47,10 @@ typedef struct topo_state {
      * candidates of a hop. */
     ct_idx *noff, *nbr;
     size_t noffcap, nbrcap;
+    /* Scratch of that list's build (one mark per node), kept: the build
+     * runs again whenever a renumbered copy is made anew. */
+    ct_idx *seen;
+    size_t seencap;
     /* Closest main node per secondary position, -1 when none. */
     ct_idx *closest;
     size_t clcap;
@@ -61,6 +65,7 @@ static void topo_free(void *p)
     ct_free(st->adj);
     ct_free(st->noff);
     ct_free(st->nbr);
+    ct_free(st->seen);
     ct_free(st->closest);
     cti_topo_key_free(&st->key);
     free(st);
@@ -69,7 +74,8 @@ static void topo_free(void *p)
 static size_t topo_memory(const void *p)
 {
     const topo_state *st = p;
-    return (st->offcap + st->adjcap + st->noffcap + st->nbrcap + st->clcap) * sizeof(ct_idx) +
+    return (st->offcap + st->adjcap + st->noffcap + st->nbrcap + st->seencap + st->clcap) *
+               sizeof(ct_idx) +
            cti_topo_key_memory(&st->key);
 }
 
@@ -135,14 +141,17 @@ static int topo_build_csr(topo_state *st, const ct_search_input *in)
     /* The other nodes of each node's segments, each once, in the order
      * first met: counted, then written (seen[v] == i + 1, then -(i + 1):
      * v is already in node i's list; a hub node costs its degree, not its
-     * square). Scratch of the rebuild, which runs once per topology. */
+     * square). */
     p = st->noff;
     if (cti_grow(&p, &st->noffcap, (size_t)nn + 1, sizeof(ct_idx), 0))
         return CT_ERR_NOMEM;
     st->noff = p;
-    ct_idx *seen = calloc((size_t)nn + 1, sizeof *seen);
-    if (!seen)
+    p = st->seen;
+    if (cti_grow(&p, &st->seencap, (size_t)nn + 1, sizeof(ct_idx), 0))
         return CT_ERR_NOMEM;
+    st->seen = p;
+    ct_idx *restrict seen = st->seen;
+    memset(seen, 0, ((size_t)nn + 1) * sizeof *seen);
     ct_idx *restrict noff = st->noff, cnt = 0;
     for (int pass = 0; pass < 2; pass++) {
         ct_idx *restrict nbr = st->nbr;
@@ -166,15 +175,12 @@ static int topo_build_csr(topo_state *st, const ct_search_input *in)
         }
         if (!pass) {
             p = st->nbr;
-            if (cti_grow(&p, &st->nbrcap, (size_t)cnt + 1, sizeof(ct_idx), 0)) {
-                free(seen);
+            if (cti_grow(&p, &st->nbrcap, (size_t)cnt + 1, sizeof(ct_idx), 0))
                 return CT_ERR_NOMEM;
-            }
             st->nbr = p;
         }
     }
     noff[nn] = cnt;
-    free(seen);
     return CT_OK;
 }
 
