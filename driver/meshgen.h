@@ -63,6 +63,11 @@ int ctd_tube(ct_mesh *m, int nr, int nl, double radius, double length);
  * apart: self contact on every layer. */
 int ctd_folded(ct_mesh *m, int nlayer, int nflat, int nw, double h, double spacing);
 
+/* The number of nodes ctd_folded makes with these arguments, without
+ * making them: -1 for arguments it rejects, INT64_MAX when the count does
+ * not fit in 64 bits. */
+int64_t ctd_folded_nodes(int nlayer, int nflat, int nw, double h, double spacing);
+
 /* Plate of nx x ny cells of size h displaced in x, y and z by a smooth
  * random field (8 Fourier modes per component, wavelength ~ 12 h) of the
  * given amplitude; amplitudes of a few h fold the surface over itself

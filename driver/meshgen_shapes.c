@@ -310,15 +310,35 @@ int ctd_tube(ct_mesh *m, int nr, int nl, double radius, double length)
     return rc;
 }
 
+/* The points along the folded sheet's section, in double (it can exceed
+ * any integer type for absurd parameters). */
+static double folded_points(int nlayer, int nflat, double h, double spacing)
+{
+    double lf = nflat * h, lb = M_PI * spacing / 2;
+    double total = nlayer * lf + (nlayer - 1) * lb;
+    return round(total / h) + 1;
+}
+
+int64_t ctd_folded_nodes(int nlayer, int nflat, int nw, double h, double spacing)
+{
+    if (nlayer < 1 || nflat < 1 || nw < 1 || !(h > 0) || !(spacing > 0))
+        return -1;
+    double np = folded_points(nlayer, nflat, h, spacing);
+    if (!(np * (nw + 1.0) < 9e18))
+        return INT64_MAX;
+    return (int64_t)np * (nw + 1);
+}
+
 int ctd_folded(ct_mesh *m, int nlayer, int nflat, int nw, double h, double spacing)
 {
     if (!m || nlayer < 1 || nflat < 1 || nw < 1 || !(h > 0) || !(spacing > 0))
         return CT_ERR_ARG;
     double lf = nflat * h, r = spacing / 2, lb = M_PI * r, period = lf + lb;
     double total = nlayer * lf + (nlayer - 1) * lb;
-    int64_t np = (int64_t)llround(total / h) + 1;
-    if (np > INT32_MAX / 2)
+    double npd = folded_points(nlayer, nflat, h, spacing);
+    if (!(npd <= INT32_MAX / 2))
         return CT_ERR_TOOBIG;
+    int64_t np = (int64_t)npd;
     double *px = malloc(sizeof(double) * (size_t)np), *py = malloc(sizeof(double) * (size_t)np);
     int rc = CT_ERR_NOMEM;
     if (px && py) {

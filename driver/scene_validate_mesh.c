@@ -46,15 +46,8 @@ static int64_t gen_nodes(const ctd_scene_generate *g)
     case CTD_GEN_BALL: return mul3(c[0] + 1, c[0] + 1, c[0] + 1);
     case CTD_GEN_TUBE: return c[0] * (c[1] + 1);
     case CTD_GEN_ROD: return c[0] + 1;
-    case CTD_GEN_FOLDED: {
-        ct_mesh m;
-        double h = g->size[0];
-        if (ctd_folded(&m, (int)g->layers, (int)c[0], (int)c[1], h, g->spacing) != CT_OK)
-            return -1;
-        int64_t n = m.nodes.n;
-        ct_mesh_destroy(&m);
-        return n;
-    }
+    case CTD_GEN_FOLDED:
+        return ctd_folded_nodes((int)g->layers, (int)c[0], (int)c[1], g->size[0], g->spacing);
     default: return -1;
     }
 }

@@ -281,6 +281,33 @@ Test(meshgen, tube_and_folded_topology)
     ct_mesh_destroy(&m);
 }
 
+/* The folded sheet's node count, known without making the mesh (a scene's
+ * check counted nodes by making it: 10^9 nodes for layers 1000 of cells
+ * [1000, 1000]), is the count the mesh has, for spacings that round the
+ * section's length either way; and absurd sizes give INT64_MAX, not a
+ * wrapped count. */
+Test(meshgen, folded_node_count_without_the_mesh)
+{
+    const struct {
+        int layers, nflat, nw;
+        double h, spacing;
+    } c[] = {{1, 1, 1, 1.0, 0.5}, {4, 10, 3, 1.0, 0.4},  {7, 13, 2, 0.3, 0.17},
+             {3, 5, 4, 0.1, 0.0637}, {2, 9, 1, 2.0, 7.3}, {20, 3, 5, 0.5, 0.011}};
+    for (size_t k = 0; k < sizeof c / sizeof c[0]; k++) {
+        ct_mesh m;
+        cr_assert_eq(ctd_folded(&m, c[k].layers, c[k].nflat, c[k].nw, c[k].h, c[k].spacing),
+                     CT_OK);
+        cr_assert_eq(ctd_folded_nodes(c[k].layers, c[k].nflat, c[k].nw, c[k].h, c[k].spacing),
+                     (int64_t)m.nodes.n, "case %zu", k);
+        ct_mesh_destroy(&m);
+    }
+    cr_assert_eq(ctd_folded_nodes(0, 1, 1, 1.0, 1.0), -1);
+    cr_assert_eq(ctd_folded_nodes(1, 1, 1, 1.0, 0.0), -1);
+    cr_assert_eq(ctd_folded_nodes(100000000, 100000000, 100000000, 1e-300, 1e300), INT64_MAX);
+    cr_assert_eq(ctd_folded_nodes(1000, 1000, 1000, 1.0, 2.0),
+                 (int64_t)1001 * (int64_t)llround((1000 * 1000.0 + 999 * M_PI) / 1.0 + 1));
+}
+
 Test(meshgen, plate_numbering_documented)
 {
     ct_mesh m;

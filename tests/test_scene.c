@@ -379,7 +379,9 @@ Test(scene, unknown_element_of_generated_part)
  * with n = 1e8 overflowed int64, undefined behaviour, and the scene was
  * accepted with a wrapped node count) or exceeds what a mesh can index are
  * an error on the cells; so are folded layers beyond int (they were
- * truncated: 4294967299 layers became 3). */
+ * truncated: 4294967299 layers became 3). A folded sheet's count is known
+ * without making it (it was made to be counted, and too large a one passed
+ * the check with an unknown count). */
 Test(scene, generated_sizes_out_of_range)
 {
     static ctd_scene_err err;
@@ -396,6 +398,9 @@ Test(scene, generated_sizes_out_of_range)
         {"  - generate: {kind: ball, part: 1, cells: [100000000], radius: 1}\n",
          "mesh[0].generate.cells", "more than 2147483583 nodes"},
         {"  - generate: {kind: block, part: 1, cells: [2000, 2000, 1000], size: [1, 1, 1]}\n",
+         "mesh[0].generate.cells", "more than 2147483583 nodes"},
+        {"  - generate: {kind: folded, part: 2, cells: [1000, 1000], size: [0.005],"
+         " layers: 100000, spacing: 0.008}\n",
          "mesh[0].generate.cells", "more than 2147483583 nodes"},
         {"  - generate: {kind: folded, part: 2, cells: [8, 4], size: [0.005],"
          " layers: 4294967299, spacing: 0.008}\n",
