@@ -176,6 +176,15 @@ static int check_seg(const ct_mesh *m, ct_idx s, ct_diag *diag)
             return CT_OK;
     double area, l2;
     seg_area(m, s, &area, &l2);
+    /* The kernels square squared lengths (a normal's length from a cross
+     * product): beyond this the arithmetic overflows, and the area test
+     * below would read inf <= inf as zero area. */
+    if (!(l2 * l2 < (double)CTI_HUGE))
+        return cti_fail(diag, CT_ERR_NONFINITE, s,
+                        "segment %ld is too large for %s precision: its longest edge squared "
+                        "is %g, and the kernels need its square below %g (scale the model's "
+                        "length unit).",
+                        (long)s, CT_PRECISION_NAME, l2, (double)CTI_HUGE);
     if (area <= CTI_AREA_TOL * l2)
         return cti_fail(diag, CT_ERR_DEGENERATE, s,
                         "segment %ld has zero area: its area %g is at most %g times its "

@@ -165,6 +165,26 @@ Test(mesh, rejects_zero_area)
     ct_mesh_destroy(&m);
 }
 
+/* Finite coordinates whose segment is too large for the arithmetic (found
+ * while fuzzing: 1e200 in double gave "zero area: its area inf") are named
+ * as such; the same shape scaled down to the largest size accepted passes. */
+Test(mesh, rejects_segment_too_large_for_the_precision)
+{
+    ct_mesh m;
+    cr_assert_eq(ct_mesh_init(&m, 3, 1), CT_OK);
+    double big = CTT_TOL(1e200, 1e30);
+    m.nodes.x[1] = (ct_real)big;
+    m.nodes.y[2] = (ct_real)big;
+    m.n1[0] = 0; m.n2[0] = 1; m.n3[0] = 2; m.n4[0] = 2;
+    expect_fail(&m, CT_ERR_NONFINITE, 0, "segment 0 is too large for", "scale the model");
+    /* Longest edge squared 2 L^2 with L^4 well below the limit. */
+    double ok = CTT_TOL(1e70, 1e9);
+    m.nodes.x[1] = (ct_real)ok;
+    m.nodes.y[2] = (ct_real)ok;
+    cr_assert_eq(ct_mesh_validate(&m, NULL), CT_OK);
+    ct_mesh_destroy(&m);
+}
+
 /* ---- Topology ---------------------------------------------------------- */
 
 static void check_sorted_edges(const ct_mesh *m)
