@@ -1,9 +1,11 @@
 /*
  * import_radioss_bricks.c -- the outer surface of bricks (see
- * import_radioss.h): the faces not shared by two selected bricks, found by
- * sorting the faces' corner keys (a counting sort on the largest corner,
- * then a small sort in each bucket), each turned to point away from its
- * brick's centroid; and the same for the brick parts of a deck.
+ * import_radioss.h): the faces not shared by two selected bricks. The
+ * faces' corner keys are sorted (a counting sort on the largest corner,
+ * then a small sort in each bucket) into classes of equal keys; a face is
+ * outer when its class occurs once among the selected bricks' faces; each
+ * is turned to point away from its brick's centroid. The same for the
+ * brick parts of a deck.
  */
 #include <stdio.h>
 #include <stdlib.h>
@@ -69,22 +71,26 @@ static void face_key(const ct_idx *c8, int l, int selected, ct_idx k[4])
         }
 }
 
-/* Mark (outer[f] = 1) the faces whose key occurs once among the nslot
- * keys: bucketed by their largest node (cnt: nnode + 2 zeros, order:
- * nslot), each bucket sorted (few faces share a largest node). */
-static void mark_outer(ct_idx nnode, ct_idx nslot, const ct_idx *key, ct_idx *cnt,
-                       ct_idx *order, unsigned char *outer)
+/* Give each of the nslot face slots its class (cls[f]): the faces whose
+ * keys are equal share one class id, numbered from 0; a slot without a face
+ * gets -1. The keys are bucketed by their largest node (cnt: nnode + 2
+ * zeros, order: nslot), each bucket sorted (few faces share a largest
+ * node). */
+static void mark_classes(ct_idx nnode, ct_idx nslot, const ct_idx *key, ct_idx *cnt,
+                         ct_idx *order, ct_idx *cls)
 {
-    for (ct_idx f = 0; f < nslot; f++)
+    for (ct_idx f = 0; f < nslot; f++) {
+        cls[f] = -1;
         if (key[4 * f + 3] >= 0)
             cnt[key[4 * f + 3] + 1]++;
+    }
     for (ct_idx i = 0; i < nnode; i++)
         cnt[i + 1] += cnt[i];
     for (ct_idx f = 0; f < nslot; f++)
         if (key[4 * f + 3] >= 0)
             order[cnt[key[4 * f + 3]]++] = f;
     /* cnt[i] is now the end of bucket i. */
-    ct_idx lo = 0;
+    ct_idx lo = 0, ncls = 0;
     for (ct_idx i = 0; i < nnode; i++) {
         ct_idx hi = cnt[i];
         for (ct_idx a = lo + 1; a < hi; a++)
@@ -94,16 +100,34 @@ static void mark_outer(ct_idx nnode, ct_idx nslot, const ct_idx *key, ct_idx *cn
                 order[j] = order[j - 1];
                 order[j - 1] = t;
             }
-        for (ct_idx a = lo; a < hi;) {
-            ct_idx e = a + 1;
-            while (e < hi && !memcmp(key + 4 * order[e], key + 4 * order[a], 4 * sizeof *key))
-                e++;
-            if (e == a + 1)
-                outer[order[a]] = 1;
-            a = e;
+        for (ct_idx a = lo; a < hi; a++) {
+            if (a > lo && memcmp(key + 4 * order[a], key + 4 * order[a - 1], 4 * sizeof *key))
+                ncls++;
+            cls[order[a]] = ncls;
         }
+        ncls += hi > lo;
         lo = hi;
     }
+}
+
+int ctd_brick_face_classes(ct_idx nnode, ct_idx nbrick, const ct_idx *conn,
+                           const unsigned char *sel, ct_idx *cls)
+{
+    ct_idx nslot = 6 * nbrick;
+    ct_idx *key = malloc(((size_t)nslot * 4 + 1) * sizeof *key);
+    ct_idx *cnt = calloc((size_t)nnode + 2, sizeof *cnt);
+    ct_idx *order = malloc(((size_t)nslot + 1) * sizeof *order);
+    int rc = key && cnt && order ? CT_OK : CT_ERR_NOMEM;
+    if (rc == CT_OK) {
+        for (ct_idx b = 0; b < nbrick; b++)
+            for (int l = 0; l < 6; l++)
+                face_key(conn + 8 * (int64_t)b, l, !sel || sel[b], key + 4 * (6 * b + l));
+        mark_classes(nnode, nslot, key, cnt, order, cls);
+    }
+    free(key);
+    free(cnt);
+    free(order);
+    return rc;
 }
 
 /* Turn the m corners w of a face of the brick c8 so that its normal points
@@ -151,6 +175,53 @@ void ctd_faces_destroy(ctd_faces *f)
     memset(f, 0, sizeof *f);
 }
 
+/* Whether face slot f is outer in the selection counted with generation gen
+ * (see ctd_brick_select_outer). */
+static int slot_outer(const ct_idx *cls, const int32_t *stamp, int32_t gen, int64_t f)
+{
+    return cls[f] >= 0 && stamp[cls[f]] == gen;
+}
+
+int ctd_brick_select_outer(const ct_real *x, const ct_real *y, const ct_real *z,
+                           const ct_idx *conn, const ct_idx *cls, ct_idx nsel, const ct_idx *brk,
+                           int32_t *stamp, int32_t gen, ctd_faces *out)
+{
+    memset(out, 0, sizeof *out);
+    /* A class seen once in this selection holds gen, seen more often -gen. */
+    for (ct_idx i = 0; i < nsel; i++)
+        for (int l = 0; l < 6; l++) {
+            ct_idx c = cls[6 * (int64_t)brk[i] + l];
+            if (c >= 0)
+                stamp[c] = (stamp[c] == gen || stamp[c] == -gen) ? -gen : gen;
+        }
+    ct_idx n = 0;
+    for (ct_idx i = 0; i < nsel; i++)
+        for (int l = 0; l < 6; l++)
+            n += slot_outer(cls, stamp, gen, 6 * (int64_t)brk[i] + l);
+    out->node = ct_calloc(4 * (size_t)n, sizeof(ct_idx));
+    out->brick = ct_calloc((size_t)n, sizeof(ct_idx));
+    out->local = ct_calloc((size_t)n, sizeof(int8_t));
+    if (!out->node || !out->brick || !out->local) {
+        ctd_faces_destroy(out);
+        return CT_ERR_NOMEM;
+    }
+    ct_idx j = 0;
+    for (ct_idx i = 0; i < nsel; i++)
+        for (int l = 0; l < 6; l++) {
+            ct_idx b = brk[i], w[4];
+            if (!slot_outer(cls, stamp, gen, 6 * (int64_t)b + l))
+                continue;
+            const ct_idx *c8 = conn + 8 * (int64_t)b;
+            orient_face(x, y, z, c8, face_corners(c8, l, w), w);
+            memcpy(out->node + 4 * j, w, sizeof w);
+            out->brick[j] = b;
+            out->local[j] = (int8_t)l;
+            j++;
+        }
+    out->n = n;
+    return CT_OK;
+}
+
 int ctd_brick_outer_faces(ct_idx nnode, const ct_real *x, const ct_real *y, const ct_real *z,
                           ct_idx nbrick, const ct_idx *conn, const unsigned char *sel,
                           ctd_faces *out, ct_diag *diag)
@@ -167,47 +238,20 @@ int ctd_brick_outer_faces(ct_idx nnode, const ct_real *x, const ct_real *y, cons
             return cti_fail(diag, CT_ERR_RANGE, k / 8,
                             "brick %ld: node %d = %ld is out of range [0, %ld).", (long)(k / 8),
                             (int)(k % 8) + 1, (long)conn[k], (long)nnode);
-    ct_idx nslot = 6 * nbrick;
-    ct_idx *key = malloc(((size_t)nslot * 4 + 1) * sizeof *key);
-    ct_idx *cnt = calloc((size_t)nnode + 2, sizeof *cnt);
-    ct_idx *order = malloc(((size_t)nslot + 1) * sizeof *order);
-    unsigned char *outer = calloc((size_t)nslot + 1, 1);
+    ct_idx nslot = 6 * nbrick, n = 0;
+    ct_idx *cls = malloc(((size_t)nslot + 1) * sizeof *cls);
+    ct_idx *brk = malloc(((size_t)nbrick + 1) * sizeof *brk);
+    int32_t *stamp = calloc((size_t)nslot + 1, sizeof *stamp);
     int rc = CT_ERR_NOMEM;
-    if (!key || !cnt || !order || !outer)
-        goto done;
-    for (ct_idx b = 0; b < nbrick; b++)
-        for (int l = 0; l < 6; l++)
-            face_key(conn + 8 * (int64_t)b, l, !sel || sel[b], key + 4 * (6 * b + l));
-    mark_outer(nnode, nslot, key, cnt, order, outer);
-    ct_idx n = 0;
-    for (ct_idx f = 0; f < nslot; f++)
-        n += outer[f];
-    out->node = ct_calloc(4 * (size_t)n, sizeof(ct_idx));
-    out->brick = ct_calloc((size_t)n, sizeof(ct_idx));
-    out->local = ct_calloc((size_t)n, sizeof(int8_t));
-    if (!out->node || !out->brick || !out->local) {
-        ctd_faces_destroy(out);
-        goto done;
+    if (cls && brk && stamp && ctd_brick_face_classes(nnode, nbrick, conn, sel, cls) == CT_OK) {
+        for (ct_idx b = 0; b < nbrick; b++)
+            if (!sel || sel[b])
+                brk[n++] = b;
+        rc = ctd_brick_select_outer(x, y, z, conn, cls, n, brk, stamp, 1, out);
     }
-    ct_idx j = 0;
-    for (ct_idx f = 0; f < nslot; f++) {
-        if (!outer[f])
-            continue;
-        ct_idx b = f / 6, w[4];
-        int l = f % 6, m = face_corners(conn + 8 * (int64_t)b, l, w);
-        orient_face(x, y, z, conn + 8 * (int64_t)b, m, w);
-        memcpy(out->node + 4 * j, w, sizeof w);
-        out->brick[j] = b;
-        out->local[j] = (int8_t)l;
-        j++;
-    }
-    out->n = n;
-    rc = CT_OK;
-done:
-    free(key);
-    free(cnt);
-    free(order);
-    free(outer);
+    free(cls);
+    free(brk);
+    free(stamp);
     if (rc == CT_ERR_NOMEM)
         cti_fail(diag, rc, -1, "Out of memory in ctd_brick_outer_faces.");
     return rc;

@@ -79,7 +79,7 @@ void ctd_rad_res_free(ctd_rad_res *z, size_t nl)
     free(z->sline); free(z->spk); free(z->bnode); free(z->bpk); free(z->faceseg);
     free(z->pk_id); free(z->pk_brick);
     free(z->pk_soff); free(z->pk_seg); free(z->pk_boff); free(z->pk_brk); free(z->stamp);
-    free(z->idstamp);
+    free(z->idstamp); free(z->fcls); free(z->fstamp); free(z->fbrk);
     if (z->gseg)
         for (size_t i = 0; i < nl; i++)
             free(z->gseg[i]);

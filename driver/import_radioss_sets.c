@@ -117,29 +117,48 @@ static int check_parts(ctd_rad_reader *r, ctd_rad_res *z, const ctd_rad_list *l,
 
 /* ---- Surfaces ---------------------------------------------------------- */
 
+/* The face classes of all the deck's bricks and the arrays of the cards'
+ * selections, made once (at the first card that needs them). */
+static int brick_classes(ctd_rad_reader *r, ctd_rad_res *z)
+{
+    if (z->fbrk)
+        return CT_OK;
+    z->fcls = malloc((6 * r->nb + 1) * sizeof *z->fcls);
+    z->fstamp = calloc(6 * r->nb + 1, sizeof *z->fstamp);
+    if (!z->fcls || !z->fstamp ||
+        ctd_brick_face_classes(z->nd.n, (ct_idx)r->nb, z->bnode, NULL, z->fcls) != CT_OK ||
+        !(z->fbrk = malloc((r->nb + 1) * sizeof *z->fbrk)))
+        return ctd_rad_nomem(r, -1);
+    return CT_OK;
+}
+
 /* The outer faces of the bricks of the parts of list l, made segments
- * (once each, whatever the number of surfaces that use them). */
+ * (once each, whatever the number of surfaces that use them). The cost is
+ * that of the parts' bricks: their faces' classes, found once for the
+ * deck, are counted among them. */
 static int surf_brick_faces(ctd_rad_reader *r, ctd_rad_res *z, const ctd_rad_list *l, ilist *o)
 {
-    unsigned char *sel = calloc(r->nb + 1, 1);
-    if (!sel)
-        return ctd_rad_nomem(r, -1);
+    int rc = brick_classes(r, z), nparts = 0;
+    if (rc != CT_OK)
+        return rc;
+    /* The bricks, in increasing order (each part's list is), as when the
+     * faces of all bricks were scanned: this order numbers new segments. */
+    ct_idx nsel = 0;
     z->idgen++;
     for (size_t i = 0; i < l->n; i++) {
-        ct_idx k = ctd_rad_map_get(&z->parts, l->ids[i]);
-        if (!first_use(z, k))
+        ct_idx k = ctd_rad_map_get(&z->parts, l->ids[i]), nk = z->pk_boff[k + 1] - z->pk_boff[k];
+        if (!first_use(z, k) || nk == 0)
             continue;
-        for (ct_idx j = z->pk_boff[k]; j < z->pk_boff[k + 1]; j++)
-            sel[z->pk_brk[j]] = 1;
+        memcpy(z->fbrk + nsel, z->pk_brk + z->pk_boff[k], (size_t)nk * sizeof *z->fbrk);
+        nsel += nk;
+        nparts++;
     }
+    if (nparts > 1)
+        qsort(z->fbrk, (size_t)nsel, sizeof *z->fbrk, cmp_idx);
     ctd_faces f;
-    ct_diag d;
-    int rc = ctd_brick_outer_faces(z->nd.n, z->nd.x, z->nd.y, z->nd.z, (ct_idx)r->nb, z->bnode,
-                                   sel, &f, &d);
-    free(sel);
-    if (rc != CT_OK)
-        return ctd_rad_fail(r, rc, l->line, "%s/%lld: %s", ctd_rad_list_kw[l->type],
-                            (long long)l->id, d.msg);
+    if (ctd_brick_select_outer(z->nd.x, z->nd.y, z->nd.z, z->bnode, z->fcls, nsel, z->fbrk,
+                               z->fstamp, ++z->fgen, &f) != CT_OK)
+        return ctd_rad_nomem(r, -1);
     for (ct_idx j = 0; j < f.n && rc == CT_OK; j++) {
         size_t slot = 6 * (size_t)f.brick[j] + (size_t)f.local[j];
         if (z->faceseg[slot] < 0) {

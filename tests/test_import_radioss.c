@@ -13,7 +13,6 @@
 #include <stdint.h>
 #include <stdio.h>
 #include <string.h>
-#include <time.h>
 #include <unistd.h>
 
 #include "test_import_radioss.h"
@@ -572,16 +571,6 @@ Test(import_radioss, crlf_line_ends)
 }
 
 /* ---- Speed ------------------------------------------------------------- */
-
-/* load(), timed (seconds of wall clock). */
-static double load_timed(const char *path, ctd_deck *d)
-{
-    struct timespec t0, t1;
-    clock_gettime(CLOCK_MONOTONIC, &t0);
-    load(path, d);
-    clock_gettime(CLOCK_MONOTONIC, &t1);
-    return (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
-}
 
 Test(import_radioss, large_deck_linear_time, .timeout = 120)
 {

@@ -7,6 +7,7 @@
 
 #include <stdio.h>
 #include <string.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "import_radioss.h"
@@ -28,6 +29,16 @@ static inline void load(const char *path, ctd_deck *d)
     memset(&g, 0, sizeof g);
     int rc = ctd_deck_read(path, d, &g);
     cr_assert_eq(rc, CT_OK, "%s: %s (%s)", path, g.msg, ct_strerror(rc));
+}
+
+/* load(), timed (seconds of wall clock), for the complexity guards. */
+static inline double load_timed(const char *path, ctd_deck *d)
+{
+    struct timespec t0, t1;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    load(path, d);
+    clock_gettime(CLOCK_MONOTONIC, &t1);
+    return (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
 }
 
 static inline void tmp_path(char *buf, size_t n, const char *name)

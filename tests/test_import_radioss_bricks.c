@@ -1,7 +1,8 @@
 /*
  * test_import_radioss_bricks.c -- the Radioss reader's bricks: the outer
- * surface of a brick block (every face once, outward, none inside) and
- * degenerate bricks.
+ * surface of a brick block (every face once, outward, none inside),
+ * degenerate bricks, the surfaces of brick parts and of their unions
+ * against a brute-force count, and the time of many such surfaces.
  */
 #include <math.h>
 #include <stdint.h>
@@ -180,4 +181,196 @@ Test(import_radioss, degenerate_bricks)
     const ct_idx bad[8] = {0, 1, 2, 2, 3, 4, 5, 8};
     cr_assert_eq(ctd_brick_outer_faces(8, nd.x, nd.y, nd.z, 1, bad, NULL, &f, &g), CT_ERR_RANGE);
     ct_nodes_destroy(&nd);
+}
+
+/* ---- Surfaces of many brick parts -------------------------------------- */
+
+/* The part of brick (i, j, k) of a block, and whether it is numbered
+ * inside out. */
+typedef int (*brick_fn)(int i, int j, int k);
+
+/* Write the nodes of a block of nx x ny x nz unit bricks (node (i, j, k) has
+ * id 1 + i + (nx + 1) (j + (ny + 1) k)) and its bricks, i fastest, brick
+ * number e (0-based) with id e + 1, under a /BRICK/P keyword each time the
+ * part changes (so the parts' bricks interleave in the deck's order); a
+ * brick numbered inside out lists its top face first. */
+static void write_block(FILE *f, int nx, int ny, int nz, brick_fn part, brick_fn inside_out)
+{
+    fprintf(f, "/NODE\n");
+    for (int k = 0; k <= nz; k++)
+        for (int j = 0; j <= ny; j++)
+            for (int i = 0; i <= nx; i++)
+                fprintf(f, "%10d%20d%20d%20d\n", 1 + i + (nx + 1) * (j + (ny + 1) * k), i, j, k);
+    long e = 0;
+    int prev = -1;
+    for (int k = 0; k < nz; k++)
+        for (int j = 0; j < ny; j++)
+            for (int i = 0; i < nx; i++, e++) {
+                int p = part(i, j, k);
+                if (p != prev)
+                    fprintf(f, "/BRICK/%d\n", p);
+                prev = p;
+                long n[8];
+                for (int c = 0; c < 8; c++) {
+                    int di = (c & 3) == 1 || (c & 3) == 2, dj = (c & 3) >= 2, dk = c >= 4;
+                    if (inside_out && inside_out(i, j, k))
+                        dk = !dk;
+                    n[c] = 1 + (i + di) + (long)(nx + 1) * ((j + dj) + (long)(ny + 1) * (k + dk));
+                }
+                fprintf(f, "%10ld%10ld%10ld%10ld%10ld%10ld%10ld%10ld%10ld\n", e + 1, n[0], n[1],
+                        n[2], n[3], n[4], n[5], n[6], n[7]);
+            }
+}
+
+/* The block of the equality test: 2 x 2 x 1 tiles given to parts 1..4 in
+ * turn, so each part touches the others, and a third of the bricks inside
+ * out. */
+static int tile_part(int i, int j, int k) { return 1 + (i / 2 + 3 * (j / 2) + k) % 4; }
+static int tile_inverted(int i, int j, int k) { return (i + 2 * j + k) % 3 == 0; }
+
+/* The corners of local face l (0-based, from the contract in
+ * import_radioss.h: 1 4 3 2, 5 6 7 8, 1 2 6 5, 2 3 7 6, 3 4 8 7, 4 1 5 8),
+ * sorted. */
+static void sorted_face(const ct_idx *c8, int l, ct_idx k[4])
+{
+    static const int fc[6][4] = {{1, 4, 3, 2}, {5, 6, 7, 8}, {1, 2, 6, 5},
+                                 {2, 3, 7, 6}, {3, 4, 8, 7}, {4, 1, 5, 8}};
+    for (int c = 0; c < 4; c++)
+        k[c] = c8[fc[l][c] - 1];
+    for (int a = 1; a < 4; a++)
+        for (int b = a; b > 0 && k[b] < k[b - 1]; b--) {
+            ct_idx t = k[b];
+            k[b] = k[b - 1];
+            k[b - 1] = t;
+        }
+}
+
+/* Each /SURF/PART card over brick parts (single parts and unions of parts
+ * that touch, in an order that makes later cards reuse earlier cards'
+ * faces) holds exactly the faces of its bricks that no other face of its
+ * bricks matches (brute force over all pairs), each once, outward; a face
+ * is one segment whatever the number of surfaces that use it. */
+Test(import_radioss, brick_part_surfaces_match_brute_force)
+{
+    enum { NX = 6, NY = 4, NZ = 3, NB = NX * NY * NZ, NCARD = 8 };
+    const int card[NCARD][5] = {/* id, then up to 4 parts (0: none) */
+                                {7, 2, 3, 4, 2}, {1, 1, 0, 0, 0}, {5, 1, 2, 0, 0},
+                                {8, 1, 2, 3, 4}, {2, 2, 0, 0, 0}, {6, 3, 1, 0, 0},
+                                {3, 3, 0, 0, 0}, {4, 4, 0, 0, 0}};
+    char path[256];
+    tmp_path(path, sizeof path, "brick_parts.rad");
+    FILE *f = fopen(path, "w");
+    cr_assert_not_null(f);
+    write_block(f, NX, NY, NZ, tile_part, tile_inverted);
+    for (int c = 0; c < NCARD; c++) {
+        fprintf(f, "/SURF/PART/%d\ncard %d\n", card[c][0], c);
+        for (int q = 1; q < 5 && card[c][q]; q++)
+            fprintf(f, "%10d", card[c][q]);
+        fprintf(f, "\n");
+    }
+    fclose(f);
+    ctd_deck d;
+    load(path, &d);
+    unlink(path);
+    cr_assert_eq(d.nbrick, NB);
+    cr_assert_eq(d.nelemseg, 0);
+    static ct_idx slotseg[6 * NB], key[6 * NB][4];
+    for (int s = 0; s < 6 * NB; s++) {
+        slotseg[s] = -1;
+        sorted_face(d.brick_node + 8 * (s / 6), s % 6, key[s]);
+    }
+    ct_idx nused = 0;
+    for (int c = 0; c < NCARD; c++) {
+        unsigned char want[6 * NB] = {0};
+        int sel[NB] = {0}, nwant = 0;
+        for (int b = 0; b < NB; b++)
+            for (int q = 1; q < 5; q++)
+                sel[b] |= d.brick_part[b] == card[c][q];
+        for (int s = 0; s < 6 * NB; s++) {
+            int alone = sel[s / 6];
+            for (int t = 0; t < 6 * NB && alone; t++)
+                alone = t == s || !sel[t / 6] || memcmp(key[s], key[t], sizeof key[s]);
+            want[s] = (unsigned char)alone;
+            nwant += alone;
+        }
+        const ctd_surf *sf = ctd_deck_surf(&d, card[c][0]);
+        cr_assert_not_null(sf);
+        cr_assert_eq(sf->s.n, nwant, "card %d: %ld faces, brute force %d", card[c][0],
+                     (long)sf->s.n, nwant);
+        for (ct_idx k = 0; k < sf->s.n; k++) {
+            ct_idx s = sf->s.seg[k];
+            cr_assert(k == 0 || s > sf->s.seg[k - 1], "segments increasing");
+            cr_assert_eq(d.seg_kind[s], CTD_SEG_BRICK_FACE);
+            ct_idx b = (ct_idx)d.seg_elem[s] - 1;
+            int slot = 6 * b + d.seg_face[s];
+            cr_assert(want[slot], "card %d: face %d of brick %ld is not outer", card[c][0],
+                      d.seg_face[s], (long)b + 1);
+            cr_assert_eq(d.seg_part[s], d.brick_part[b]);
+            if (slotseg[slot] < 0)
+                slotseg[slot] = s, nused++;
+            cr_assert_eq(slotseg[slot], s, "one segment per face");
+            ct_idx v[4] = {d.mesh.n1[s], d.mesh.n2[s], d.mesh.n3[s], d.mesh.n4[s]}, sk[4];
+            double fc[3], nrm[3], bc[3] = {0, 0, 0};
+            int on;
+            face_geom(&d.mesh.nodes, v, fc, nrm, &on);
+            for (int q = 0; q < 8; q++) {
+                ct_idx n = d.brick_node[8 * b + q];
+                bc[0] += d.mesh.nodes.x[n] / 8;
+                bc[1] += d.mesh.nodes.y[n] / 8;
+                bc[2] += d.mesh.nodes.z[n] / 8;
+            }
+            cr_assert_gt(nrm[0] * (fc[0] - bc[0]) + nrm[1] * (fc[1] - bc[1]) +
+                             nrm[2] * (fc[2] - bc[2]),
+                         0.1, "card %d: segment %ld points inward", card[c][0], (long)s);
+            memcpy(sk, v, sizeof sk);
+            for (int a = 1; a < 4; a++)
+                for (int q = a; q > 0 && sk[q] < sk[q - 1]; q--) {
+                    ct_idx t = sk[q];
+                    sk[q] = sk[q - 1];
+                    sk[q - 1] = t;
+                }
+            cr_assert(!memcmp(sk, key[slot], sizeof sk), "segment %ld's corners", (long)s);
+        }
+    }
+    /* The whole block's card: its 2 (6 x 4 + 6 x 3 + 4 x 3) boundary faces. */
+    cr_assert_eq(ctd_deck_surf(&d, 8)->s.n, 108);
+    cr_assert_eq(d.mesh.nseg, nused);
+    ctd_deck_destroy(&d);
+}
+
+/* The part of brick (i, j, k) of the guard's layer: 10 x 5 tiles. */
+static int layer_part(int i, int j, int k)
+{
+    (void)k;
+    return 1 + i / 10 + 40 * (j / 5);
+}
+
+/* Many brick parts, each with its own /SURF/PART card: each card used to
+ * find the outer faces of all the deck's bricks, so the cost grew as the
+ * square of the deck (15.4 s for these 2560 cards over 128000 bricks; 0.34 s
+ * once the faces' classes are found once for the deck). */
+Test(import_radioss, many_brick_part_surfaces_linear_time, .timeout = 120)
+{
+    int ny = ctt_checking() ? 50 : 320, np = 8 * ny; /* parts of 10 x 5 bricks */
+    char path[256];
+    tmp_path(path, sizeof path, "brick_part_surfaces.rad");
+    FILE *f = fopen(path, "w");
+    cr_assert_not_null(f);
+    write_block(f, 400, ny, 1, layer_part, NULL);
+    for (int p = 1; p <= np; p++)
+        fprintf(f, "/SURF/PART/%d\npart %d\n%10d\n", p, p, p);
+    fclose(f);
+    ctd_deck d;
+    double sec = load_timed(path, &d);
+    unlink(path);
+    cr_assert_eq(d.nbrick, 400 * ny);
+    cr_assert_eq(d.nsurf, np);
+    /* A 10 x 5 x 1 tile: 50 + 50 + 2 (10 + 5) faces. */
+    for (int p = 1; p <= np; p++)
+        cr_assert_eq(ctd_deck_surf(&d, p)->s.n, 130);
+    cr_assert_eq(d.mesh.nseg, 130 * np);
+    ctd_deck_destroy(&d);
+    cr_log_info("import_radioss: %d /SURF/PART cards over %d bricks read in %.3f s", np,
+                400 * ny, sec);
+    cr_assert_lt(sec, ctt_checking() ? 20.0 : 5.0, "%.2f s", sec);
 }
