@@ -228,3 +228,12 @@ Test(scenes, interface_errors_name_file_line, .init = cr_redirect_stderr)
     expect_build_error("iface_empty_main.yaml", "main selects no surface segment");
     expect_build_error("iface_empty_secondary.yaml", "secondary selects no node");
 }
+
+/* A gap that spans the interface's nodes is an input mistake told at the
+ * build: a 10^4-node sheet with a 10 m gap filled 24 GiB with candidates
+ * and was killed; the two scenes run with a gap of 1 or 2 mm. */
+Test(scenes, gap_spanning_the_model_is_an_error, .init = cr_redirect_stderr)
+{
+    expect_build_error("iface_gap_spans.yaml", "node-segment gap 1 reaches the diagonal 0.0346");
+    expect_build_error("iface_edge_gap_spans.yaml", "edge-edge gap 1 reaches the diagonal 0.141");
+}

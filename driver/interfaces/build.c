@@ -477,6 +477,15 @@ static int build_one(const ctd_model *m, const ctd_scene_interface *f, unsigned 
             fail(err, len, rc, "%s: %s%s%s", where, ct_strerror(rc), dg.msg[0] ? ": " : "",
                  dg.msg);
     }
+    if (rc == CT_OK) {
+        char msg[400];
+        rc = ctd_iface_check_reach(it, m->mesh.nodes.x, m->mesh.nodes.y, m->mesh.nodes.z, msg,
+                                   sizeof msg);
+        if (rc != CT_OK) {
+            fail(err, len, rc, "%s: %s", where, msg);
+            ctd_iface_destroy(it);
+        }
+    }
     resolved_free(&r);
     ct_free(msu.seg);
     ct_free(ssu.seg);

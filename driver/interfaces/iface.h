@@ -262,6 +262,15 @@ void ctd_iface_force_resort(ctd_iface *it);
 int ctd_iface_type(const ctd_iface *it);
 ct_idx ctd_iface_nsec(const ctd_iface *it);
 
+/* Check the interface's gaps against the extent of its nodes at x, y, z:
+ * CT_ERR_ARG, with a message in msg, when a pair gap (node-segment, or
+ * edge-edge for TYPE11; not TYPE6's curve) reaches the diagonal of the box
+ * around the nodes of its pass. Every node would then be in contact with
+ * every segment: the candidates grow as nsec x nseg and the penalty forces
+ * act across the whole model. */
+int ctd_iface_check_reach(const ctd_iface *it, const ct_real *x, const ct_real *y,
+                          const ct_real *z, char *msg, size_t len);
+
 /* Bytes held by the interface. */
 size_t ctd_iface_memory(const ctd_iface *it);
 

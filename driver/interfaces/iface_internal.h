@@ -41,6 +41,7 @@ typedef struct ctdi_pass {
     ct_real *kseg; /* per-segment stiffness with Stfac (NULL: constant K) */
     ct_real *gseg; /* per-segment gap (NULL: none) */
     ct_real sgap;  /* search gap: the largest pair gap */
+    ct_real reach; /* sgap without TYPE6's curve: the largest contact gap */
     int self, two_sided, law;
     /* 1 for the second pass of a surface-to-surface interface (its nodes
      * are the interface's main side): its forces count negative in the

@@ -175,6 +175,7 @@ int ctdi_pass_setup(ctd_iface *it, ctdi_pass *p, ct_idx nsec, ct_idx *sec_owned,
             gmax_m = it->cfg.Gap_max_m;
     }
     p->sgap = gmax_s + gmax_m > it->cfg.gap ? gmax_s + gmax_m : it->cfg.gap;
+    p->reach = p->sgap;
     /* TYPE6: rigid bodies crush into each other as deep as the curve
      * goes, far beyond the gap; the search must still see a node that
      * deep (the search distance is unsigned), so it reaches the curve's
