@@ -215,8 +215,9 @@ int ctd_solver_init(ctd_solver *s, ctd_model *m, const ctd_solver_opts *opts,
                     ctd_contact_hook *hooks, int nhook, char *err, size_t errlen);
 
 /* Run to the end time. Returns the exit code: CTD_EXIT_OK, CTD_EXIT_UNSTABLE
- * (s->message says where and when), or CTD_EXIT_OUTPUT (a file could not be
- * written). Writes the series, history, summary and plot, and prints the
+ * (s->message says where and when), CTD_EXIT_BADINPUT (an interface's
+ * search found more pairs than the machine holds: its gap is far above the
+ * element size), or CTD_EXIT_OUTPUT (a file could not be written). Writes the series, history, summary and plot, and prints the
  * report (unless quiet). */
 int ctd_solver_run(ctd_solver *s);
 

@@ -311,7 +311,9 @@ int cti_solver_finish(ctd_solver *s)
                                t->elements, t->other, s->nhook, ifs};
         rc = ctd_output_summary(w->out, &sum);
         free(ifs);
-        if (!rc && m->scene->output->csv) {
+        /* A run stopped in its first cycle has no history to plot (gnuplot
+         * fails on it). */
+        if (!rc && m->scene->output->csv && (s->cycle > 0 || s->exit_code == CTD_EXIT_OK)) {
             char msg[512];
             int prc = ctd_output_plot_energies(s->out_dir, msg, sizeof msg);
             if (prc < 0 && !s->opts.quiet)

@@ -9,10 +9,12 @@
  */
 #include "test_util.h"
 
+#include <stdio.h>
 #include <string.h>
 
 #include "interfaces/iface.h"
 #include "test_iface_util.h"
+#include "interfaces/iface_internal.h"
 
 /* ---- TYPE7 on a folded sheet --------------------------------------------- */
 
@@ -168,6 +170,52 @@ Test(iface, type7_folded_energy_is_force_integral)
     cr_assert(fabs((e1 - e0) - simpson) <= CTT_TOL(1e-6, 1e-3) * (e1 - e0),
               "stored %.12g, integral %.12g", e1 - e0, simpson);
     ctd_iface_destroy(it);
+    fold_free(&f);
+}
+
+/* The pair budget (iface_reach.c): the folded pair finds N candidates
+ * with no limit; a limit of exactly their arrays' bytes (1.5 N
+ * CTDI_PAIR_BYTES) passes and one byte less fails the step, with a message
+ * naming the count; the forces of the passing step are those of the step
+ * without a limit. */
+Test(iface, pair_budget_stops_the_step)
+{
+    fold f;
+    fold_make(&f, 4, 3, 0.15, 0.1, 0.3);
+    fold_place(&f, 0.15);
+    ctd_iface_data d = fold_data(&f);
+    double fz_free = 0, need = 0;
+    for (int k = 0; k < 3; k++) {
+        ctd_iface_cfg cfg = ctd_iface_default_cfg(7);
+        cfg.Istf = 1;
+        cfg.Stfac = 100;
+        cfg.mem_limit = k == 0 ? 0 : k == 1 ? need : need - 1;
+        ctd_iface *it = NULL;
+        ct_diag diag;
+        cr_assert_eq(ctd_iface_init(&it, &cfg, &d, &diag), CT_OK, "%s", diag.msg);
+        ctd_iface_report rep;
+        memset(f.t.fz, 0, sizeof(ct_real) * (size_t)f.t.n);
+        int rc = ctd_iface_step(it, 0, 1e-4, f.t.x, f.t.y, f.t.z, f.t.vx, f.t.vy, f.t.vz, f.t.m,
+                                f.t.fx, f.t.fy, f.t.fz, &rep);
+        if (k == 0) {
+            cr_assert_eq(rc, CT_OK, "%s", rep.msg);
+            cr_assert_gt(rep.ncand, 0);
+            cr_assert_gt(rep.nactive, 0);
+            need = 1.5 * (double)rep.ncand * (double)CTDI_PAIR_BYTES;
+            fz_free = fold_top_fz(&f);
+        } else if (k == 1) {
+            cr_assert_eq(rc, CT_OK, "%s", rep.msg);
+            cr_assert_eq(fold_top_fz(&f), fz_free);
+        } else {
+            char count[64];
+            snprintf(count, sizeof count, "found %lld candidate pairs",
+                     (long long)(need / 1.5 / (double)CTDI_PAIR_BYTES + 0.5));
+            cr_assert_eq(rc, CT_ERR_NOMEM);
+            cr_assert(strstr(rep.msg, count) && strstr(rep.msg, "the interface's memory limit"),
+                      "%s", rep.msg);
+        }
+        ctd_iface_destroy(it);
+    }
     fold_free(&f);
 }
 

@@ -1,12 +1,13 @@
 /*
  * test_iface_type11.c -- TYPE11 edge-to-edge details beyond
  * test_iface.c's crossed rods (suite iface_type11): the nodal contact step
- * over the four edge nodes.
+ * over the four edge nodes; the pair budget.
  */
 #include <math.h>
 #include <string.h>
 
 #include "test_iface_util.h"
+#include "interfaces/type11_internal.h"
 
 /* One pair: A from (-1, 0, 0) to (1, 0, 0), B across it at x = 0.5 from
  * (0.5, -1, h) to (0.5, 1, h), so the contact points are at sa = 0.75 and
@@ -62,5 +63,55 @@ Test(iface_type11, nodal_step_over_the_four_edge_nodes)
               "dt_nodal %.9g, expected %.9g", (double)rep.dt_nodal, want);
     cr_expect_eq(rep.dt_node, 3, "limiting node %lld", (long long)rep.dt_node);
     ctd_iface_destroy(it);
+    tn_free(&t);
+}
+
+/* The pair budget (iface_reach.c) of the edge pass: the same single pair
+ * fits a limit of exactly its arrays' bytes (1.5 x CTDI_EPAIR_BYTES) and
+ * fails the step one byte below, with a message that says why. */
+Test(iface_type11, pair_budget_stops_the_step)
+{
+    tnodes t;
+    tn_init(&t, 4);
+    tn_set(&t, 0, -1, 0, 0);
+    tn_set(&t, 1, 1, 0, 0);
+    tn_set(&t, 2, 0.5, -1, 0.15);
+    tn_set(&t, 3, 0.5, 1, 0.15);
+    ct_real g[4] = {0.1, 0.1, 0.1, 0.1};
+    const ct_idx a1[1] = {0}, a2[1] = {1}, b1[1] = {2}, b2[1] = {3};
+    ctd_iface_data d;
+    memset(&d, 0, sizeof d);
+    d.nnode = 4;
+    d.nea = 1;
+    d.ea1 = a1;
+    d.ea2 = a2;
+    d.neb = 1;
+    d.eb1 = b1;
+    d.eb2 = b2;
+    d.gap_node = g;
+    const double need = 1.5 * (double)CTDI_EPAIR_BYTES;
+    for (int k = 0; k < 2; k++) {
+        ctd_iface_cfg cfg = ctd_iface_default_cfg(11);
+        cfg.Istf = 1;
+        cfg.Stfac = 1e3;
+        cfg.mem_limit = k == 0 ? need : need - 1;
+        ctd_iface *it = NULL;
+        ct_diag diag;
+        cr_assert_eq(ctd_iface_init(&it, &cfg, &d, &diag), CT_OK, "%s", diag.msg);
+        ctd_iface_report rep;
+        int rc = ctd_iface_step(it, 0, 1e-4, t.x, t.y, t.z, t.vx, t.vy, t.vz, t.m, t.fx, t.fy,
+                                t.fz, &rep);
+        if (k == 0) {
+            cr_assert_eq(rc, CT_OK, "%s", rep.msg);
+            cr_assert_eq(rep.nactive, 1);
+            cr_assert_eq(rep.msg[0], 0);
+        } else {
+            cr_assert_eq(rc, CT_ERR_NOMEM);
+            cr_assert(strstr(rep.msg, "found 1 candidate pairs") &&
+                          strstr(rep.msg, "the interface's memory limit"),
+                      "%s", rep.msg);
+        }
+        ctd_iface_destroy(it);
+    }
     tn_free(&t);
 }

@@ -57,8 +57,11 @@ static int hook_step(void *ctx, const ctd_state *s, ct_real *fx, ct_real *fy, ct
     rep->t_assembly = r.t[CTD_IT_ASSEMBLE];
     if (rc != CT_OK) {
         rep->bad_node = r.dt_node;
-        snprintf(rep->msg, sizeof rep->msg, "the interface's kernels returned %s",
-                 ct_strerror(rc));
+        if (r.msg[0])
+            snprintf(rep->msg, sizeof rep->msg, "%s", r.msg);
+        else
+            snprintf(rep->msg, sizeof rep->msg, "the interface's kernels returned %s",
+                     ct_strerror(rc));
         return rc;
     }
     if (rep->want_fields && rep->pen && rep->node_active)

@@ -407,6 +407,7 @@ int ctd_iface_step(ctd_iface *it, double time, ct_real dt, const ct_real *x, con
     it->was_on = 1;
     rep->on = 1;
     int rc = CT_OK;
+    it->msg[0] = 0;
     ctdi_nodal_begin(it);
     for (int i = 0; i < it->npass && rc == CT_OK; i++)
         rc = ctdi_pass_step(it, &it->pass[i], dt, x, y, z, vx, vy, vz, m, fx, fy, fz, rep);
@@ -423,5 +424,7 @@ int ctd_iface_step(ctd_iface *it, double time, ct_real dt, const ct_real *x, con
         rep->dt = rep->dt_curve;
     rep->resorts = it->resorts;
     rep->deactivated = it->deactivated;
+    if (rc != CT_OK)
+        snprintf(rep->msg, sizeof rep->msg, "%s", it->msg);
     return rc;
 }

@@ -122,6 +122,12 @@ typedef struct ctd_iface_cfg {
     /* Re-sort margin (search distance gap + margin); 0 -> 0.2 times the
      * mean edge length of the main segments (or edges). */
     ct_real margin;
+    /* Bytes the pair arrays of one pass may take (0: the machine's
+     * physical memory). A search that finds more pairs than fit fails the
+     * step with CT_ERR_NOMEM and says so in the report's msg, instead of
+     * allocating what the system cannot hold (where Linux kills the
+     * process rather than fail the allocation). */
+    double mem_limit;
     /* TYPE6: the force curve f(p), ncurve points (curve_p strictly
      * ascending, every value finite: ct_curve_check), total normal force
      * against the largest penetration; between and beyond the points f is
@@ -227,6 +233,8 @@ typedef struct ctd_iface_report {
     int64_t resorts;       /* searches over the interface's life */
     int64_t deactivated;   /* pairs deactivated by Ipen_max so far */
     double t[CTD_IT_N];    /* seconds in each phase this step */
+    char msg[240];         /* when the step fails: what the code alone
+                              cannot say (empty otherwise) */
 } ctd_iface_report;
 
 typedef struct ctd_iface ctd_iface;

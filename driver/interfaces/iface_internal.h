@@ -100,6 +100,7 @@ struct ctd_iface {
     int fric_law, fric_on;
     int was_on;
     int64_t resorts, deactivated;
+    char msg[240]; /* the failing step's explanation (ctd_iface_report.msg) */
 };
 
 /* The factor on the nodal contact step for normal damping VisS: the
@@ -120,6 +121,19 @@ static inline int ctdi_var_gap(const ctd_iface_cfg *c)
 {
     return c->type == 7 || c->type == 11 || (c->type == 24 && c->Igap0 != 0);
 }
+
+/* The bytes of one pair in a node-segment pass's arrays (grow_scratch,
+ * grow_states for both sides, the two pair lists; the assembly's
+ * workspace comes on top). */
+#define CTDI_PAIR_BYTES                                                                       \
+    (9 * sizeof(ct_idx) + 6 + (13 + CTDI_R_N + 2 * CTDI_ST_N) * sizeof(ct_real))
+
+/* CT_OK when npair pairs of bytes_per_pair each (times the arrays' growth
+ * factor 1.5) fit in the interface's memory limit; otherwise
+ * CT_ERR_NOMEM, with it->msg saying how many pairs, per secondary (nsec),
+ * for which search gap (iface_reach.c). */
+int ctdi_pair_budget(ctd_iface *it, int64_t npair, ct_idx nsec, size_t bytes_per_pair,
+                     double gap);
 
 /* Wall clock (omp_get_wtime when OpenMP is on). */
 double ctdi_wtime(void);

@@ -1,13 +1,19 @@
 /*
- * iface_reach.c -- an interface's gaps against the extent of its nodes
- * (ctd_iface_check_reach). A gap as large as the model makes every node a
- * contact of every segment: the search's candidates grow as nsec x nseg
- * (a 10^4-node sheet with a 10 m gap exhausted 24 GiB) and the penalty
- * pushes across the whole model. It is an input mistake, told before the
- * run starts.
+ * iface_reach.c -- what an interface's gaps let the search find, against
+ * the model and the machine.
+ *
+ * A gap as large as the model makes every node a contact of every segment:
+ * the candidates grow as nsec x nseg (a 10^4-node sheet with a 10 m gap
+ * exhausted 24 GiB and was killed) and the penalty pushes across the whole
+ * model. ctd_iface_check_reach tells it before the run starts. A smaller
+ * gap can still find more pairs than the machine holds on a large model:
+ * ctdi_pair_budget stops the step with a message before the pair arrays
+ * are allocated (Linux grants large allocations and kills the process when
+ * their pages are touched, so the allocation failing cannot be relied on).
  */
 #include <math.h>
 #include <stdio.h>
+#include <unistd.h>
 
 #include "type11_internal.h"
 
@@ -75,4 +81,29 @@ int ctd_iface_check_reach(const ctd_iface *it, const ct_real *x, const ct_real *
         return too_far(msg, len, "edge-edge", e->sgap, d, 0);
     }
     return CT_OK;
+}
+
+/* The machine's physical memory in bytes (INFINITY when unknown). */
+static double physical_memory(void)
+{
+    long pages = sysconf(_SC_PHYS_PAGES), size = sysconf(_SC_PAGESIZE);
+    return pages > 0 && size > 0 ? (double)pages * (double)size : INFINITY;
+}
+
+int ctdi_pair_budget(ctd_iface *it, int64_t npair, ct_idx nsec, size_t bytes_per_pair,
+                     double gap)
+{
+    const double gib = 1024.0 * 1024.0 * 1024.0;
+    double need = 1.5 * (double)npair * (double)bytes_per_pair;
+    double have = it->cfg.mem_limit > 0 ? it->cfg.mem_limit : physical_memory();
+    if (need <= have)
+        return CT_OK;
+    snprintf(it->msg, sizeof it->msg,
+             "the search found %lld candidate pairs (%.3g per secondary) within the search "
+             "gap %g: their arrays need %.3g GiB, more than the %.3g GiB %s (expected a gap "
+             "below the element size)",
+             (long long)npair, nsec > 0 ? (double)npair / (double)nsec : 0.0, gap, need / gib,
+             have / gib, it->cfg.mem_limit > 0 ? "of the interface's memory limit"
+                                               : "of this machine's memory");
+    return CT_ERR_NOMEM;
 }

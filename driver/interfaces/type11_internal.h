@@ -13,6 +13,9 @@ enum { E_DIST = 0, E_PEN, E_NX, E_NY, E_NZ, E_SA, E_SB, E_PAX, E_PAY, E_PAZ, E_P
        E_PBZ, E_GAP, E_K0, E_FEL, E_KTAN, E_EN, E_VN, E_MS, E_MM, E_FN, E_FX, E_FY, E_FZ, E_DD,
        E_W1, E_W2, E_W3, E_W4, E_VR2, E_N };
 
+/* The bytes of one pair in the edge pass's arrays (ctdi_epass_grow). */
+#define CTDI_EPAIR_BYTES (6 * sizeof(ct_idx) + 5 + E_N * sizeof(ct_real))
+
 struct ctdi_epass {
     ct_idx na, nb, ne;     /* edges of A, of B (0: self), total */
     ct_idx *e1, *e2;       /* ne edges */
