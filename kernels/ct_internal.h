@@ -232,6 +232,7 @@ typedef struct cti_collect {
     ct_idx *count;      /* per secondary */
     int64_t *off;       /* scratch: output offsets (nsec + 1) */
     int err;            /* set by a thread whose buffer could not grow */
+    int64_t max;        /* the pair limit (cti_search_max_pairs; 0: 2^31 - 1) */
 } cti_collect;
 
 /* Prepare for nsec secondaries and the current thread count (outside a
@@ -337,6 +338,13 @@ struct ct_search {
     void (*algo_free)(void *state);
     size_t (*algo_memory)(const void *state);
 };
+
+/* The search's pair limit: ct_search_params.max_pairs within (0, 2^31 - 1]. */
+static inline int64_t cti_search_max_pairs(const ct_search *s)
+{
+    int64_t m = s->p.max_pairs;
+    return m > 0 && m < INT32_MAX ? m : INT32_MAX;
+}
 
 int cti_search_direct(ct_search *s, const ct_search_input *in, ct_pairs *out);
 int cti_search_topo(ct_search *s, const ct_search_input *in, ct_pairs *out);

@@ -116,6 +116,13 @@ typedef struct ct_search_params {
      * topological search always keeps it, and 4 bytes per node and per
      * secondary more for its ties and history). */
     int renumber_keep;
+    /* The most pairs a search may return (0 or above 2^31 - 1: 2^31 - 1,
+     * what a ct_idx counts). A search that would return more fails with
+     * CT_ERR_TOOBIG, for every algorithm and thread count alike, having
+     * held at most about max_pairs pairs per thread (or per query block of
+     * the bucket) on the way: the caller sizes it from the memory its own
+     * per-pair arrays would need. */
+    int64_t max_pairs;
 } ct_search_params;
 
 /* The defaults above for one algorithm. */

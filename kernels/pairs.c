@@ -100,11 +100,24 @@ int cti_collect_begin(cti_collect *c, ct_idx nsec)
     return CT_OK;
 }
 
+/* The collector's pair limit (c->max, 0: 2^31 - 1). */
+static int64_t collect_max(const cti_collect *c)
+{
+    return c->max > 0 ? c->max : INT32_MAX;
+}
+
 int cti_collect_room(cti_collect *c, int t, size_t extra)
 {
     size_t need = c->len[t] + extra;
     if (need <= c->cap[t])
         return CT_OK;
+    /* Pairs this thread kept beyond the limit: the total is beyond it
+     * too, whatever the other threads hold (stop before growing). */
+    if ((int64_t)c->len[t] > collect_max(c)) {
+#pragma omp atomic write
+        c->err = CT_ERR_TOOBIG;
+        return CT_ERR_TOOBIG;
+    }
     void *p = c->buf[t];
     if (cti_grow(&p, &c->cap[t], need, sizeof(ct_idx), c->len[t]) != CT_OK) {
 #pragma omp atomic write
@@ -135,7 +148,7 @@ int cti_collect_finish(cti_collect *c, const ct_idx *sec, ct_pairs *out)
     if (c->err)
         return c->err;
     int64_t total = cti_prefix_sum(c->count, c->off, c->nsec);
-    if (total > INT32_MAX)
+    if (total > collect_max(c))
         return CT_ERR_TOOBIG;
     int rc = ct_pairs_reserve(out, (ct_idx)total);
     if (rc)

@@ -159,6 +159,7 @@ int ct_search_run(ct_search *s, const ct_search_input *in, ct_pairs *out)
     int rc = check_input(in);
     if (rc)
         return rc;
+    s->col.max = cti_search_max_pairs(s);
     int (*run)(ct_search *, const ct_search_input *, ct_pairs *) = NULL;
     switch (s->p.algo) {
     case CT_SEARCH_DIRECT: return cti_search_direct(s, in, out);

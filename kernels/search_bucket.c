@@ -311,6 +311,7 @@ int cti_search_bucket(ct_search *s, const ct_search_input *in, ct_pairs *out)
     bk_state *st = bk_get(s, nq);
     if (!st)
         return CT_ERR_NOMEM;
+    st->max_pairs = cti_search_max_pairs(s);
     out->n = 0;
     int rc = ct_pairs_reserve(out, 0);
     if (rc)
@@ -393,7 +394,7 @@ int cti_search_bucket(ct_search *s, const ct_search_input *in, ct_pairs *out)
             return rc;
         int qerr = cti_bucket_query_cells(st, in, nq, nbinned, col);
         if (qerr)
-            return CT_ERR_NOMEM;
+            return col->err ? col->err : CT_ERR_NOMEM;
         rc = cti_collect_finish(col, in->sec, out);
         return rc;
     }
@@ -413,13 +414,14 @@ int cti_search_bucket(ct_search *s, const ct_search_input *in, ct_pairs *out)
         out->n = 0;
         return (qerr & BK_ERANGE)       ? CT_ERR_RANGE
                : (qerr & BK_ENONFINITE) ? CT_ERR_NONFINITE
+               : (qerr & BK_ETOOBIG)    ? CT_ERR_TOOBIG
                                         : CT_ERR_NOMEM;
     }
     /* Concatenate the other blocks after block 0, in parallel. */
     size_t total = out->n;
     for (int b = 1; b < nq; b++)
         total += o[b].n;
-    if (total > (size_t)INT32_MAX)
+    if ((int64_t)total > st->max_pairs)
         return CT_ERR_TOOBIG;
     rc = ct_pairs_reserve(out, (ct_idx)total);
     if (rc)

@@ -34,6 +34,7 @@ typedef struct bk_out {
 
 typedef struct bk_state {
     int maxblk;
+    int64_t max_pairs; /* this search's pair limit (cti_search_max_pairs) */
     ct_real *box; /* per segment: lo x y z, hi x y z */
     size_t box_cap;
     float *fbox; /* per segment: fl(lo - d) rounded down (x y z 0), then
@@ -79,7 +80,7 @@ static inline ct_idx bk_cell1(ct_real v, ct_real o, ct_real inv, ct_idx nmax)
 }
 
 /* Errors found by the query (or-ed). */
-enum { BK_ENOMEM = 1, BK_ERANGE = 2, BK_ENONFINITE = 4 };
+enum { BK_ENOMEM = 1, BK_ERANGE = 2, BK_ENONFINITE = 4, BK_ETOOBIG = 8 };
 
 /* Grow a block's output to hold at least `need` pairs (search_bucket.c). */
 int cti_bucket_out_grow(bk_out *o, size_t need);

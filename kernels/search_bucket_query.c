@@ -271,6 +271,12 @@ int cti_bucket_query_direct(const bk_state *st, const ct_search_input *in, const
             ct_idx e0 = start[c], e1 = start[c + 1];
             /* Room for every candidate of this cell and the batch's. */
             const size_t need = w.n + (size_t)pb.n + (size_t)(e1 - e0);
+            /* A block that kept more pairs than the limit: so does the
+             * whole search (stop before growing). */
+            if (need > w.cap && (int64_t)w.n > st->max_pairs) {
+                err |= BK_ETOOBIG;
+                break;
+            }
             if (need > w.cap && cti_bucket_out_grow(&w, need)) {
                 err |= BK_ENOMEM;
                 break;
@@ -284,7 +290,7 @@ int cti_bucket_query_direct(const bk_state *st, const ct_search_input *in, const
                 w.node[w.n + q] = node;
             w.n += (size_t)m;
         }
-        if (pb.n > 0 && !(err & BK_ENOMEM))
+        if (pb.n > 0 && !(err & (BK_ENOMEM | BK_ETOOBIG)))
             bk_sink_flush(&k, &pb, &sink);
         o[b] = w;
     }

@@ -58,6 +58,7 @@ typedef struct bk_buf {
 } bk_buf;
 
 typedef struct bk_state {
+    int64_t max_pairs; /* this search's pair limit (cti_search_max_pairs) */
     int maxthr;
     ct_idx *cell;          /* per secondary position: its cell, or -1 */
     size_t cell_cap;
@@ -503,8 +504,13 @@ static int bk_scan(bk_state *st, const ct_search_input *in, const bk_grid *g, in
                         if (filter == CT_FILTER_BOX ? !ct_pair_box_near(p, A, B, C, E, d)
                                                     : !ct_pair_may_touch(p, A, B, C, E, d))
                             continue;
+                        /* Beyond the pair limit (err 2): so is the total. */
+                        if (b.n == b.cap && (int64_t)b.n > st->max_pairs) {
+                            err |= 2;
+                            break;
+                        }
                         if (b.n == b.cap && bk_room(&b)) {
-                            err = 1;
+                            err |= 1;
                             break;
                         }
                         b.pos[b.n] = pos;
@@ -518,7 +524,7 @@ static int bk_scan(bk_state *st, const ct_search_input *in, const bk_grid *g, in
         }
         st->buf[4 * cti_thread_id()] = b;
     }
-    return err ? CT_ERR_NOMEM : CT_OK;
+    return (err & 2) ? CT_ERR_TOOBIG : err ? CT_ERR_NOMEM : CT_OK;
 }
 
 /* Pass 5: the threads' pairs into canonical order (secondary position, then
@@ -531,7 +537,7 @@ static int bk_output(bk_state *st, const ct_search_input *in, int nt, ct_pairs *
     size_t total = 0;
     for (int t = 0; t < nt; t++)
         total += st->buf[4 * t].n;
-    if (total > (size_t)INT32_MAX)
+    if ((int64_t)total > st->max_pairs)
         return CT_ERR_TOOBIG;
     int rc = ct_pairs_reserve(out, (ct_idx)total);
     if (rc)
@@ -575,6 +581,7 @@ int cti_search_bucket_v0(ct_search *s, const ct_search_input *in, ct_pairs *out)
     bk_state *st = bk_get(s, nt);
     if (!st)
         return CT_ERR_NOMEM;
+    st->max_pairs = cti_search_max_pairs(s);
     out->n = 0;
     int rc = ct_pairs_reserve(out, 0);
     if (rc)

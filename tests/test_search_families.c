@@ -161,3 +161,66 @@ Test(search_families, topological_in_self_contact)
         ctd_case_destroy(&c);
     }
 }
+
+/* One search with parameters p; returns its code (out holds the pairs when
+ * it is CT_OK). */
+static int search_rc(const ct_search_params *p, const ct_search_input *in, ct_pairs *out)
+{
+    ct_search *s;
+    cr_assert_eq(ct_search_init(&s, p), CT_OK);
+    int rc = ct_search_run(s, in, out);
+    ct_search_destroy(s);
+    return rc;
+}
+
+/* The pair limit (ct_search_params.max_pairs): for every algorithm and
+ * path (the bucket's direct and cell-order queries and its baseline, bsp's
+ * dense and batch leaves, the renumbered copy), 1 and 2 threads, a limit
+ * of exactly the pair count returns those pairs and one less fails with
+ * CT_ERR_TOOBIG, as does a limit far below (where the search stops
+ * early). */
+Test(search_families, pair_limit_is_exact, .timeout = 240)
+{
+    const ctd_numbering nums[2] = {CTD_NUM_NATURAL, CTD_NUM_SHUFFLED};
+    int64_t n = ctt_checking() ? 2000 : 5000;
+    for (int u = 0; u < 2; u++) {
+        ctd_case c;
+        ct_diag d = {0};
+        cr_assert_eq(ctd_case_make(&c, "folded", n, nums[u], 5, &d), CT_OK, "%s", d.msg);
+        ct_search_input in;
+        ctd_case_input(&c, (ct_real)(0.3 * c.h_mean), (ct_real)(0.2 * c.h_mean), &in);
+        struct {
+            ct_search_algo a;
+            int variant, renumber;
+        } v[] = {{CT_SEARCH_DIRECT, 1, 0},  {CT_SEARCH_TOPO, 1, 0}, {CT_SEARCH_TOPO, 1, -1},
+                 {CT_SEARCH_BUCKET, 1, 0},  {CT_SEARCH_BUCKET, 1, 1}, {CT_SEARCH_BUCKET, 0, -1},
+                 {CT_SEARCH_BSP, 1, 0},     {CT_SEARCH_BSP, 1, -1}};
+        for (size_t k = 0; k < sizeof v / sizeof v[0]; k++) {
+            ct_search_params p = ct_search_default_params(v[k].a);
+            p.variant = v[k].variant;
+            p.renumber = v[k].renumber;
+            ct_pairs all, got;
+            ct_pairs_init(&all, 0);
+            ct_pairs_init(&got, 0);
+            ctt_threads(1);
+            cr_assert_eq(search_rc(&p, &in, &all), CT_OK);
+            cr_assert_gt(all.n, 1000, "%s: too few pairs to test a limit", ct_search_algo_name(v[k].a));
+            for (int t = 1; t <= 2; t++) {
+                ctt_threads(t);
+                p.max_pairs = all.n;
+                cr_assert_eq(search_rc(&p, &in, &got), CT_OK, "%s case %zu, %d threads",
+                             ctd_numbering_name(nums[u]), k, t);
+                cr_assert(ctt_same_pairs(&all, &got));
+                p.max_pairs = all.n - 1;
+                cr_assert_eq(search_rc(&p, &in, &got), CT_ERR_TOOBIG, "%s case %zu, %d threads",
+                             ctd_numbering_name(nums[u]), k, t);
+                p.max_pairs = 10;
+                cr_assert_eq(search_rc(&p, &in, &got), CT_ERR_TOOBIG, "%s case %zu, %d threads",
+                             ctd_numbering_name(nums[u]), k, t);
+            }
+            ct_pairs_destroy(&all);
+            ct_pairs_destroy(&got);
+        }
+        ctd_case_destroy(&c);
+    }
+}

@@ -100,7 +100,7 @@ struct ctd_iface {
     int fric_law, fric_on;
     int was_on;
     int64_t resorts, deactivated;
-    char msg[240]; /* the failing step's explanation (ctd_iface_report.msg) */
+    char msg[320]; /* the failing step's explanation (ctd_iface_report.msg) */
 };
 
 /* The factor on the nodal contact step for normal damping VisS: the
@@ -134,6 +134,15 @@ static inline int ctdi_var_gap(const ctd_iface_cfg *c)
  * for which search gap (iface_reach.c). */
 int ctdi_pair_budget(ctd_iface *it, int64_t npair, ct_idx nsec, size_t bytes_per_pair,
                      double gap);
+
+/* The most pairs of bytes_per_pair the limit holds (at most 2^31 - 1): the
+ * search's max_pairs. */
+int64_t ctdi_pair_limit(const ctd_iface *it, size_t bytes_per_pair);
+
+/* Write it->msg for npair pairs found (more: more than npair, the search
+ * stopped at its limit) and return CT_ERR_NOMEM. */
+int ctdi_pairs_too_many(ctd_iface *it, int64_t npair, int more, ct_idx nsec,
+                        size_t bytes_per_pair, double gap);
 
 /* Wall clock (omp_get_wtime when OpenMP is on). */
 double ctdi_wtime(void);

@@ -185,6 +185,7 @@ int ctdi_pass_setup(ctd_iface *it, ctdi_pass *p, ct_idx nsec, ct_idx *sec_owned,
     if (two_sided && !(p->sgap > 0))
         return CT_ERR_ARG; /* a two-sided surface needs a positive gap */
     ct_search_params sp = ct_search_default_params(it->cfg.algo);
+    sp.max_pairs = ctdi_pair_limit(it, CTDI_PAIR_BYTES);
     int rc = ct_search_init(&p->search, &sp);
     if (rc == CT_OK)
         rc = ct_pairs_init(&p->pairs[0], 0);
@@ -278,6 +279,9 @@ static int pass_search(ctd_iface *it, ctdi_pass *p, const ct_real *x, const ct_r
     ct_pairs *np = &p->pairs[now];
     const ct_pairs *op = &p->pairs[old];
     int rc = ct_search_run(p->search, &in, np);
+    if (rc == CT_ERR_TOOBIG) /* beyond max_pairs: the memory or the index */
+        return ctdi_pairs_too_many(it, ctdi_pair_limit(it, CTDI_PAIR_BYTES), 1, p->nsec,
+                                   CTDI_PAIR_BYTES, p->sgap);
     if (rc != CT_OK)
         return rc;
     ct_idx n = np->n;

@@ -90,20 +90,47 @@ static double physical_memory(void)
     return pages > 0 && size > 0 ? (double)pages * (double)size : INFINITY;
 }
 
+/* The bytes the pair arrays may take: the interface's limit, or the
+ * machine's memory. */
+static double pair_memory(const ctd_iface *it)
+{
+    return it->cfg.mem_limit > 0 ? it->cfg.mem_limit : physical_memory();
+}
+
+int64_t ctdi_pair_limit(const ctd_iface *it, size_t bytes_per_pair)
+{
+    double n = floor(pair_memory(it) / (1.5 * (double)bytes_per_pair));
+    return n < (double)INT32_MAX ? (int64_t)n : INT32_MAX;
+}
+
+int ctdi_pairs_too_many(ctd_iface *it, int64_t npair, int more, ct_idx nsec,
+                        size_t bytes_per_pair, double gap)
+{
+    const double gib = 1024.0 * 1024.0 * 1024.0;
+    const double need = 1.5 * (double)npair * (double)bytes_per_pair, have = pair_memory(it);
+    char what[96], room[64] = "";
+    /* The count's limit, not the memory's: more than the index counts, or
+     * a count the memory holds. */
+    if (more ? ctdi_pair_limit(it, bytes_per_pair) == INT32_MAX : need <= have) {
+        snprintf(what, sizeof what, "a 32-bit index");
+    } else {
+        snprintf(what, sizeof what, "the %.3g GiB %s", have / gib,
+                 it->cfg.mem_limit > 0 ? "of the interface's memory limit"
+                                       : "of this machine's memory");
+        snprintf(room, sizeof room, " at %zu bytes a pair", (size_t)(1.5 * bytes_per_pair));
+    }
+    snprintf(it->msg, sizeof it->msg,
+             "the search found %s%lld candidate pairs (%.3g per secondary) within the search "
+             "gap %g, more than %s holds%s (expected a gap below the element size)",
+             more ? "more than " : "", (long long)npair,
+             nsec > 0 ? (double)npair / (double)nsec : 0.0, gap, what, room);
+    return CT_ERR_NOMEM;
+}
+
 int ctdi_pair_budget(ctd_iface *it, int64_t npair, ct_idx nsec, size_t bytes_per_pair,
                      double gap)
 {
-    const double gib = 1024.0 * 1024.0 * 1024.0;
-    double need = 1.5 * (double)npair * (double)bytes_per_pair;
-    double have = it->cfg.mem_limit > 0 ? it->cfg.mem_limit : physical_memory();
-    if (need <= have)
+    if (npair <= ctdi_pair_limit(it, bytes_per_pair))
         return CT_OK;
-    snprintf(it->msg, sizeof it->msg,
-             "the search found %lld candidate pairs (%.3g per secondary) within the search "
-             "gap %g: their arrays need %.3g GiB, more than the %.3g GiB %s (expected a gap "
-             "below the element size)",
-             (long long)npair, nsec > 0 ? (double)npair / (double)nsec : 0.0, gap, need / gib,
-             have / gib, it->cfg.mem_limit > 0 ? "of the interface's memory limit"
-                                               : "of this machine's memory");
-    return CT_ERR_NOMEM;
+    return ctdi_pairs_too_many(it, npair, 0, nsec, bytes_per_pair, gap);
 }
