@@ -174,7 +174,9 @@ int ct_pair_may_touch(const ct_real p[3], const ct_real a[3], const ct_real b[3]
  * While the bound is at most `margin`, every pair now within `gap` was
  * within gap + margin at the sort, so the stored candidates are complete.
  * A NaN position gives an infinite bound. Returns 1 when a re-sort is
- * needed, 0 when not; *bound (may be NULL) receives the bound.
+ * needed, 0 when not; *bound (may be NULL) receives the bound. Passing the
+ * same array for sec and main_nodes (self contact, one node list) reads
+ * the nodes once.
  */
 int ct_resort_needed(ct_idx nsec, const ct_idx *sec, ct_idx nmain,
                      const ct_idx *main_nodes, const ct_real *x0, const ct_real *y0,

@@ -259,7 +259,14 @@ int ct_resort_needed(ct_idx nsec, const ct_idx *sec, ct_idx nmain, const ct_idx 
 {
     ct_real ms, mm, sl[3], sh[3], ml[3], mh[3];
     resort_list(nsec, sec, x0, y0, z0, x, y, z, &ms, sl, sh);
-    resort_list(nmain, main_nodes, x0, y0, z0, x, y, z, &mm, ml, mh);
+    if (main_nodes == sec && nmain == nsec) {
+        /* One list for both sides (self contact): one pass. */
+        mm = ms;
+        for (int a = 0; a < 3; a++)
+            ml[a] = sl[a], mh[a] = sh[a];
+    } else {
+        resort_list(nmain, main_nodes, x0, y0, z0, x, y, z, &mm, ml, mh);
+    }
     ct_real b = CTI_SQRT(ms) + CTI_SQRT(mm);
     if (nsec > 0 && nmain > 0 && b <= (ct_real)CTI_HUGE) {
         /* Per axis, the secondary-minus-main displacement lies in

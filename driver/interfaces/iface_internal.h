@@ -37,6 +37,9 @@ typedef struct ctdi_pass {
     /* Geometry (owned copies). */
     ct_idx nsec, nmain, nseg;
     ct_idx *sec, *mainn; /* sorted, unique global node indices */
+    /* mainn, or sec when both hold the same nodes (self contact): the
+     * re-sort check then reads them once. */
+    const ct_idx *mainn_rs;
     ct_idx *n1, *n2, *n3, *n4;
     ct_real *kseg; /* per-segment stiffness with Stfac (NULL: constant K) */
     ct_real *gseg; /* per-segment gap (NULL: none) */

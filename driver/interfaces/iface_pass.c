@@ -158,6 +158,10 @@ int ctdi_pass_setup(ctd_iface *it, ctdi_pass *p, ct_idx nsec, ct_idx *sec_owned,
     if (nm < 0)
         return (int)nm;
     p->nmain = (ct_idx)nm;
+    p->mainn_rs = p->nmain == nsec && (nsec == 0 || !memcmp(p->mainn, sec_owned,
+                                                            (size_t)nsec * sizeof *sec_owned))
+                      ? sec_owned
+                      : p->mainn;
     /* Gaps: per segment from the node gaps when the type uses them. */
     int var_gap = ctdi_var_gap(&it->cfg);
     ct_real gmax_s = 0, gmax_m = 0;
@@ -255,7 +259,7 @@ static int pass_search(ctd_iface *it, ctdi_pass *p, const ct_real *x, const ct_r
 {
     *did = 0;
     if (!p->need_sort &&
-        !ct_resort_needed(p->nsec, p->sec, p->nmain, p->mainn, p->x0, p->y0, p->z0, x, y, z,
+        !ct_resort_needed(p->nsec, p->sec, p->nmain, p->mainn_rs, p->x0, p->y0, p->z0, x, y, z,
                           it->margin, NULL))
         return CT_OK;
     int old = p->cur, now = 1 - p->cur;
