@@ -9,6 +9,32 @@
 #include "test_iface_util.h"
 #include "interfaces/type11_internal.h"
 
+/* The edge indices of the single pair below: A = nodes 0-1, B = 2-3. */
+static const ct_idx pa1[1] = {0}, pa2[1] = {1}, pb1[1] = {2}, pb2[1] = {3};
+
+/* Edge A from (-1, 0, 0) to (1, 0, 0) and edge B across it at x = 0.5 from
+ * (0.5, -1, h) to (0.5, 1, h), with the node gaps g: t gets the nodes, the
+ * data is returned. */
+static ctd_iface_data one_pair(tnodes *t, double h, const ct_real g[4])
+{
+    tn_init(t, 4);
+    tn_set(t, 0, -1, 0, 0);
+    tn_set(t, 1, 1, 0, 0);
+    tn_set(t, 2, 0.5, -1, h);
+    tn_set(t, 3, 0.5, 1, h);
+    ctd_iface_data d;
+    memset(&d, 0, sizeof d);
+    d.nnode = 4;
+    d.nea = 1;
+    d.ea1 = pa1;
+    d.ea2 = pa2;
+    d.neb = 1;
+    d.eb1 = pb1;
+    d.eb2 = pb2;
+    d.gap_node = g;
+    return d;
+}
+
 /* One pair: A from (-1, 0, 0) to (1, 0, 0), B across it at x = 0.5 from
  * (0.5, -1, h) to (0.5, 1, h), so the contact points are at sa = 0.75 and
  * sb = 0.5 and the weights are w = (0.25, 0.75, 0.5, 0.5). With masses
@@ -21,31 +47,16 @@ Test(iface_type11, nodal_step_over_the_four_edge_nodes)
 {
     const double r = 0.1, h = 0.15, K0 = 1e3;
     tnodes t;
-    tn_init(&t, 4);
-    tn_set(&t, 0, -1, 0, 0);
-    tn_set(&t, 1, 1, 0, 0);
-    tn_set(&t, 2, 0.5, -1, h);
-    tn_set(&t, 3, 0.5, 1, h);
+    ct_real g[4] = {(ct_real)r, (ct_real)r, (ct_real)r, (ct_real)r};
+    ctd_iface_data d = one_pair(&t, h, g);
     const double mass[4] = {1, 4, 2, 0.5};
     for (int i = 0; i < 4; i++)
         t.m[i] = (ct_real)mass[i];
-    ct_real g[4] = {(ct_real)r, (ct_real)r, (ct_real)r, (ct_real)r};
-    const ct_idx a1[1] = {0}, a2[1] = {1}, b1[1] = {2}, b2[1] = {3};
     ctd_iface_cfg cfg = ctd_iface_default_cfg(11);
     cfg.Istf = 1;
     cfg.Stfac = (ct_real)K0;
     cfg.VisS = 0;
     cfg.algo = CT_SEARCH_DIRECT;
-    ctd_iface_data d;
-    memset(&d, 0, sizeof d);
-    d.nnode = 4;
-    d.nea = 1;
-    d.ea1 = a1;
-    d.ea2 = a2;
-    d.neb = 1;
-    d.eb1 = b1;
-    d.eb2 = b2;
-    d.gap_node = g;
     ctd_iface *it = NULL;
     ct_diag diag;
     cr_assert_eq(ctd_iface_init(&it, &cfg, &d, &diag), CT_OK, "%s", diag.msg);
@@ -72,23 +83,8 @@ Test(iface_type11, nodal_step_over_the_four_edge_nodes)
 Test(iface_type11, pair_budget_stops_the_step)
 {
     tnodes t;
-    tn_init(&t, 4);
-    tn_set(&t, 0, -1, 0, 0);
-    tn_set(&t, 1, 1, 0, 0);
-    tn_set(&t, 2, 0.5, -1, 0.15);
-    tn_set(&t, 3, 0.5, 1, 0.15);
     ct_real g[4] = {0.1, 0.1, 0.1, 0.1};
-    const ct_idx a1[1] = {0}, a2[1] = {1}, b1[1] = {2}, b2[1] = {3};
-    ctd_iface_data d;
-    memset(&d, 0, sizeof d);
-    d.nnode = 4;
-    d.nea = 1;
-    d.ea1 = a1;
-    d.ea2 = a2;
-    d.neb = 1;
-    d.eb1 = b1;
-    d.eb2 = b2;
-    d.gap_node = g;
+    ctd_iface_data d = one_pair(&t, 0.15, g);
     const double need = 1.5 * (double)CTDI_EPAIR_BYTES;
     for (int k = 0; k < 2; k++) {
         ctd_iface_cfg cfg = ctd_iface_default_cfg(11);
