@@ -221,25 +221,7 @@ int ctd_rad_res_elems(ctd_rad_reader *r, ctd_rad_res *z);
 
 /* ---- Outer faces of bricks (import_radioss_bricks.c) ------------------ */
 
-/* The class of each face slot f = 6 b + l (local face l of brick b, as in
- * ctd_brick_outer_faces) into cls[6 nbrick]: faces with the same corners
- * (in any order) share one class id, in [0, 6 nbrick); a slot that is no
- * face (fewer than three distinct corners), or whose brick is not selected
- * (sel[b] == 0; sel NULL selects all), gets -1. The input must be valid
- * (checked by the caller). O(nnode + nbrick); CT_OK or CT_ERR_NOMEM. */
-int ctd_brick_face_classes(ct_idx nnode, ct_idx nbrick, const ct_idx *conn,
-                           const unsigned char *sel, ct_idx *cls);
-
-/* The outer faces of the nsel bricks brk[] (in increasing order, each
- * once), given the classes cls of all face slots: the faces whose class
- * occurs once among these bricks' faces, oriented and ordered as by
- * ctd_brick_outer_faces. stamp holds one entry per class, each different
- * from gen and -gen (zeros and a gen greater than all earlier ones do), and
- * is left so for the next selection. O(nsel) whatever the number of
- * bricks; out is overwritten; CT_OK or CT_ERR_NOMEM. */
-int ctd_brick_select_outer(const ct_real *x, const ct_real *y, const ct_real *z,
-                           const ct_idx *conn, const ct_idx *cls, ct_idx nsel, const ct_idx *brk,
-                           int32_t *stamp, int32_t gen, ctd_faces *out);
+/* ctd_brick_face_classes and ctd_brick_select_outer: import_radioss.h. */
 
 /* ---- Sets (import_radioss_sets.c) -------------------------------------- */
 

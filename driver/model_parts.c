@@ -1,6 +1,12 @@
 /*
  * model_parts.c -- the element sets of a model (bricks, shells, trusses)
  * and the masses of its rigid parts, from the scene's parts (model.h).
+ *
+ * The elements are sorted to their parts in one pass, and the faces of
+ * all bricks are classed once (faces with the same corners share a class),
+ * so each part costs its own elements: a pass over every element per part,
+ * and the outer faces of each part's bricks counted over every node of the
+ * model, cost parts x (elements + nodes).
  */
 #include <math.h>
 #include <stdio.h>
@@ -31,8 +37,151 @@ static double quad_area(const ct_real *x, const ct_real *y, const ct_real *z, co
     return 0.5 * sqrt(c0 * c0 + c1 * c1 + c2 * c2);
 }
 
-/* The element sets and the rigid parts' masses. */
-int cti_model_parts(cti_mbuild *b)
+/* The elements of each scene part, by kind (0 bricks, 1 shells, 2 lines):
+ * idx[k][off[k][p] .. off[k][p + 1]) in element order; and the classes of
+ * the faces of all bricks (cls NULL: each part's bricks go through
+ * ctd_brick_outer_faces, for an input it must check or too large for the
+ * classes' index) with a stamp per class and each brick's place in its
+ * part (loc). */
+typedef struct part_index {
+    ct_idx *off[3], *idx[3];
+    ct_idx *conn, *cls, *loc;
+    int32_t *stamp, gen;
+} part_index;
+
+typedef struct part_id {
+    int64_t id;
+    ct_idx p;
+} part_id;
+
+static int cmp_part_id(const void *a, const void *b)
+{
+    int64_t x = ((const part_id *)a)->id, y = ((const part_id *)b)->id;
+    return (x > y) - (x < y);
+}
+
+/* The scene part (index) of part id `id`, or -1. */
+static ct_idx part_of(const part_id *ids, size_t n, int64_t id)
+{
+    part_id key = {id, 0};
+    const part_id *f = bsearch(&key, ids, n, sizeof *ids, cmp_part_id);
+    return f ? f->p : -1;
+}
+
+/* CSR of the n elements (their part id at byte offset `at` of each
+ * `stride`-byte record of data) over the np scene parts. */
+static int csr_by_part(const void *data, size_t n, size_t stride, size_t at, const part_id *ids,
+                       size_t np, ct_idx **off, ct_idx **idx)
+{
+    *off = calloc(np + 2, sizeof **off);
+    *idx = malloc((n + 1) * sizeof **idx);
+    ct_idx *q = malloc((n + 1) * sizeof *q);
+    if (!*off || !*idx || !q) {
+        free(q);
+        return CT_ERR_NOMEM;
+    }
+    for (size_t e = 0; e < n; e++) {
+        int64_t id;
+        memcpy(&id, (const char *)data + e * stride + at, sizeof id);
+        q[e] = part_of(ids, np, id);
+        if (q[e] >= 0)
+            (*off)[q[e] + 1]++;
+    }
+    for (size_t p = 0; p < np; p++)
+        (*off)[p + 1] += (*off)[p];
+    ct_idx *fill = malloc((np + 1) * sizeof *fill);
+    if (!fill) {
+        free(q);
+        return CT_ERR_NOMEM;
+    }
+    memcpy(fill, *off, np * sizeof *fill);
+    for (size_t e = 0; e < n; e++)
+        if (q[e] >= 0)
+            (*idx)[fill[q[e]]++] = (ct_idx)e;
+    free(fill);
+    free(q);
+    return CT_OK;
+}
+
+static void index_free(part_index *ix)
+{
+    for (int k = 0; k < 3; k++) {
+        free(ix->off[k]);
+        free(ix->idx[k]);
+    }
+    free(ix->conn);
+    free(ix->cls);
+    free(ix->loc);
+    free(ix->stamp);
+    memset(ix, 0, sizeof *ix);
+}
+
+static int index_parts(const cti_mbuild *b, part_index *ix)
+{
+    memset(ix, 0, sizeof *ix);
+    const ctd_scene *sc = b->sc;
+    size_t np = sc->parts_count;
+    part_id *ids = malloc((np + 1) * sizeof *ids);
+    if (!ids)
+        return CT_ERR_NOMEM;
+    for (size_t p = 0; p < np; p++)
+        ids[p] = (part_id){sc->parts[p].id, (ct_idx)p};
+    qsort(ids, np, sizeof *ids, cmp_part_id);
+    int rc = csr_by_part(b->c.hex.data, b->c.hex.n, sizeof(cti_hex), offsetof(cti_hex, part),
+                         ids, np, &ix->off[0], &ix->idx[0]);
+    if (!rc)
+        rc = csr_by_part(b->c.quad.data, b->c.quad.n, sizeof(cti_quad),
+                         offsetof(cti_quad, part), ids, np, &ix->off[1], &ix->idx[1]);
+    if (!rc)
+        rc = csr_by_part(b->c.line.data, b->c.line.n, sizeof(cti_line),
+                         offsetof(cti_line, part), ids, np, &ix->off[2], &ix->idx[2]);
+    free(ids);
+    if (rc)
+        return rc;
+    /* The face classes of all bricks, for an input the classes take. */
+    const cti_hex *hex = b->c.hex.data;
+    const size_t nh = b->c.hex.n;
+    const ct_idx nn = b->m->mesh.nodes.n;
+    int ok = nh > 0 && nh <= (size_t)INT32_MAX / 6;
+    for (size_t e = 0; e < nh && ok; e++)
+        for (int a = 0; a < 8; a++)
+            ok &= hex[e].n[a] >= 0 && hex[e].n[a] < nn;
+    if (!ok)
+        return CT_OK;
+    ix->conn = malloc(8 * nh * sizeof *ix->conn);
+    ix->cls = malloc(6 * nh * sizeof *ix->cls);
+    ix->stamp = calloc(6 * nh, sizeof *ix->stamp);
+    ix->loc = malloc(nh * sizeof *ix->loc);
+    if (!ix->conn || !ix->cls || !ix->stamp || !ix->loc)
+        return CT_ERR_NOMEM;
+    for (size_t e = 0; e < nh; e++)
+        memcpy(ix->conn + 8 * e, hex[e].n, 8 * sizeof(ct_idx));
+    return ctd_brick_face_classes(nn, (ct_idx)nh, ix->conn, NULL, ix->cls);
+}
+
+/* The outer faces of scene part p's nh bricks (hc: their nodes, in the
+ * part's order) into *out, the brick of each face numbered in the part. */
+static int part_faces(part_index *ix, unsigned p, ct_idx nn, const ct_real *x,
+                      const ct_real *y, const ct_real *z, ct_idx nh, const ct_idx *hc,
+                      ctd_faces *out, ct_diag *d)
+{
+    if (!ix->cls)
+        return ctd_brick_outer_faces(nn, x, y, z, nh, hc, NULL, out, d);
+    const ct_idx *brk = ix->idx[0] + ix->off[0][p];
+    for (ct_idx k = 0; k < nh; k++)
+        ix->loc[brk[k]] = k;
+    int rc = ctd_brick_select_outer(x, y, z, ix->conn, ix->cls, nh, brk, ix->stamp, ++ix->gen,
+                                    out);
+    if (rc) {
+        snprintf(d->msg, sizeof d->msg, "Out of memory for the outer faces.");
+        return rc;
+    }
+    for (ct_idx f = 0; f < out->n; f++)
+        out->brick[f] = ix->loc[out->brick[f]];
+    return CT_OK;
+}
+
+static int parts_build(cti_mbuild *b, part_index *ix)
 {
     ctd_model *m = b->m;
     const ctd_scene *sc = b->sc;
@@ -50,13 +199,10 @@ int cti_model_parts(cti_mbuild *b)
     for (unsigned p = 0; p < sc->parts_count && !rc; p++) {
         const ctd_scene_part *pt = &sc->parts[p];
         b->face_set[p] = -1;
-        ct_idx nh = 0, nq = 0, nl = 0;
-        for (size_t e = 0; e < b->c.hex.n; e++)
-            nh += hex[e].part == pt->id;
-        for (size_t e = 0; e < b->c.quad.n; e++)
-            nq += quad[e].part == pt->id;
-        for (size_t e = 0; e < b->c.line.n; e++)
-            nl += line[e].part == pt->id;
+        const ct_idx *ih = ix->idx[0] + ix->off[0][p], *iq = ix->idx[1] + ix->off[1][p],
+                     *il = ix->idx[2] + ix->off[2][p];
+        ct_idx nh = ix->off[0][p + 1] - ix->off[0][p], nq = ix->off[1][p + 1] - ix->off[1][p],
+               nl = ix->off[2][p + 1] - ix->off[2][p];
         if (nh + nq + nl == 0)
             continue;
         int el = pt->element;
@@ -79,20 +225,16 @@ int cti_model_parts(cti_mbuild *b)
         if (!conn)
             return cti_model_err(b->err, b->len, CT_ERR_NOMEM, "out of memory");
         ct_idx *hc = conn, *qc = conn + 8 * (int64_t)nh, *lc = qc + 4 * (int64_t)nq;
-        ct_idx kh = 0, kq = 0, kl = 0;
-        for (size_t e = 0; e < b->c.hex.n; e++)
-            if (hex[e].part == pt->id)
-                memcpy(hc + 8 * (int64_t)kh++, hex[e].n, 8 * sizeof(ct_idx));
-        for (size_t e = 0; e < b->c.quad.n; e++)
-            if (quad[e].part == pt->id)
-                memcpy(qc + 4 * (int64_t)kq++, quad[e].n, 4 * sizeof(ct_idx));
-        for (size_t e = 0; e < b->c.line.n; e++)
-            if (line[e].part == pt->id)
-                memcpy(lc + 2 * (int64_t)kl++, line[e].n, 2 * sizeof(ct_idx));
+        for (ct_idx k = 0; k < nh; k++)
+            memcpy(hc + 8 * (int64_t)k, hex[ih[k]].n, 8 * sizeof(ct_idx));
+        for (ct_idx k = 0; k < nq; k++)
+            memcpy(qc + 4 * (int64_t)k, quad[iq[k]].n, 4 * sizeof(ct_idx));
+        for (ct_idx k = 0; k < nl; k++)
+            memcpy(lc + 2 * (int64_t)k, line[il[k]].n, 2 * sizeof(ct_idx));
         ct_diag d = {0};
         if (nh) {
             d.msg[0] = 0;
-            rc = ctd_brick_outer_faces(nn, x, y, z, nh, hc, NULL, &b->faces[p], &d);
+            rc = part_faces(ix, p, nn, x, y, z, nh, hc, &b->faces[p], &d);
             if (rc)
                 goto part_err;
         }
@@ -100,8 +242,8 @@ int cti_model_parts(cti_mbuild *b)
             /* Masses only: the body is made once every mass is known. */
             if (nh) {
                 ctd_brick tmp;
-                rc = ctd_brick_init(&tmp, nh, hc, nn, x, y, z, (ct_real)pt->material.E,
-                                    (ct_real)pt->material.nu, (ct_real)rho, &d);
+                rc = ctd_brick_init_shared(&tmp, nh, hc, nn, x, y, z, (ct_real)pt->material.E,
+                                           (ct_real)pt->material.nu, (ct_real)rho, &d);
                 if (rc)
                     goto part_err;
                 ctd_brick_mass(&tmp, m->mesh.nodes.m);
@@ -142,8 +284,10 @@ int cti_model_parts(cti_mbuild *b)
         st->element = el;
         st->part = pt->id;
         if (el == CTD_ELEM_BRICK) {
-            rc = ctd_brick_init(&st->brick, nh, hc, nn, x, y, z, (ct_real)pt->material.E,
-                                (ct_real)pt->material.nu, (ct_real)rho, &d);
+            /* The model's positions stay the reference ones (the solver
+             * moves its own copy): shared by every brick part. */
+            rc = ctd_brick_init_shared(&st->brick, nh, hc, nn, x, y, z, (ct_real)pt->material.E,
+                                       (ct_real)pt->material.nu, (ct_real)rho, &d);
             if (!rc) {
                 ctd_brick_mass(&st->brick, m->mesh.nodes.m);
                 st->nelem = nh;
@@ -203,5 +347,18 @@ int cti_model_parts(cti_mbuild *b)
                              sc->path, pt->line, p, elem_name(el), (long long)pt->id,
                              ct_strerror(rc), d.msg[0] ? ": " : "", d.msg);
     }
+    return rc;
+}
+
+/* The element sets and the rigid parts' masses. */
+int cti_model_parts(cti_mbuild *b)
+{
+    part_index ix;
+    int rc = index_parts(b, &ix);
+    if (rc == CT_OK)
+        rc = parts_build(b, &ix);
+    else
+        rc = cti_model_err(b->err, b->len, rc, "out of memory");
+    index_free(&ix);
     return rc;
 }

@@ -90,9 +90,7 @@ void ctd_brick_destroy(ctd_brick *b)
     if (!b)
         return;
     ct_free(b->conn);
-    ct_free(b->X0);
-    ct_free(b->Y0);
-    ct_free(b->Z0);
+    ct_free(b->ref);
     ct_free(b->vol0);
     ct_free(b->eint);
     ct_free(b->dte);
@@ -102,9 +100,9 @@ void ctd_brick_destroy(ctd_brick *b)
     memset(b, 0, sizeof *b);
 }
 
-int ctd_brick_init(ctd_brick *b, ct_idx n, const ct_idx *conn, ct_idx nnode, const ct_real *x,
-                   const ct_real *y, const ct_real *z, ct_real E, ct_real nu, ct_real rho,
-                   ct_diag *diag)
+static int brick_init(ctd_brick *b, ct_idx n, const ct_idx *conn, ct_idx nnode,
+                      const ct_real *x, const ct_real *y, const ct_real *z, ct_real E,
+                      ct_real nu, ct_real rho, int shared, ct_diag *diag)
 {
     if (!b || n < 0 || nnode < 0 || (n > 0 && (!conn || !x || !y || !z)))
         return cti_fail(diag, CT_ERR_ARG, -1, "Bad arguments to ctd_brick_init.");
@@ -116,13 +114,12 @@ int ctd_brick_init(ctd_brick *b, ct_idx n, const ct_idx *conn, ct_idx nnode, con
     memset(b, 0, sizeof *b);
     const size_t ne = (size_t)n + 1, nn = (size_t)nnode + 1;
     b->conn = ct_calloc(8 * ne, sizeof *b->conn);
-    b->X0 = ct_calloc(nn, sizeof *b->X0);
-    b->Y0 = ct_calloc(nn, sizeof *b->Y0);
-    b->Z0 = ct_calloc(nn, sizeof *b->Z0);
+    if (!shared)
+        b->ref = ct_calloc(3 * nn, sizeof *b->ref);
     b->vol0 = ct_calloc(ne, sizeof *b->vol0);
     b->eint = ct_calloc(ne, sizeof *b->eint);
     b->dte = ct_calloc(ne, sizeof *b->dte);
-    int ok = b->conn && b->X0 && b->Y0 && b->Z0 && b->vol0 && b->eint && b->dte;
+    int ok = b->conn && (shared || b->ref) && b->vol0 && b->eint && b->dte;
     for (int d = 0; d < 3; d++) {
         b->s[d] = ct_calloc(8 * ne, sizeof *b->s[d]);
         ok = ok && b->s[d];
@@ -135,10 +132,20 @@ int ctd_brick_init(ctd_brick *b, ct_idx n, const ct_idx *conn, ct_idx nnode, con
     b->nnode = nnode;
     ctd_lame(E, nu, &b->lambda, &b->mu);
     b->rho = rho;
-    if (nnode > 0) {
-        memcpy(b->X0, x, (size_t)nnode * sizeof *x);
-        memcpy(b->Y0, y, (size_t)nnode * sizeof *y);
-        memcpy(b->Z0, z, (size_t)nnode * sizeof *z);
+    if (shared) {
+        b->X0 = x;
+        b->Y0 = y;
+        b->Z0 = z;
+    } else {
+        ct_real *X0 = b->ref, *Y0 = b->ref + nn, *Z0 = b->ref + 2 * nn;
+        if (nnode > 0) {
+            memcpy(X0, x, (size_t)nnode * sizeof *x);
+            memcpy(Y0, y, (size_t)nnode * sizeof *y);
+            memcpy(Z0, z, (size_t)nnode * sizeof *z);
+        }
+        b->X0 = X0;
+        b->Y0 = Y0;
+        b->Z0 = Z0;
     }
     memcpy(b->conn, conn, (size_t)n * 8 * sizeof *conn);
     const ct_idx *cs[8];
@@ -169,6 +176,20 @@ int ctd_brick_init(ctd_brick *b, ct_idx n, const ct_idx *conn, ct_idx nnode, con
         b->vol0[e] = v;
     }
     return CT_OK;
+}
+
+int ctd_brick_init(ctd_brick *b, ct_idx n, const ct_idx *conn, ct_idx nnode, const ct_real *x,
+                   const ct_real *y, const ct_real *z, ct_real E, ct_real nu, ct_real rho,
+                   ct_diag *diag)
+{
+    return brick_init(b, n, conn, nnode, x, y, z, E, nu, rho, 0, diag);
+}
+
+int ctd_brick_init_shared(ctd_brick *b, ct_idx n, const ct_idx *conn, ct_idx nnode,
+                          const ct_real *x, const ct_real *y, const ct_real *z, ct_real E,
+                          ct_real nu, ct_real rho, ct_diag *diag)
+{
+    return brick_init(b, n, conn, nnode, x, y, z, E, nu, rho, 1, diag);
 }
 
 void ctd_brick_mass(const ctd_brick *b, ct_real *m)

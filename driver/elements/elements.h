@@ -161,7 +161,10 @@ ct_real ctd_truss_dt(const ctd_truss *t, const ct_real *x, const ct_real *y, con
 typedef struct ctd_brick {
     ct_idx n, nnode;
     ct_idx *conn;          /* 8 n, interleaved (element-major) */
-    ct_real *X0, *Y0, *Z0; /* reference positions of all nodes (nnode) */
+    /* Reference positions of all nodes (nnode): the set's copy (in ref),
+     * or the caller's arrays (ctd_brick_init_shared; ref NULL). */
+    const ct_real *X0, *Y0, *Z0;
+    ct_real *ref;
     ct_real lambda, mu, rho;
     ct_real *vol0;         /* reference volumes */
     ct_real *eint;         /* strain energy of each element, last force call */
@@ -180,6 +183,13 @@ void ctd_lame(ct_real E, ct_real nu, ct_real *lambda, ct_real *mu);
 int ctd_brick_init(ctd_brick *b, ct_idx n, const ct_idx *conn, ct_idx nnode, const ct_real *x,
                    const ct_real *y, const ct_real *z, ct_real E, ct_real nu, ct_real rho,
                    ct_diag *diag);
+
+/* The same, borrowing x, y, z as the reference positions instead of
+ * copying them: they must stay unchanged while b lives. A model of many
+ * brick parts then holds one copy of the nodes, not one per part. */
+int ctd_brick_init_shared(ctd_brick *b, ct_idx n, const ct_idx *conn, ct_idx nnode,
+                          const ct_real *x, const ct_real *y, const ct_real *z, ct_real E,
+                          ct_real nu, ct_real rho, ct_diag *diag);
 void ctd_brick_destroy(ctd_brick *b);
 
 /* m[node] += rho V0 / 8 (serial, element order). */

@@ -78,7 +78,7 @@ void ctd_shell_destroy(ctd_shell *s)
     void *arrs[] = {s->t1, s->t2, s->t3, s->tri_elem, s->tri_vol, s->b11, s->b12,
                     s->b22, s->tri_w, s->elem_t, s->h1, s->h2, s->h3, s->h4, s->theta0, s->hk,
                     s->sx, s->sy, s->sz, s->slot_off, s->slot, s->e_el, s->node_k,
-                    s->node_m};
+                    s->node_m, s->snode};
     for (size_t i = 0; i < sizeof arrs / sizeof arrs[0]; i++)
         ct_free(arrs[i]);
     memset(s, 0, sizeof *s);
@@ -272,6 +272,47 @@ static int cti_shell_hinges(ctd_shell *s, const ct_real *x, const ct_real *y,
     return err;
 }
 
+/* Keep the per-node arrays for the set's nodes only (built per model node
+ * above): the nodes with a slot (the triangles' corners; a hinge's nodes
+ * are corners too), their slot ranges, masses and stiffnesses, the same
+ * values in the same order. */
+static int compact_nodes(ctd_shell *s)
+{
+    const ct_idx nnode = s->nnode;
+    ct_idx n = 0;
+    for (ct_idx i = 0; i < nnode; i++)
+        n += s->slot_off[i + 1] > s->slot_off[i];
+    ct_idx *sn = ct_calloc((size_t)n + 1, sizeof *sn), *so = ct_calloc((size_t)n + 2, sizeof *so);
+    ct_real *nk = ct_calloc((size_t)n + 1, sizeof *nk), *nm = ct_calloc((size_t)n + 1, sizeof *nm);
+    if (!sn || !so || !nk || !nm) {
+        ct_free(sn);
+        ct_free(so);
+        ct_free(nk);
+        ct_free(nm);
+        ctd_shell_destroy(s);
+        return CT_ERR_NOMEM;
+    }
+    ct_idx j = 0;
+    for (ct_idx i = 0; i < nnode; i++) {
+        if (s->slot_off[i + 1] == s->slot_off[i])
+            continue;
+        sn[j] = i;
+        so[j + 1] = s->slot_off[i + 1];
+        nk[j] = s->node_k[i];
+        nm[j] = s->node_m[i];
+        j++;
+    }
+    ct_free(s->slot_off);
+    ct_free(s->node_k);
+    ct_free(s->node_m);
+    s->nsnode = n;
+    s->snode = sn;
+    s->slot_off = so;
+    s->node_k = nk;
+    s->node_m = nm;
+    return CT_OK;
+}
+
 int ctd_shell_init(ctd_shell *s, ct_idx nnode, const ct_real *x, const ct_real *y,
                    const ct_real *z, ct_idx nelem, const ct_idx *n1, const ct_idx *n2,
                    const ct_idx *n3, const ct_idx *n4, const ct_real *thick, double E,
@@ -427,19 +468,19 @@ int ctd_shell_init(ctd_shell *s, ct_idx nnode, const ct_real *x, const ct_real *
     }
     s->dt_stable = w2max > 0 ? 2 / sqrt(w2max) : HUGE_VAL;
     free(r);
-    return CT_OK;
+    return compact_nodes(s);
 }
 
 void ctd_shell_masses(const ctd_shell *s, ct_real *m)
 {
-    for (ct_idx i = 0; i < s->nnode; i++)
-        m[i] += s->node_m[i];
+    for (ct_idx j = 0; j < s->nsnode; j++)
+        m[s->snode[j]] += s->node_m[j];
 }
 
 double ctd_shell_dt(const ctd_shell *s) { return s->dt_stable; }
 
 void ctd_shell_node_stiffness(const ctd_shell *s, ct_real *k)
 {
-    for (ct_idx i = 0; i < s->nnode; i++)
-        k[i] += s->node_k[i];
+    for (ct_idx j = 0; j < s->nsnode; j++)
+        k[s->snode[j]] += s->node_k[j];
 }

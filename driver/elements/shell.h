@@ -48,15 +48,20 @@ typedef struct ctd_shell {
     /* Private force slots: 3 per triangle, then 4 per hinge. */
     ct_idx nslot;
     ct_real *sx, *sy, *sz;
-    ct_idx *slot_off, *slot; /* node -> its slots, increasing (CSR, nnode + 1) */
+    /* The set's nodes (those of its triangles), increasing: the arrays
+     * below are per set node, not per model node, so that a model of many
+     * shell parts holds and scans each part's nodes only. */
+    ct_idx nsnode;
+    ct_idx *snode;
+    ct_idx *slot_off, *slot; /* set node -> its slots, increasing (CSR, nsnode + 1) */
     double *e_el;            /* energy per triangle, then per hinge */
 
     /* Results of the last ctd_shell_forces call. */
     double e_membrane, e_bending;
 
     /* Stability data from the reference configuration. */
-    ct_real *node_k; /* nodal stiffness K_a (dt_a = sqrt(2 m_a / K_a)) */
-    ct_real *node_m; /* lumped nodal mass */
+    ct_real *node_k; /* per set node: nodal stiffness K_a (dt_a = sqrt(2 m_a / K_a)) */
+    ct_real *node_m; /* per set node: lumped nodal mass */
     double dt_stable;
 } ctd_shell;
 

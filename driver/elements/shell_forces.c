@@ -117,7 +117,7 @@ int ctd_shell_forces(ctd_shell *s, const ct_real *x, const ct_real *y, const ct_
     const ct_real E = (ct_real)s->E, nu = (ct_real)s->nu;
     const ct_real lam = E * nu / (1 - nu * nu); /* plane-stress lambda' */
     const ct_real mu = E / (2 * (1 + nu));
-    const ct_idx ntri = s->ntri, nhinge = s->nhinge, nnode = s->nnode;
+    const ct_idx ntri = s->ntri, nhinge = s->nhinge;
     ct_real *restrict sx = s->sx, *restrict sy = s->sy, *restrict sz = s->sz;
     double *restrict e_el = s->e_el;
     int bad = 0;
@@ -202,8 +202,9 @@ int ctd_shell_forces(ctd_shell *s, const ct_real *x, const ct_real *y, const ct_
     /* Gather: each node sums its slots in increasing slot order, so the
      * result does not depend on the thread count. */
 #pragma omp parallel for schedule(static) if (par)
-    for (ct_idx i = 0; i < nnode; i++) {
-        ct_idx a0 = s->slot_off[i], a1 = s->slot_off[i + 1];
+    for (ct_idx j = 0; j < s->nsnode; j++) {
+        const ct_idx i = s->snode[j];
+        ct_idx a0 = s->slot_off[j], a1 = s->slot_off[j + 1];
         if (a0 == a1)
             continue;
         ct_real gx = 0, gy = 0, gz = 0;

@@ -174,8 +174,7 @@ static void element_stiffness(const ctd_model *m, ct_real *k)
     for (int s = 0; s < m->nset; s++) {
         const ctd_model_set *st = &m->set[s];
         if (st->element == CTD_ELEM_SHELL) {
-            for (ct_idx i = 0; i < nd->n; i++)
-                k[i] += st->shell.node_k[i];
+            ctd_shell_node_stiffness(&st->shell, k);
         } else if (st->element == CTD_ELEM_BRICK) {
             const ctd_brick *b = &st->brick;
             ctd_brick_dt(b, nd->x, nd->y, nd->z, NULL); /* fills b->dte */
