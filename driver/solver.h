@@ -101,7 +101,7 @@ typedef struct ctd_contact_report {
     int32_t *node_active;  /* (in) [nnode] active pairs per node */
     /* On failure (a negative return): the entity and a full sentence. */
     int64_t bad_node;      /* node index or -1 */
-    char msg[320];
+    char msg[512];
 } ctd_contact_report;
 
 /*

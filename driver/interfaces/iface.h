@@ -233,7 +233,7 @@ typedef struct ctd_iface_report {
     int64_t resorts;       /* searches over the interface's life */
     int64_t deactivated;   /* pairs deactivated by Ipen_max so far */
     double t[CTD_IT_N];    /* seconds in each phase this step */
-    char msg[320];         /* when the step fails: what the code alone
+    char msg[512];         /* when the step fails: what the code alone
                               cannot say (empty otherwise) */
 } ctd_iface_report;
 

@@ -103,7 +103,7 @@ struct ctd_iface {
     int fric_law, fric_on;
     int was_on;
     int64_t resorts, deactivated;
-    char msg[320]; /* the failing step's explanation (ctd_iface_report.msg) */
+    char msg[512]; /* the failing step's explanation (ctd_iface_report.msg) */
 };
 
 /* The factor on the nodal contact step for normal damping VisS: the
