@@ -289,8 +289,7 @@ static int pass_search(ctd_iface *it, ctdi_pass *p, const ct_real *x, const ct_r
     if (rc != CT_OK)
         return rc;
     ct_idx n = np->n;
-    if ((rc = ctdi_pair_budget(it, n, p->nsec, CTDI_PAIR_BYTES, p->sgap)) != CT_OK ||
-        (rc = grow_scratch(p, (size_t)n)) != CT_OK || (rc = grow_states(p, now, (size_t)n)))
+    if ((rc = grow_scratch(p, (size_t)n)) != CT_OK || (rc = grow_states(p, now, (size_t)n)))
         return rc;
     rc = ct_asm_seg_slots(n, np->seg, p->nseg, p->n1, p->n2, p->n3, p->n4, p->s[0], p->s[1],
                           p->s[2], p->s[3]);

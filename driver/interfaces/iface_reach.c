@@ -7,8 +7,10 @@
  * exhausted 24 GiB and was killed) and the penalty pushes across the whole
  * model. ctd_iface_check_reach tells it before the run starts. A smaller
  * gap can still find more pairs than the machine holds on a large model:
- * ctdi_pair_budget stops the step with a message before the pair arrays
- * are allocated (Linux grants large allocations and kills the process when
+ * the node-segment search stops at ctdi_pair_limit pairs (its max_pairs),
+ * TYPE11's counted pairs go through ctdi_pair_budget, and either failure
+ * writes the message (ctdi_pairs_too_many) before the pair arrays are
+ * allocated (Linux grants large allocations and kills the process when
  * their pages are touched, so the allocation failing cannot be relied on).
  */
 #include <math.h>
