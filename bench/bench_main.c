@@ -26,6 +26,7 @@
 #include <unistd.h>
 
 #include "bench_cycle.h"
+#include "bench_elements.h"
 #include "bench_paired.h"
 #include "bench_floor.h"
 #include "bench_kernels.h"
@@ -179,7 +180,8 @@ int main(int argc, char **argv)
     if (ctb_search_register(&cfg) < 0 || ctb_peers_register(&cfg) < 0 ||
         ctb_kernels_register(&cfg) < 0 || ctb_floor_register(&cfg) < 0 ||
         ctb_real_register(&cfg) < 0 || ctb_trade_register(&cfg) < 0 ||
-        ctb_cycle_register(&cfg) < 0 || ctb_paired_register(&cfg) < 0) {
+        ctb_cycle_register(&cfg) < 0 || ctb_paired_register(&cfg) < 0 ||
+        ctb_elements_register(&cfg) < 0) {
         fprintf(stderr, "bench: out of memory registering benchmarks\n");
         rc = 1;
     } else {
@@ -198,6 +200,7 @@ int main(int argc, char **argv)
     ctb_trade_cleanup();
     ctb_cycle_cleanup();
     ctb_paired_cleanup();
+    ctb_elements_cleanup();
     ctb_topology_close();
     free(args);
     return rc;

@@ -131,6 +131,12 @@ EFF_RE = re.compile(
     r"(?:/iterations:\d+)?(?:/(?:real_time|manual_time))?$")
 COUNTERS += ["ns_t1", "ns_tn", "eff", "eff_min", "eff_max", "eff_best", "calls"]
 EFF_TARGET = 0.9
+# The driver's shell element forces (bench_elements.c):
+# elements/shell/<mesh>/t<threads>/<nodes>.
+ELEM_RE = re.compile(
+    r"^elements/(?P<element>[^/]+)/(?P<family>[^/]+)/t(?P<threads>\d+)/(?P<n>\d+)"
+    r"(?:/iterations:\d+)?(?:/(?:real_time|manual_time))?$")
+COUNTERS += ["ns_per_elem", "ns_per_node", "elements", "triangles", "hinges"]
 PREC_ORDER = ["double", "single"]
 
 
@@ -639,6 +645,36 @@ def print_cycle(cyc, out):
         out.append("")
 
 
+def print_elements(rows, out):
+    """The driver's element forces: one row per element kind, mesh, size and
+    threads."""
+    if not rows:
+        return
+    out.append("## Element forces (the driver)\n")
+    out.append("Median of the repetitions; one call of the element forces per iteration "
+               "(wall time); speed-up = time with 1 thread / time with this row's threads.\n")
+    out.append("| element | mesh | nodes | elements | triangles | hinges | threads "
+               "| ns/element | ns/node | speed-up |")
+    out.append("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|")
+    rows = sorted(rows, key=lambda r: (r["element"], r["family"], r["n"], r["threads"]))
+    one = {(r["element"], r["family"], r["n"]): r["counters"].get("ns_per_elem")
+           for r in rows if r["threads"] == 1 and not r["error"]}
+    for r in rows:
+        head = "| %s | %s | %d " % (r["element"], r["family"], r["n"])
+        if r["error"]:
+            out.append(head + "| - | - | - | %d | %s | - | - |" % (r["threads"], r["error"]))
+            continue
+        c = r["counters"]
+        t1 = one.get((r["element"], r["family"], r["n"]))
+        ns = c.get("ns_per_elem")
+        speedup = "%.2f" % (t1 / ns) if r["threads"] > 1 and t1 and ns else "-"
+        out.append(head + "| %s | %s | %s | %d | %s | %s | %s |" % (
+            fmt_num(c.get("elements"), 0), fmt_num(c.get("triangles"), 0),
+            fmt_num(c.get("hinges"), 0), r["threads"], fmt_ns(ns),
+            fmt_ns(c.get("ns_per_node")), speedup))
+    out.append("")
+
+
 def parse_paired(other):
     """Split the paired records (paired/<family>/<b>-vs-<a>/t<threads>/<nodes>)
     from the others."""
@@ -967,9 +1003,11 @@ def report(datas, names=None, compare=None, inter=None):
         cyc, other = parse_cycle(other, tag)
         paired, other = parse_paired(other)
         eff, other = split_named(other, EFF_RE)
+        elem, other = split_named(other, ELEM_RE)
         files.append({"tag": tag, "name": name, "data": data, "search": search,
                       "kern": kern, "flo": flo, "other": other, "peers": peers,
-                      "trade": trade, "cycle": cyc, "paired": paired, "eff": eff})
+                      "trade": trade, "cycle": cyc, "paired": paired, "eff": eff,
+                      "elem": elem})
     for f in files:
         if multi:
             out.append("# %s precision (%s)\n" % (f["tag"], f["name"]))
@@ -990,6 +1028,7 @@ def report(datas, names=None, compare=None, inter=None):
     print_floor([r for f in files for r in f["flo"]], {f["tag"]: f["search"] for f in files},
                 out)
     print_cycle([r for f in files for r in f["cycle"]], out)
+    print_elements([r for f in files for r in f["elem"]], out)
     print_paired([r for f in files for r in f["paired"]], out)
     for f in files:
         print_peers(f["peers"], f["search"], out)

@@ -5,7 +5,8 @@
  * threads, 3 repetitions), trimmed, and two full contact cycle medians
  * (cycle/folded/t1/100000 from a real run, its t2 row made up), and three
  * paired medians and two efficiency medians of a real run (bench_paired.c,
- * bench_eff.c); with
+ * bench_eff.c), and two shell element medians of a real run
+ * (bench_elements.c); with
  * tests/data/interleaved_sample.json, a real bench/interleave.py output. The
  * expected numbers are worked out by hand from the JSON values and written
  * next to each check.
@@ -140,6 +141,24 @@ Test(bench_report, cycle_table_from_sample)
     cr_expect(strstr(out, "## Other benchmarks") == NULL,
               "the sample has no other benchmarks, but the table is there:\n%s", out);
 
+    free(out);
+}
+
+Test(bench_report, elements_table_from_sample)
+{
+    char *out = sample_report("");
+    expect_line(out, "## Element forces (the driver)");
+    expect_line(out, "| element | mesh | nodes | elements | triangles | hinges | threads "
+                     "| ns/element | ns/node | speed-up |");
+    /* 1 thread: ns_per_elem 411.338, ns_per_node 408.739; no speed-up. */
+    expect_line(out, "| shell | plate | 100000 | 99225 | 396900 | 791280 | 1 | 411.3 | 408.7 "
+                     "| - |");
+    /* 2 threads: 272.423 and 270.701; speed-up 411.338 / 272.423 = 1.510
+     * (the wall times give 40.80 / 27.03 = 1.51 too). */
+    expect_line(out, "| shell | plate | 100000 | 99225 | 396900 | 791280 | 2 | 272.4 | 270.7 "
+                     "| 1.51 |");
+    cr_expect(strstr(out, "| elements/shell/") == NULL,
+              "element rows left in the \"other\" table:\n%s", out);
     free(out);
 }
 
