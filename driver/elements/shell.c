@@ -77,8 +77,9 @@ void ctd_shell_destroy(ctd_shell *s)
         return;
     void *arrs[] = {s->t1, s->t2, s->t3, s->tri_elem, s->tri_vol, s->b11, s->b12,
                     s->b22, s->tri_w, s->elem_t, s->h1, s->h2, s->h3, s->h4, s->theta0, s->hk,
-                    s->sx, s->sy, s->sz, s->slot_off, s->slot, s->e_el, s->node_k,
-                    s->node_m, s->snode};
+                    s->sx, s->sy, s->sz, s->slot_off, s->slot, s->e_blk, s->node_k,
+                    s->node_m, s->snode, s->hta, s->htb, s->hsa, s->hsb, s->nx, s->ny,
+                    s->nz, s->il, s->hc, s->te};
     for (size_t i = 0; i < sizeof arrs / sizeof arrs[0]; i++)
         ct_free(arrs[i]);
     memset(s, 0, sizeof *s);
@@ -159,6 +160,46 @@ static ct_idx cti_shell_third(const ctd_shell *s, ct_idx t, ct_idx a, ct_idx b)
     return -1;
 }
 
+/* Whether b follows a in triangle t's cyclic order (a and b corners). */
+static int cti_shell_follows(const ctd_shell *s, ct_idx t, ct_idx a, ct_idx b)
+{
+    ct_idx c[3] = {s->t1[t], s->t2[t], s->t3[t]};
+    for (int k = 0; k < 3; k++)
+        if (c[k] == a)
+            return c[(k + 1) % 3] == b;
+    return 0;
+}
+
+/* Each triangle edge's hinge sides (te, shell.h): side A of hinge h is
+ * entry h of hc, side B nhinge + h. An edge of a triangle has at most two
+ * hinges (one per triangle of the other element holding it). */
+static int cti_shell_edge_hinges(ctd_shell *s)
+{
+    const ct_idx none = 2 * s->nhinge;
+    s->te = ct_calloc(6 * (size_t)s->ntri + 1, sizeof(ct_idx));
+    if (!s->te)
+        return CT_ERR_NOMEM;
+    for (size_t k = 0; k < 6 * (size_t)s->ntri; k++)
+        s->te[k] = none;
+    for (ct_idx h = 0; h < s->nhinge; h++)
+        for (int side = 0; side < 2; side++) {
+            ct_idx t = side ? s->htb[h] : s->hta[h];
+            ct_idx c[3] = {s->t1[t], s->t2[t], s->t3[t]};
+            int k = 0;
+            while (k < 3 && !((c[k] == s->h1[h] && c[(k + 1) % 3] == s->h2[h]) ||
+                              (c[k] == s->h2[h] && c[(k + 1) % 3] == s->h1[h])))
+                k++;
+            if (k == 3)
+                return CT_ERR_ARG; /* cannot happen: the hinge's edge is t's */
+            size_t j0 = (size_t)(2 * k) * (size_t)s->ntri + (size_t)t;
+            size_t j1 = j0 + (size_t)s->ntri;
+            if (s->te[j1] != none)
+                return CT_ERR_ARG; /* cannot happen: see above */
+            s->te[s->te[j0] != none ? j1 : j0] = side ? s->nhinge + h : h;
+        }
+    return CT_OK;
+}
+
 /* Rest angle, stiffness and bending Gershgorin sums of hinge h between
  * triangles ta and tb: k_h = wa wb (D / 2) |e|^2 / (A_A + A_B), D the mean
  * of the two elements' plate stiffnesses, wa and wb the triangles' weights
@@ -176,7 +217,7 @@ static int cti_shell_hinge_ref(ctd_shell *s, ct_idx h, ct_idx ta, ct_idx tb,
         p[a][1] = y[nd[a]];
         p[a][2] = z[nd[a]];
     }
-    s->theta0[h] = ctd_shell_dihedral(p, g);
+    ctd_shell_dihedral(p, g); /* the gradient; theta0 from ctd_shell_rest_angles */
     double ee = 0;
     for (int k = 0; k < 3; k++)
         ee += ((double)p[1][k] - p[0][k]) * ((double)p[1][k] - p[0][k]);
@@ -244,6 +285,10 @@ static int cti_shell_hinges(ctd_shell *s, const ct_real *x, const ct_real *y,
                             s->h2[nh] = b;
                             s->h3[nh] = cti_shell_third(s, ed[ia].tri, a, b);
                             s->h4[nh] = cti_shell_third(s, ed[ib].tri, a, b);
+                            s->hta[nh] = ed[ia].tri;
+                            s->htb[nh] = ed[ib].tri;
+                            s->hsa[nh] = cti_shell_follows(s, ed[ia].tri, a, b) ? 1 : -1;
+                            s->hsb[nh] = cti_shell_follows(s, ed[ib].tri, a, b) ? -1 : 1;
                             err = cti_shell_hinge_ref(s, (ct_idx)nh, ed[ia].tri, ed[ib].tri,
                                                       x, y, z, r);
                         }
@@ -264,7 +309,12 @@ static int cti_shell_hinges(ctd_shell *s, const ct_real *x, const ct_real *y,
                     err = CT_ERR_NOMEM;
             s->theta0 = ct_calloc((size_t)nh + 1, sizeof(ct_real));
             s->hk = ct_calloc((size_t)nh + 1, sizeof(ct_real));
-            if (!s->theta0 || !s->hk)
+            s->hta = ct_calloc((size_t)nh + 1, sizeof(ct_idx));
+            s->htb = ct_calloc((size_t)nh + 1, sizeof(ct_idx));
+            s->hsa = ct_calloc((size_t)nh + 1, sizeof(ct_real));
+            s->hsb = ct_calloc((size_t)nh + 1, sizeof(ct_real));
+            s->hc = ct_calloc(2 * (size_t)nh + 1, sizeof(ct_real));
+            if (!s->theta0 || !s->hk || !s->hta || !s->htb || !s->hsa || !s->hsb || !s->hc)
                 err = CT_ERR_NOMEM;
         }
     }
@@ -404,6 +454,17 @@ int ctd_shell_init(ctd_shell *s, ct_idx nnode, const ct_real *x, const ct_real *
         err = cti_shell_tri_ref(s, k, x, y, z, lam, mu, r);
     if (err == CT_OK)
         err = cti_shell_hinges(s, x, y, z, r);
+    if (err == CT_OK)
+        err = cti_shell_edge_hinges(s);
+    if (err == CT_OK) {
+        s->nx = ct_calloc(nt, sizeof(ct_real));
+        s->ny = ct_calloc(nt, sizeof(ct_real));
+        s->nz = ct_calloc(nt, sizeof(ct_real));
+        s->il = ct_calloc(nt, sizeof(ct_real));
+        err = s->nx && s->ny && s->nz && s->il ? CT_OK : CT_ERR_NOMEM;
+    }
+    if (err == CT_OK)
+        err = ctd_shell_rest_angles(s, x, y, z);
     if (err != CT_OK) {
         free(r);
         ctd_shell_destroy(s);
@@ -411,7 +472,7 @@ int ctd_shell_init(ctd_shell *s, ct_idx nnode, const ct_real *x, const ct_real *
     }
 
     /* Slots and the node -> slot map (slots in increasing order). */
-    int64_t nslot = 3 * (int64_t)s->ntri + 4 * (int64_t)s->nhinge;
+    int64_t nslot = 3 * (int64_t)s->ntri;
     if (nslot > INT32_MAX) {
         free(r);
         ctd_shell_destroy(s);
@@ -423,8 +484,10 @@ int ctd_shell_init(ctd_shell *s, ct_idx nnode, const ct_real *x, const ct_real *
     s->sz = ct_calloc((size_t)nslot + 1, sizeof(ct_real));
     s->slot = ct_calloc((size_t)nslot + 1, sizeof(ct_idx));
     s->slot_off = ct_calloc(nn + 1, sizeof(ct_idx));
-    s->e_el = ct_calloc((size_t)s->ntri + (size_t)s->nhinge + 1, sizeof(double));
-    if (!s->sx || !s->sy || !s->sz || !s->slot || !s->slot_off || !s->e_el) {
+    size_t nblk = ((size_t)s->ntri + CTD_SHELL_BLOCK - 1) / CTD_SHELL_BLOCK +
+                  ((size_t)s->nhinge + CTD_SHELL_BLOCK - 1) / CTD_SHELL_BLOCK;
+    s->e_blk = ct_calloc(nblk + 1, sizeof(double));
+    if (!s->sx || !s->sy || !s->sz || !s->slot || !s->slot_off || !s->e_blk) {
         free(r);
         ctd_shell_destroy(s);
         return CT_ERR_NOMEM;
@@ -432,16 +495,9 @@ int ctd_shell_init(ctd_shell *s, ct_idx nnode, const ct_real *x, const ct_real *
     for (int pass = 0; pass < 2; pass++) {
         /* Pass 0 counts, pass 1 fills (slot_off[i + 1] used as a cursor). */
         for (ct_idx k = 0; k < s->nslot; k++) {
-            ct_idx node;
-            if (k < 3 * s->ntri) {
-                ct_idx tt = k / 3;
-                int c = k % 3;
-                node = c == 0 ? s->t1[tt] : c == 1 ? s->t2[tt] : s->t3[tt];
-            } else {
-                ct_idx hh = (k - 3 * s->ntri) / 4;
-                int c = (k - 3 * s->ntri) % 4;
-                node = c == 0 ? s->h1[hh] : c == 1 ? s->h2[hh] : c == 2 ? s->h3[hh] : s->h4[hh];
-            }
+            ct_idx tt = k % s->ntri;
+            int c = (int)(k / s->ntri);
+            ct_idx node = c == 0 ? s->t1[tt] : c == 1 ? s->t2[tt] : s->t3[tt];
             if (pass == 0)
                 s->slot_off[node + 1]++;
             else

@@ -15,15 +15,26 @@
  * averaging both removes the coupling. The contact keeps seeing the quads.
  * Each input element has its own thickness t (the contact gap uses t / 2).
  *
- * Forces are deterministic for any thread count: each triangle and each
- * hinge writes its nodal forces into private slots, then a node-parallel
- * pass sums each node's slots in increasing slot order (a node->slot CSR
- * map, as in LULESH). Nothing is allocated after ctd_shell_init.
+ * A hinge's force on the nodes of each of its triangles lies along that
+ * triangle's normal (it turns the triangle about the edge), so the forces
+ * are computed in three passes: every triangle's unit normal; every
+ * hinge's angle and its coefficient -2 k_h (theta - theta0); every
+ * triangle's membrane force plus the coefficients of the hinges on its
+ * three edges along its normal (shell_forces.c has the formula).
+ * Forces are deterministic for any thread count: each triangle writes its
+ * nodal forces into private slots, then a node-parallel pass sums each
+ * node's slots in increasing slot order (a node->slot CSR map, as in
+ * LULESH). Nothing is allocated after ctd_shell_init.
  */
 #ifndef CTD_SHELL_H
 #define CTD_SHELL_H
 
 #include "contact.h"
+
+/* Triangles or hinges per block of the forces' loops; each block sums its
+ * energy, and the blocks' sums are added in block order, so the energy
+ * does not depend on the thread count. */
+#define CTD_SHELL_BLOCK 512
 
 typedef struct ctd_shell {
     ct_idx nnode;    /* nodes of the model (arrays passed in are this long) */
@@ -44,8 +55,23 @@ typedef struct ctd_shell {
     ct_idx *h1, *h2, *h3, *h4;
     ct_real *theta0; /* rest dihedral angle */
     ct_real *hk;     /* k_h = (D / 2) |e0|^2 / (A_A + A_B) */
+    /* The hinge's triangles A and B, and the signs (+1 or -1) that turn
+     * their unit normals into the hinge's nA = e x (h3 - h1) / |.| and
+     * nB = (h4 - h1) x e / |.|, e = h2 - h1. */
+    ct_idx *hta, *htb;
+    ct_real *hsa, *hsb;
 
-    /* Private force slots: 3 per triangle, then 4 per hinge. */
+    /* Per-cycle scratch: each triangle's unit normal and 1 / (2 A); each
+     * hinge's coefficient for its side A (hc[h]) and side B (hc[nhinge +
+     * h]), the entry 2 nhinge always 0; and for each triangle edge k (corner k to
+     * corner k + 1) the two entries of hc of the hinges on it (te[(2 k +
+     * j) ntri + t], 2 nhinge when there are fewer). */
+    ct_real *nx, *ny, *nz, *il;
+    ct_real *hc;
+    ct_idx *te;
+
+    /* Private force slots: 3 per triangle, corner-major (slot c ntri + t
+     * is corner c of triangle t). */
     ct_idx nslot;
     ct_real *sx, *sy, *sz;
     /* The set's nodes (those of its triangles), increasing: the arrays
@@ -54,7 +80,7 @@ typedef struct ctd_shell {
     ct_idx nsnode;
     ct_idx *snode;
     ct_idx *slot_off, *slot; /* set node -> its slots, increasing (CSR, nsnode + 1) */
-    double *e_el;            /* energy per triangle, then per hinge */
+    double *e_blk; /* energy per block of CTD_SHELL_BLOCK triangles, then of hinges */
 
     /* Results of the last ctd_shell_forces call. */
     double e_membrane, e_bending;
@@ -101,6 +127,14 @@ double ctd_shell_dt(const ctd_shell *s);
 /* Add the nodal stiffness K_a to k (nnode), the element part of the nodal
  * time step dt = sqrt(2 m / (K_elem + K_contact)) of DESIGN.md section 7. */
 void ctd_shell_node_stiffness(const ctd_shell *s, ct_real *k);
+
+/* The rest angles theta0 of the hinges from reference positions, by the
+ * same arithmetic as the forces (a shell at rest has theta = theta0 to the
+ * bit). For ctd_shell_init; CT_ERR_DEGENERATE when an angle is not finite. */
+int ctd_shell_rest_angles(ctd_shell *s, const ct_real *x, const ct_real *y, const ct_real *z);
+
+/* The vectorisable atan2 of the forces (shell_forces.c); exposed for tests. */
+ct_real ctd_shell_atan2(ct_real y, ct_real x);
 
 /* Signed dihedral angle of the hinge with edge p[0]-p[1] and opposite
  * vertices p[2] (triangle A) and p[3] (triangle B), and its gradient g

@@ -1,7 +1,8 @@
 /*
  * shell_forces.c -- the per-cycle part of the thin shell (shell.h): the
  * membrane and bending forces, written to private slots and gathered per
- * node in a fixed order; and the dihedral angle with its gradient.
+ * node in a fixed order; the dihedral angle with its gradient; and the
+ * vectorisable atan2 the forces use.
  *
  * Membrane (constant-strain triangle, total Lagrangian). In a local
  * orthonormal frame of the reference triangle, Dm = [X2 - X1, X3 - X1] is
@@ -34,6 +35,23 @@
  * E_h = k_h (theta - theta0)^2, its forces -2 k_h (theta - theta0) grad.
  * theta lives in (-pi, pi]: one hinge folded flat on itself (the two
  * triangles coincident) is left to the contact to prevent.
+ *
+ * How the forces compute it. The part of the gradient with nA moves only
+ * triangle A's nodes, along A's normal: with 1 / hA = |e| / (2 A_A),
+ *   F_c = -K nA,  F_a = (1 - sA) K nA,  F_b = sA K nA,
+ *   K = c |e| / (2 A_A),  c = -2 k_h (theta - theta0),
+ * and likewise for B. nA is triangle A's own unit normal n_A times a sign
+ * sigma_A (+1 when b follows a in A's node order, else -1; for B, -1 when
+ * b follows a in B), so the hinge hands triangle A the number c sigma_A
+ * and each triangle adds, over its three edges, the numbers of the hinges
+ * on that edge (at most two) times |e| / (2 A) times the weights above,
+ * all along n_A. Three passes, each a vector loop: every triangle's unit
+ * normal; every hinge's angle (from the two normals and the edge, with
+ * cti_atan2), energy and signed numbers; every triangle's membrane force
+ * plus its bending force into its three slots. A hinge costs no slots
+ * and no scatter: a node sums only its triangles' corners (12 on a quad
+ * mesh, not 44 with the hinges' own slots). The energy is summed per
+ * block of CTD_SHELL_BLOCK elements, and the blocks in their order.
  */
 #include <math.h>
 #include <string.h>
@@ -46,8 +64,10 @@
 
 #ifdef CT_SINGLE
 #define CTI_SHELL_ATAN2 atan2f
+#define CTI_SHELL_COPYSIGN copysignf
 #else
 #define CTI_SHELL_ATAN2 atan2
+#define CTI_SHELL_COPYSIGN copysign
 #endif
 
 static inline void cti_shell_cross(const ct_real u[3], const ct_real v[3], ct_real w[3])
@@ -109,6 +129,126 @@ ct_real ctd_shell_dihedral(const ct_real p[4][3], ct_real g[4][3])
     return theta;
 }
 
+/* atan2 as a branch-free sequence the compiler can vectorise: t = the
+ * smaller of |x|, |y| over the larger, in [0, 1]; above tan(pi/8) it is
+ * moved to u = (t - 1) / (t + 1) and atan t = pi/4 + atan u, so |u| <=
+ * tan(pi/8) = 0.4142; atan u is its Taylor series u sum (-1)^n u^2n /
+ * (2n + 1), whose terms fall by u^2 <= 0.1716 each (20 terms reach the
+ * double epsilon, 9 the float one); then the octant is restored. Both zero
+ * gives 0; a NaN gives NaN. */
+#define CTI_ATAN_C(n) ((ct_real)(((n)&1 ? -1.0 : 1.0) / (2.0 * (n) + 1)))
+#define CTI_ATAN_H(n) p = p * z + CTI_ATAN_C(n)
+static inline ct_real cti_atan2(ct_real y, ct_real x)
+{
+    const ct_real pi = (ct_real)3.14159265358979323846;
+    const ct_real tan_pi_8 = (ct_real)0.41421356237309504880;
+    ct_real ax = CTI_FABS(x), ay = CTI_FABS(y);
+    ct_real mx = ax > ay ? ax : ay, mn = ax > ay ? ay : ax;
+    /* One division: u = t, or (t - 1) / (t + 1) = (mn - mx) / (mn + mx).
+     * Both zero give u = 0; a NaN fails every comparison and reaches u. */
+    int big = mn > tan_pi_8 * mx;
+    ct_real num = big ? mn - mx : mn, den = big ? mn + mx : mx;
+    ct_real u = den == 0 ? 0 : num / den;
+    ct_real z = u * u;
+    /* Horner's scheme written out (a loop would stop the vectoriser). */
+#ifdef CT_SINGLE
+    ct_real p = CTI_ATAN_C(8);
+#else
+    ct_real p = CTI_ATAN_C(19);
+    CTI_ATAN_H(18);
+    CTI_ATAN_H(17);
+    CTI_ATAN_H(16);
+    CTI_ATAN_H(15);
+    CTI_ATAN_H(14);
+    CTI_ATAN_H(13);
+    CTI_ATAN_H(12);
+    CTI_ATAN_H(11);
+    CTI_ATAN_H(10);
+    CTI_ATAN_H(9);
+    CTI_ATAN_H(8);
+#endif
+    CTI_ATAN_H(7);
+    CTI_ATAN_H(6);
+    CTI_ATAN_H(5);
+    CTI_ATAN_H(4);
+    CTI_ATAN_H(3);
+    CTI_ATAN_H(2);
+    CTI_ATAN_H(1);
+    CTI_ATAN_H(0);
+    ct_real r = (big ? pi / 4 : 0) + u * p;
+    r = ay > ax ? pi / 2 - r : r;
+    /* The signs by copysign (signbit does not vectorise): -0 counts as
+     * negative, as in atan2. */
+    r = CTI_SHELL_COPYSIGN(1, x) < 0 ? pi - r : r;
+    return CTI_SHELL_COPYSIGN(r, y);
+}
+
+ct_real ctd_shell_atan2(ct_real y, ct_real x) { return cti_atan2(y, x); }
+
+/* The unit normal and 1 / |normal| (1 / (2 A)) of every triangle. A
+ * collapsed triangle gets NaN or infinite values, which make its forces
+ * and its hinges' NaN (reported there). An orphaned work-sharing loop:
+ * called inside the forces' parallel region, or serially. */
+static void cti_shell_normals(ctd_shell *s, const ct_real *restrict x, const ct_real *restrict y,
+                              const ct_real *restrict z)
+{
+    const ct_idx *restrict t1 = s->t1, *restrict t2 = s->t2, *restrict t3 = s->t3;
+    ct_real *restrict nx = s->nx, *restrict ny = s->ny, *restrict nz = s->nz;
+    ct_real *restrict il = s->il;
+#pragma omp for simd schedule(static)
+    for (ct_idx t = 0; t < s->ntri; t++) {
+        ct_idx i1 = t1[t], i2 = t2[t], i3 = t3[t];
+        ct_real ax = x[i2] - x[i1], ay = y[i2] - y[i1], az = z[i2] - z[i1];
+        ct_real bx = x[i3] - x[i1], by = y[i3] - y[i1], bz = z[i3] - z[i1];
+        ct_real cx = ay * bz - az * by, cy = az * bx - ax * bz, cz = ax * by - ay * bx;
+        ct_real inv = 1 / CTI_SQRT(cx * cx + cy * cy + cz * cz);
+        nx[t] = cx * inv;
+        ny[t] = cy * inv;
+        nz[t] = cz * inv;
+        il[t] = inv;
+    }
+}
+
+/* theta = the dihedral angle of hinge h from the triangles' unit normals:
+ * nA and nB are the normals of triangles hta[h] and htb[h] signed by hsa[h]
+ * and hsb[h] to the hinge's orientation (shell.h). A macro over the arrays
+ * h1, h2, hta, htb, hsa, hsb, nx, ny, nz, x, y, z of the caller, not a
+ * function: clang vectorises an omp simd loop only when every memory
+ * access is written inside it (an inlined function's are not marked). */
+#define CTI_SHELL_ANGLE(h, theta)                                                               \
+    do {                                                                                        \
+        ct_idx a_ = h1[h], b_ = h2[h], ta_ = hta[h], tb_ = htb[h];                              \
+        ct_real sa_ = hsa[h], sb_ = hsb[h];                                                     \
+        ct_real ex_ = x[b_] - x[a_], ey_ = y[b_] - y[a_], ez_ = z[b_] - z[a_];                  \
+        ct_real ax_ = sa_ * nx[ta_], ay_ = sa_ * ny[ta_], az_ = sa_ * nz[ta_];                  \
+        ct_real bx_ = sb_ * nx[tb_], by_ = sb_ * ny[tb_], bz_ = sb_ * nz[tb_];                  \
+        ct_real wx_ = ay_ * bz_ - az_ * by_, wy_ = az_ * bx_ - ax_ * bz_;                       \
+        ct_real wz_ = ax_ * by_ - ay_ * bx_;                                                    \
+        ct_real le_ = CTI_SQRT(ex_ * ex_ + ey_ * ey_ + ez_ * ez_);                              \
+        (theta) = cti_atan2((wx_ * ex_ + wy_ * ey_ + wz_ * ez_) / le_,                          \
+                            ax_ * bx_ + ay_ * by_ + az_ * bz_);                                 \
+    } while (0)
+
+/* The hinge arrays CTI_SHELL_ANGLE reads, as restrict locals. */
+#define CTI_SHELL_ANGLE_ARRAYS(s)                                                               \
+    const ct_idx *restrict h1 = (s)->h1, *restrict h2 = (s)->h2, *restrict hta = (s)->hta;      \
+    const ct_idx *restrict htb = (s)->htb;                                                      \
+    const ct_real *restrict hsa = (s)->hsa, *restrict hsb = (s)->hsb;                           \
+    const ct_real *restrict nx = (s)->nx, *restrict ny = (s)->ny, *restrict nz = (s)->nz
+
+int ctd_shell_rest_angles(ctd_shell *s, const ct_real *x, const ct_real *y, const ct_real *z)
+{
+    cti_shell_normals(s, x, y, z);
+    CTI_SHELL_ANGLE_ARRAYS(s);
+    ct_real *restrict th0 = s->theta0;
+    int bad = 0;
+    for (ct_idx h = 0; h < s->nhinge; h++) {
+        CTI_SHELL_ANGLE(h, th0[h]);
+        bad |= !(CTI_FABS(th0[h]) < 4);
+    }
+    return bad ? CT_ERR_DEGENERATE : CT_OK;
+}
+
 int ctd_shell_forces(ctd_shell *s, const ct_real *x, const ct_real *y, const ct_real *z,
                      ct_real *fx, ct_real *fy, ct_real *fz, double *energy)
 {
@@ -118,98 +258,138 @@ int ctd_shell_forces(ctd_shell *s, const ct_real *x, const ct_real *y, const ct_
     const ct_real lam = E * nu / (1 - nu * nu); /* plane-stress lambda' */
     const ct_real mu = E / (2 * (1 + nu));
     const ct_idx ntri = s->ntri, nhinge = s->nhinge;
+    const ct_idx *restrict t1 = s->t1, *restrict t2 = s->t2, *restrict t3 = s->t3;
+    const ct_idx *restrict te = s->te;
+    const size_t nt1 = (size_t)ntri;
+    const ct_real *restrict b11v = s->b11, *restrict b12v = s->b12, *restrict b22v = s->b22;
+    const ct_real *restrict vol = s->tri_vol, *restrict hk = s->hk, *restrict th0 = s->theta0;
+    const ct_real *restrict il = s->il;
+    ct_real *restrict hc = s->hc;
+    CTI_SHELL_ANGLE_ARRAYS(s);
     ct_real *restrict sx = s->sx, *restrict sy = s->sy, *restrict sz = s->sz;
-    double *restrict e_el = s->e_el;
-    int bad = 0;
+    double *restrict e_blk = s->e_blk;
+    const ct_idx nbt = (ntri + CTD_SHELL_BLOCK - 1) / CTD_SHELL_BLOCK;
+    const ct_idx nbh = (nhinge + CTD_SHELL_BLOCK - 1) / CTD_SHELL_BLOCK;
+    int bad_h = 0, bad_t = 0; /* shared: the loops' reductions */
     /* Small shells run serially (a parallel region costs more than them). */
     const int par = (int64_t)ntri + nhinge >= CTI_SHELL_PAR_MIN;
 
-#pragma omp parallel reduction(| : bad) if (par)
+#pragma omp parallel if (par)
     {
-#pragma omp for schedule(static)
-        for (ct_idx t = 0; t < ntri; t++) {
-            ct_idx i1 = s->t1[t], i2 = s->t2[t], i3 = s->t3[t];
-            ct_real d1[3] = {x[i2] - x[i1], y[i2] - y[i1], z[i2] - z[i1]};
-            ct_real d2[3] = {x[i3] - x[i1], y[i3] - y[i1], z[i3] - z[i1]};
-            ct_real b11 = s->b11[t], b12 = s->b12[t], b22 = s->b22[t], V = s->tri_vol[t];
-            ct_real f0[3], f1[3];
-            for (int k = 0; k < 3; k++) {
-                f0[k] = b11 * d1[k];
-                f1[k] = b12 * d1[k] + b22 * d2[k];
+        cti_shell_normals(s, x, y, z);
+
+        /* Hinges: the angle, the energy, and the coefficient
+         * c = -2 k_h (theta - theta0) signed for each side's triangle. */
+#pragma omp for schedule(static) reduction(| : bad_h)
+        for (ct_idx b = 0; b < nbh; b++) {
+            const ct_idx j0 = b * CTD_SHELL_BLOCK;
+            const ct_idx j1 = nhinge - j0 < CTD_SHELL_BLOCK ? nhinge : j0 + CTD_SHELL_BLOCK;
+            double eb = 0;
+            int bad = 0;
+#pragma omp simd reduction(+ : eb) reduction(| : bad)
+            for (ct_idx h = j0; h < j1; h++) {
+                ct_real theta;
+                CTI_SHELL_ANGLE(h, theta);
+                ct_real dth = theta - th0[h];
+                ct_real c = -2 * hk[h] * dth;
+                eb += (double)hk[h] * dth * dth;
+                bad |= !(CTI_FABS(c) < (ct_real)HUGE_VAL);
+                hc[h] = c * hsa[h];
+                hc[nhinge + h] = c * hsb[h];
             }
-            /* Green strain and the second Piola-Kirchhoff stress. */
-            ct_real e00 = (cti_shell_dot(f0, f0) - 1) / 2;
-            ct_real e11 = (cti_shell_dot(f1, f1) - 1) / 2;
-            ct_real e01 = cti_shell_dot(f0, f1) / 2;
-            ct_real tr = e00 + e11;
-            ct_real s00 = lam * tr + 2 * mu * e00, s11 = lam * tr + 2 * mu * e11;
-            ct_real s01 = 2 * mu * e01;
-            e_el[t] = (double)V * ((double)mu * (e00 * e00 + e11 * e11 + 2 * e01 * e01) +
-                                   (double)lam / 2 * tr * tr);
-            ct_real h2[3], h3[3];
-            for (int k = 0; k < 3; k++) {
-                ct_real p0 = f0[k] * s00 + f1[k] * s01; /* P = F S, column 0 */
-                ct_real p1 = f0[k] * s01 + f1[k] * s11; /* column 1 */
-                h2[k] = -V * (p0 * b11 + p1 * b12);
-                h3[k] = -V * (p1 * b22);
-            }
-            if (!isfinite(e_el[t] + h2[0] + h2[1] + h2[2] + h3[0] + h3[1] + h3[2]))
-                bad = 1;
-            ct_idx q = 3 * t;
-            sx[q] = -(h2[0] + h3[0]);
-            sy[q] = -(h2[1] + h3[1]);
-            sz[q] = -(h2[2] + h3[2]);
-            sx[q + 1] = h2[0];
-            sy[q + 1] = h2[1];
-            sz[q + 1] = h2[2];
-            sx[q + 2] = h3[0];
-            sy[q + 2] = h3[1];
-            sz[q + 2] = h3[2];
+            e_blk[nbt + b] = eb;
+            bad_h |= bad;
         }
 
-#pragma omp for schedule(static)
-        for (ct_idx h = 0; h < nhinge; h++) {
-            const ct_idx nd[4] = {s->h1[h], s->h2[h], s->h3[h], s->h4[h]};
-            ct_real p[4][3], g[4][3], theta;
-            for (int a = 0; a < 4; a++) {
-                p[a][0] = x[nd[a]];
-                p[a][1] = y[nd[a]];
-                p[a][2] = z[nd[a]];
+        /* Triangles: membrane, plus the hinges' forces on the triangle's
+         * side, which are along its normal. */
+#pragma omp for schedule(static) reduction(| : bad_t)
+        for (ct_idx b = 0; b < nbt; b++) {
+            const ct_idx k0 = b * CTD_SHELL_BLOCK;
+            const ct_idx k1 = ntri - k0 < CTD_SHELL_BLOCK ? ntri : k0 + CTD_SHELL_BLOCK;
+            double eb = 0;
+            int bad = 0;
+#pragma omp simd reduction(+ : eb) reduction(| : bad)
+            for (ct_idx t = k0; t < k1; t++) {
+                ct_idx i1 = t1[t], i2 = t2[t], i3 = t3[t];
+                ct_real d1x = x[i2] - x[i1], d1y = y[i2] - y[i1], d1z = z[i2] - z[i1];
+                ct_real d2x = x[i3] - x[i1], d2y = y[i3] - y[i1], d2z = z[i3] - z[i1];
+                ct_real b11 = b11v[t], b12 = b12v[t], b22 = b22v[t], V = vol[t];
+                ct_real f0x = b11 * d1x, f0y = b11 * d1y, f0z = b11 * d1z;
+                ct_real f1x = b12 * d1x + b22 * d2x, f1y = b12 * d1y + b22 * d2y,
+                        f1z = b12 * d1z + b22 * d2z;
+                /* Green strain and the second Piola-Kirchhoff stress. */
+                ct_real e00 = (f0x * f0x + f0y * f0y + f0z * f0z - 1) / 2;
+                ct_real e11 = (f1x * f1x + f1y * f1y + f1z * f1z - 1) / 2;
+                ct_real e01 = (f0x * f1x + f0y * f1y + f0z * f1z) / 2;
+                ct_real tr = e00 + e11;
+                ct_real s00 = lam * tr + 2 * mu * e00, s11 = lam * tr + 2 * mu * e11;
+                ct_real s01 = 2 * mu * e01;
+                double em = (double)V * ((double)mu * (e00 * e00 + e11 * e11 + 2 * e01 * e01) +
+                                         (double)lam / 2 * tr * tr);
+                eb += em;
+                /* P = F S; forces on nodes 2 and 3: -V P Bm^T. */
+                ct_real p0x = f0x * s00 + f1x * s01, p1x = f0x * s01 + f1x * s11;
+                ct_real p0y = f0y * s00 + f1y * s01, p1y = f0y * s01 + f1y * s11;
+                ct_real p0z = f0z * s00 + f1z * s01, p1z = f0z * s01 + f1z * s11;
+                ct_real h2x = -V * (p0x * b11 + p1x * b12), h3x = -V * (p1x * b22);
+                ct_real h2y = -V * (p0y * b11 + p1y * b12), h3y = -V * (p1y * b22);
+                ct_real h2z = -V * (p0z * b11 + p1z * b12), h3z = -V * (p1z * b22);
+                /* Edge k runs from corner k to corner k + 1, opposite corner
+                 * k + 2: e0 = d1, e1 = d2 - d1, e2 = -d2; r_k = corner k + 2
+                 * minus corner k: r0 = d2, r1 = -d1, r2 = d1 - d2. s_k is the
+                 * foot of the opposite corner on the edge, (r_k . e_k) / |e_k|^2,
+                 * and kap_k = (sum of the edge's hinge coefficients) |e_k| /
+                 * (2 A). The edge's hinges push the opposite corner by -kap_k n,
+                 * its start by kap_k (1 - s_k) n and its end by kap_k s_k n. */
+                ct_real e1x = d2x - d1x, e1y = d2y - d1y, e1z = d2z - d1z;
+                ct_real q0 = d1x * d1x + d1y * d1y + d1z * d1z;
+                ct_real q1 = e1x * e1x + e1y * e1y + e1z * e1z;
+                ct_real q2 = d2x * d2x + d2y * d2y + d2z * d2z;
+                ct_real r0 = (d2x * d1x + d2y * d1y + d2z * d1z) / q0;
+                ct_real r1 = -(d1x * e1x + d1y * e1y + d1z * e1z) / q1;
+                ct_real r2 = ((d2x - d1x) * d2x + (d2y - d1y) * d2y + (d2z - d1z) * d2z) / q2;
+                ct_real inv = il[t];
+                ct_real k0 = (hc[te[t]] + hc[te[nt1 + t]]) * CTI_SQRT(q0) * inv;
+                ct_real k1 = (hc[te[2 * nt1 + t]] + hc[te[3 * nt1 + t]]) * CTI_SQRT(q1) * inv;
+                ct_real k2 = (hc[te[4 * nt1 + t]] + hc[te[5 * nt1 + t]]) * CTI_SQRT(q2) * inv;
+                ct_real w1 = k0 * (1 - r0) + k2 * r2 - k1;
+                ct_real w2 = k1 * (1 - r1) + k0 * r0 - k2;
+                ct_real w3 = k2 * (1 - r2) + k1 * r1 - k0;
+                ct_real ux = nx[t], uy = ny[t], uz = nz[t];
+                ct_real g2x = h2x + w2 * ux, g2y = h2y + w2 * uy, g2z = h2z + w2 * uz;
+                ct_real g3x = h3x + w3 * ux, g3y = h3y + w3 * uy, g3z = h3z + w3 * uz;
+                ct_real g1x = w1 * ux - (h2x + h3x), g1y = w1 * uy - (h2y + h3y),
+                        g1z = w1 * uz - (h2z + h3z);
+                bad |= !(CTI_FABS(g1x + g1y + g1z + g2x + g2y + g2z + g3x + g3y + g3z) <
+                         (ct_real)HUGE_VAL) |
+                       !(em < HUGE_VAL);
+                sx[t] = g1x;
+                sy[t] = g1y;
+                sz[t] = g1z;
+                sx[ntri + t] = g2x;
+                sy[ntri + t] = g2y;
+                sz[ntri + t] = g2z;
+                sx[2 * ntri + t] = g3x;
+                sy[2 * ntri + t] = g3y;
+                sz[2 * ntri + t] = g3z;
             }
-            ct_idx q = 3 * ntri + 4 * h;
-            if (cti_shell_hinge(p, &theta, g) != 0) {
-                bad = 1;
-                e_el[ntri + h] = 0;
-                for (int a = 0; a < 4; a++)
-                    sx[q + a] = sy[q + a] = sz[q + a] = 0;
-                continue;
-            }
-            ct_real dth = theta - s->theta0[h];
-            e_el[ntri + h] = (double)s->hk[h] * dth * dth;
-            ct_real c = -2 * s->hk[h] * dth;
-            if (!isfinite(e_el[ntri + h] + c))
-                bad = 1;
-            for (int a = 0; a < 4; a++) {
-                sx[q + a] = c * g[a][0];
-                sy[q + a] = c * g[a][1];
-                sz[q + a] = c * g[a][2];
-            }
+            e_blk[b] = eb;
+            bad_t |= bad;
         }
     }
-    if (bad)
+    if (bad_h | bad_t)
         return CT_ERR_NONFINITE;
 
     /* Gather: each node sums its slots in increasing slot order, so the
      * result does not depend on the thread count. */
+    const ct_idx *restrict snode = s->snode, *restrict off = s->slot_off, *restrict slot = s->slot;
 #pragma omp parallel for schedule(static) if (par)
     for (ct_idx j = 0; j < s->nsnode; j++) {
-        const ct_idx i = s->snode[j];
-        ct_idx a0 = s->slot_off[j], a1 = s->slot_off[j + 1];
-        if (a0 == a1)
-            continue;
+        const ct_idx i = snode[j];
         ct_real gx = 0, gy = 0, gz = 0;
-        for (ct_idx a = a0; a < a1; a++) {
-            ct_idx q = s->slot[a];
+        for (ct_idx a = off[j]; a < off[j + 1]; a++) {
+            ct_idx q = slot[a];
             gx += sx[q];
             gy += sy[q];
             gz += sz[q];
@@ -219,12 +399,13 @@ int ctd_shell_forces(ctd_shell *s, const ct_real *x, const ct_real *y, const ct_
         fz[i] += gz;
     }
 
-    /* Energies summed serially in element order (deterministic). */
+    /* Energies: the blocks' sums added serially in block order (the
+     * blocks do not depend on the thread count). */
     double em = 0, eb = 0;
-    for (ct_idx t = 0; t < ntri; t++)
-        em += e_el[t];
-    for (ct_idx h = 0; h < nhinge; h++)
-        eb += e_el[ntri + h];
+    for (ct_idx b = 0; b < nbt; b++)
+        em += e_blk[b];
+    for (ct_idx b = 0; b < nbh; b++)
+        eb += e_blk[nbt + b];
     s->e_membrane = em;
     s->e_bending = eb;
     if (energy)
