@@ -356,7 +356,7 @@ static double stable_dt(ctd_solver *s)
         ctd_model_set *st = &m->set[k];
         double d;
         if (st->element == CTD_ELEM_BRICK)
-            d = ctd_brick_dt(&st->brick, s->x, s->y, s->z, NULL);
+            d = ctd_brick_dt_last(&st->brick); /* from element_forces at x(n) */
         else if (st->element == CTD_ELEM_SHELL)
             d = ctd_shell_dt(&st->shell);
         else

@@ -393,6 +393,44 @@ Test(elements_brick, threads_bit_identical)
     ct_mesh_destroy(&m);
 }
 
+/* The step the forces compute on the way (volume as sum_g det0 det F)
+ * against ctd_brick_dt's (volume as sum_g det J), on a sheared, distorted
+ * block: the same number to round-off, for 1 and 2 threads. */
+Test(elements_brick, stable_step_of_forces_matches_dt)
+{
+    const int n = 6;
+    ct_mesh m;
+    ct_idx *hex = block(&m, n);
+    ct_nodes *nd = &m.nodes;
+    ctd_brick b;
+    cr_assert_eq(ctd_brick_init(&b, n * n * n, hex, nd->n, nd->x, nd->y, nd->z, EY, NU, RHO,
+                                NULL),
+                 CT_OK);
+    cr_expect_eq(ctd_brick_dt_last(&b), CTD_DT_NONE);
+    for (int a = 0; a < nd->n; a++) {
+        nd->x[a] += 0.05 * urand() + 0.2 * nd->y[a];
+        nd->y[a] += 0.05 * urand() - 0.1 * nd->z[a];
+        nd->z[a] += 0.05 * urand();
+    }
+    const size_t nn = (size_t)nd->n;
+    ct_real *f = calloc(3 * nn, sizeof *f);
+    cr_assert_not_null(f);
+    ct_real dt = ctd_brick_dt(&b, nd->x, nd->y, nd->z, NULL);
+    cr_assert_gt(dt, 0);
+    for (int t = 1; t <= 2; t++) {
+        ctt_threads(t);
+        cr_assert_eq(ctd_brick_forces(&b, nd->x, nd->y, nd->z, f, f + nn, f + 2 * nn, NULL),
+                     CT_OK);
+        double got = ctd_brick_dt_last(&b);
+        cr_expect_lt(fabs(got - dt), CTT_TOL(1e-13, 1e-5) * dt, "%d threads: %.17g against %.17g",
+                     t, got, (double)dt);
+    }
+    free(f);
+    ctd_brick_destroy(&b);
+    ct_free(hex);
+    ct_mesh_destroy(&m);
+}
+
 Test(elements_brick, volume_by_hand)
 {
     ct_nodes nd;

@@ -16,6 +16,32 @@ static const int ZETA[8] = {-1, -1, -1, -1, 1, 1, 1, 1};
 static const int FACE[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
                                {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
 
+/* The derivatives of the shape functions at the Gauss points as constant
+ * expressions (the forces' loop, unrolled, folds them): node a's
+ * derivative along natural axis 0 at Gauss point g is
+ * XI[a] (1 + G ETA[g] ETA[a]) (1 + G ZETA[g] ZETA[a]) / 8, G = 1 / sqrt 3
+ * (the Gauss points are the nodes' signs times G). */
+#define CTI_GP 0.57735026918962576451
+#define CTI_SX(a) ((a) == 1 || (a) == 2 || (a) == 5 || (a) == 6 ? 1 : -1)
+#define CTI_SY(a) ((a) == 2 || (a) == 3 || (a) == 6 || (a) == 7 ? 1 : -1)
+#define CTI_SZ(a) ((a) >= 4 ? 1 : -1)
+#define CTI_DN0(g, a)                                                                           \
+    ((ct_real)(CTI_SX(a) * (1 + CTI_GP * CTI_SY(g) * CTI_SY(a)) *                               \
+               (1 + CTI_GP * CTI_SZ(g) * CTI_SZ(a)) / 8))
+#define CTI_DN1(g, a)                                                                           \
+    ((ct_real)(CTI_SY(a) * (1 + CTI_GP * CTI_SX(g) * CTI_SX(a)) *                               \
+               (1 + CTI_GP * CTI_SZ(g) * CTI_SZ(a)) / 8))
+#define CTI_DN2(g, a)                                                                           \
+    ((ct_real)(CTI_SZ(a) * (1 + CTI_GP * CTI_SX(g) * CTI_SX(a)) *                               \
+               (1 + CTI_GP * CTI_SY(g) * CTI_SY(a)) / 8))
+
+#define CTI_DN_A(g, a) {CTI_DN0(g, a), CTI_DN1(g, a), CTI_DN2(g, a)}
+#define CTI_DN_G(g)                                                                             \
+    {CTI_DN_A(g, 0), CTI_DN_A(g, 1), CTI_DN_A(g, 2), CTI_DN_A(g, 3),                            \
+     CTI_DN_A(g, 4), CTI_DN_A(g, 5), CTI_DN_A(g, 6), CTI_DN_A(g, 7)}
+static const ct_real CTI_DN[8][8][3] = {CTI_DN_G(0), CTI_DN_G(1), CTI_DN_G(2), CTI_DN_G(3),
+                                        CTI_DN_G(4), CTI_DN_G(5), CTI_DN_G(6), CTI_DN_G(7)};
+
 /* dN[g][a][k]: derivative of shape function a along natural axis k at
  * Gauss point g (points at +-1/sqrt(3), weights 1). */
 typedef ct_real cti_hex_dn[8][8][3];
@@ -94,6 +120,8 @@ void ctd_brick_destroy(ctd_brick *b)
     ct_free(b->vol0);
     ct_free(b->eint);
     ct_free(b->dte);
+    ct_free(b->jinv);
+    ct_free(b->jdet);
     for (int d = 0; d < 3; d++)
         ct_free(b->s[d]);
     ctd_gather_destroy(&b->g);
@@ -119,7 +147,9 @@ static int brick_init(ctd_brick *b, ct_idx n, const ct_idx *conn, ct_idx nnode,
     b->vol0 = ct_calloc(ne, sizeof *b->vol0);
     b->eint = ct_calloc(ne, sizeof *b->eint);
     b->dte = ct_calloc(ne, sizeof *b->dte);
-    int ok = b->conn && (shared || b->ref) && b->vol0 && b->eint && b->dte;
+    b->jinv = ct_calloc(72 * ne, sizeof *b->jinv);
+    b->jdet = ct_calloc(8 * ne, sizeof *b->jdet);
+    int ok = b->conn && (shared || b->ref) && b->vol0 && b->eint && b->dte && b->jinv && b->jdet;
     for (int d = 0; d < 3; d++) {
         b->s[d] = ct_calloc(8 * ne, sizeof *b->s[d]);
         ok = ok && b->s[d];
@@ -130,6 +160,7 @@ static int brick_init(ctd_brick *b, ct_idx n, const ct_idx *conn, ct_idx nnode,
     }
     b->n = n;
     b->nnode = nnode;
+    b->dt_last = CTD_DT_NONE;
     ctd_lame(E, nu, &b->lambda, &b->mu);
     b->rho = rho;
     if (shared) {
@@ -163,7 +194,11 @@ static int brick_init(ctd_brick *b, ct_idx n, const ct_idx *conn, ct_idx nnode,
         load(b->conn + 8 * (int64_t)e, x, y, z, X);
         ct_real v = 0;
         for (int g = 0; g < 8; g++) {
-            ct_real det = jac_inv(X, dN[g], NULL);
+            ct_real inv[3][3];
+            ct_real det = jac_inv(X, dN[g], inv);
+            b->jdet[8 * (size_t)e + (size_t)g] = det;
+            for (int k = 0; k < 9; k++)
+                b->jinv[72 * (size_t)e + (size_t)(9 * g + k)] = inv[k / 3][k % 3];
             if (!(det > 0)) {
                 ctd_brick_destroy(b);
                 return cti_fail(diag, CT_ERR_DEGENERATE, e,
@@ -199,89 +234,120 @@ void ctd_brick_mass(const ctd_brick *b, ct_real *m)
             m[b->conn[8 * (int64_t)e + a]] += b->rho * b->vol0[e] / 8;
 }
 
-/* One element: its nodal forces (minus the internal force) into f, its
- * strain energy into *W. Returns 0 when det F <= 0 (or NaN) somewhere. */
-static int brick_element(const ct_real X[8][3], const ct_real u[8][3], const cti_hex_dn dN,
-                         ct_real lambda, ct_real mu, ct_real f[8][3], ct_real *W)
-{
-    int ok = 1;
-    ct_real w = 0;
-    for (int a = 0; a < 8; a++)
-        f[a][0] = f[a][1] = f[a][2] = 0;
-    for (int g = 0; g < 8; g++) {
-        ct_real inv[3][3], G[8][3], H[3][3] = {{0}};
-        ct_real det0 = jac_inv(X, dN[g], inv);
-        for (int a = 0; a < 8; a++)
-            for (int j = 0; j < 3; j++)
-                G[a][j] = dN[g][a][0] * inv[0][j] + dN[g][a][1] * inv[1][j] +
-                          dN[g][a][2] * inv[2][j];
-        for (int a = 0; a < 8; a++)
-            for (int i = 0; i < 3; i++)
-                for (int j = 0; j < 3; j++)
-                    H[i][j] += u[a][i] * G[a][j];
-        /* F = I + H; Green strain from H (no cancellation at small strain). */
-        ct_real F[3][3], Es[3][3], S[3][3], P[3][3];
-        for (int i = 0; i < 3; i++)
-            for (int j = 0; j < 3; j++)
-                F[i][j] = H[i][j] + (i == j);
-        ok &= det3(F) > 0;
-        for (int i = 0; i < 3; i++)
-            for (int j = 0; j < 3; j++)
-                Es[i][j] = (H[i][j] + H[j][i] + H[0][i] * H[0][j] + H[1][i] * H[1][j] +
-                            H[2][i] * H[2][j]) / 2;
-        ct_real tr = Es[0][0] + Es[1][1] + Es[2][2];
-        ct_real ee = 0;
-        for (int i = 0; i < 3; i++)
-            for (int j = 0; j < 3; j++) {
-                S[i][j] = 2 * mu * Es[i][j] + (i == j ? lambda * tr : 0);
-                ee += Es[i][j] * Es[i][j];
-            }
-        for (int i = 0; i < 3; i++)
-            for (int j = 0; j < 3; j++)
-                P[i][j] = F[i][0] * S[0][j] + F[i][1] * S[1][j] + F[i][2] * S[2][j];
-        for (int a = 0; a < 8; a++)
-            for (int i = 0; i < 3; i++)
-                f[a][i] -= det0 * (P[i][0] * G[a][0] + P[i][1] * G[a][1] + P[i][2] * G[a][2]);
-        w += det0 * (lambda / 2 * tr * tr + mu * ee);
-    }
-    *W = w;
-    return ok && w == w;
-}
-
+/*
+ * Per element and Gauss point g, with the reference Jacobian's inverse
+ * J0^-1 and determinant det0 kept from the set-up (b->jinv, b->jdet): the
+ * displacement gradient H = (sum_a u_a dN_a^T) J0^-1 (the shape gradients
+ * G_a = J0^-T dN_a are never formed), F = I + H, the Green strain
+ * E = (H + H^T + H^T H) / 2, S = lambda tr(E) I + 2 mu E, P = F S, and the
+ * nodal forces -det0 P G_a = -Q dN_a with Q = det0 P J0^-T. The element's
+ * current volume sum_g det0 det F and its largest face area give its
+ * stable step (ctd_brick_dt's, at no extra pass over the elements).
+ */
 int ctd_brick_forces(ctd_brick *b, const ct_real *CT_RESTRICT x, const ct_real *CT_RESTRICT y,
                      const ct_real *CT_RESTRICT z, ct_real *CT_RESTRICT fx,
                      ct_real *CT_RESTRICT fy, ct_real *CT_RESTRICT fz, ct_diag *diag)
 {
     if (!b || (b->n > 0 && (!x || !y || !z || !fx || !fy || !fz)))
         return CT_ERR_ARG;
-    cti_hex_dn dN;
-    hex_dn(dN);
     const ct_idx n = b->n;
-    const ct_idx *conn = b->conn;
-    const ct_real *X0 = b->X0, *Y0 = b->Y0, *Z0 = b->Z0;
+    const size_t nz = (size_t)n;
+    const ct_idx *CT_RESTRICT conn = b->conn;
+    const ct_real *CT_RESTRICT X0 = b->X0, *CT_RESTRICT Y0 = b->Y0, *CT_RESTRICT Z0 = b->Z0;
+    const ct_real *CT_RESTRICT jinv = b->jinv, *CT_RESTRICT jdet = b->jdet;
     const ct_real lambda = b->lambda, mu = b->mu;
-    ct_real *sx = b->s[0], *sy = b->s[1], *sz = b->s[2], *eint = b->eint;
+    const ct_real mod = CTI_MAX(lambda + 2 * mu, 3 * lambda + 2 * mu);
+    const ct_real cw = CTI_SQRT(mod / b->rho);
+    ct_real *CT_RESTRICT sx = b->s[0], *CT_RESTRICT sy = b->s[1], *CT_RESTRICT sz = b->s[2];
+    ct_real *CT_RESTRICT eint = b->eint, *CT_RESTRICT dte = b->dte;
     ct_idx bad = 0;
-#pragma omp parallel for schedule(static) reduction(max : bad) if (n > CTD_PAR_MIN / 32)
+    ct_real best = CTD_DT_NONE;
+#pragma omp parallel for schedule(static) reduction(max : bad) reduction(min : best) \
+    if (n > CTD_PAR_MIN / 32)
     for (ct_idx e = 0; e < n; e++) {
-        const ct_idx *c = conn + 8 * (int64_t)e;
-        ct_real X[8][3], u[8][3], f[8][3], W;
-        load(c, X0, Y0, Z0, X);
+        ct_real u[8][3], p[8][3], f[8][3];
         for (int a = 0; a < 8; a++) {
-            ct_idx v = c[a];
-            u[a][0] = x[v] - X[a][0];
-            u[a][1] = y[v] - X[a][1];
-            u[a][2] = z[v] - X[a][2];
+            ct_idx v = conn[8 * (size_t)e + (size_t)a];
+            p[a][0] = x[v];
+            p[a][1] = y[v];
+            p[a][2] = z[v];
+            u[a][0] = p[a][0] - X0[v];
+            u[a][1] = p[a][1] - Y0[v];
+            u[a][2] = p[a][2] - Z0[v];
+            f[a][0] = f[a][1] = f[a][2] = 0;
         }
-        if (!brick_element(X, u, dN, lambda, mu, f, &W))
+        ct_real W = 0, V = 0;
+        int ok = 1;
+    /* Unrolled, the shape derivatives are constants. */
+#pragma GCC unroll 8
+        for (int g = 0; g < 8; g++) {
+            const ct_real d0 = jdet[8 * (size_t)e + (size_t)g];
+            ct_real iv[3][3];
+            for (int k = 0; k < 9; k++)
+                iv[k / 3][k % 3] = jinv[72 * (size_t)e + (size_t)(9 * g + k)];
+            ct_real Hn[3][3] = {{0}};
+            for (int a = 0; a < 8; a++)
+                for (int i = 0; i < 3; i++)
+                    for (int k = 0; k < 3; k++)
+                        Hn[i][k] += u[a][i] * CTI_DN[g][a][k];
+            ct_real H[3][3], F[3][3], Es[3][3], S[3][3], P[3][3];
+            for (int i = 0; i < 3; i++)
+                for (int j = 0; j < 3; j++) {
+                    H[i][j] = Hn[i][0] * iv[0][j] + Hn[i][1] * iv[1][j] + Hn[i][2] * iv[2][j];
+                    F[i][j] = H[i][j] + (i == j);
+                }
+            ct_real dF = det3(F);
+            ok &= dF > 0;
+            V += d0 * dF;
+            for (int i = 0; i < 3; i++)
+                for (int j = 0; j < 3; j++)
+                    Es[i][j] = (H[i][j] + H[j][i] + H[0][i] * H[0][j] + H[1][i] * H[1][j] +
+                                H[2][i] * H[2][j]) / 2;
+            ct_real tr = Es[0][0] + Es[1][1] + Es[2][2];
+            ct_real ee = 0;
+            for (int i = 0; i < 3; i++)
+                for (int j = 0; j < 3; j++) {
+                    S[i][j] = 2 * mu * Es[i][j] + (i == j ? lambda * tr : 0);
+                    ee += Es[i][j] * Es[i][j];
+                }
+            for (int i = 0; i < 3; i++)
+                for (int j = 0; j < 3; j++)
+                    P[i][j] = F[i][0] * S[0][j] + F[i][1] * S[1][j] + F[i][2] * S[2][j];
+            ct_real Q[3][3];
+            for (int i = 0; i < 3; i++)
+                for (int k = 0; k < 3; k++)
+                    Q[i][k] = d0 * (P[i][0] * iv[k][0] + P[i][1] * iv[k][1] + P[i][2] * iv[k][2]);
+            for (int a = 0; a < 8; a++)
+                for (int i = 0; i < 3; i++)
+                    f[a][i] -= Q[i][0] * CTI_DN[g][a][0] + Q[i][1] * CTI_DN[g][a][1] +
+                               Q[i][2] * CTI_DN[g][a][2];
+            W += d0 * (lambda / 2 * tr * tr + mu * ee);
+        }
+        /* The stable step (elements.h): volume over the largest face area
+         * over the wave speed; an inverted element gives 0. */
+        ct_real amax = 0;
+        for (int q = 0; q < 6; q++) {
+            const ct_real *p0 = p[FACE[q][0]], *p1 = p[FACE[q][1]], *p2 = p[FACE[q][2]],
+                          *p3 = p[FACE[q][3]];
+            ct_real d1x = p2[0] - p0[0], d1y = p2[1] - p0[1], d1z = p2[2] - p0[2];
+            ct_real d2x = p3[0] - p1[0], d2y = p3[1] - p1[1], d2z = p3[2] - p1[2];
+            ct_real cx = d1y * d2z - d1z * d2y, cy = d1z * d2x - d1x * d2z,
+                    cz = d1x * d2y - d1y * d2x;
+            amax = CTI_FMAX(amax, CTI_SQRT(cx * cx + cy * cy + cz * cz) / 2);
+        }
+        ct_real dt = (V > 0 && amax > 0) ? V / amax / cw : 0;
+        dte[e] = dt;
+        best = CTI_MIN(best, dt);
+        if (!(ok && W == W))
             bad = CTI_MAX(bad, e + 1);
         for (int a = 0; a < 8; a++) {
-            sx[(int64_t)a * n + e] = f[a][0];
-            sy[(int64_t)a * n + e] = f[a][1];
-            sz[(int64_t)a * n + e] = f[a][2];
+            sx[(size_t)a * nz + (size_t)e] = f[a][0];
+            sy[(size_t)a * nz + (size_t)e] = f[a][1];
+            sz[(size_t)a * nz + (size_t)e] = f[a][2];
         }
         eint[e] = W;
     }
+    b->dt_last = best;
     if (bad > 0) {
         ct_idx e = bad - 1;
         int nonfinite = !(eint[e] == eint[e]) || CTI_FABS(eint[e]) >= CTI_HUGE;
@@ -292,6 +358,8 @@ int ctd_brick_forces(ctd_brick *b, const ct_real *CT_RESTRICT x, const ct_real *
     ctd_gather_add(&b->g, sx, sy, sz, fx, fy, fz);
     return CT_OK;
 }
+
+ct_real ctd_brick_dt_last(const ctd_brick *b) { return b->dt_last; }
 
 double ctd_brick_energy(const ctd_brick *b)
 {

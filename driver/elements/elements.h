@@ -169,6 +169,11 @@ typedef struct ctd_brick {
     ct_real *vol0;         /* reference volumes */
     ct_real *eint;         /* strain energy of each element, last force call */
     ct_real *dte;          /* scratch: each element's stable step */
+    /* The reference Jacobian at each Gauss point g, per element e (kept so
+     * that the forces need not rebuild it): its inverse, entry (i, j) at
+     * jinv[72 e + 9 g + 3 i + j], and its determinant at jdet[8 e + g]. */
+    ct_real *jinv, *jdet;
+    ct_real dt_last;       /* the set's stable step at the last force call */
     ct_real *s[3];         /* private force slots, 8 n each */
     ctd_gather g;
 } ctd_brick;
@@ -205,6 +210,11 @@ int ctd_brick_forces(ctd_brick *b, const ct_real *CT_RESTRICT x, const ct_real *
 
 /* Sum of b->eint (serial, element order). */
 double ctd_brick_energy(const ctd_brick *b);
+
+/* The stable step of ctd_brick_dt at the positions of the last
+ * ctd_brick_forces call, which computes it on the way (the solver's: forces
+ * and step at the same positions); CTD_DT_NONE before any call. */
+ct_real ctd_brick_dt_last(const ctd_brick *b);
 
 /* Current volume of element e (exact for the trilinear map: 2 x 2 x 2
  * Gauss of det J). For the contact stiffness B A^2 / V. */
