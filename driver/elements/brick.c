@@ -16,31 +16,33 @@ static const int ZETA[8] = {-1, -1, -1, -1, 1, 1, 1, 1};
 static const int FACE[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
                                {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
 
-/* The derivatives of the shape functions at the Gauss points as constant
- * expressions (the forces' loop, unrolled, folds them): node a's
- * derivative along natural axis 0 at Gauss point g is
- * XI[a] (1 + G ETA[g] ETA[a]) (1 + G ZETA[g] ZETA[a]) / 8, G = 1 / sqrt 3
- * (the Gauss points are the nodes' signs times G). */
+/* The shape derivatives at the Gauss points by edges. Along natural axis
+ * k, the eight nodes pair into four edges EDGE[k][m] = {minus end, plus
+ * end}; both ends share the other two signs (s1, s2): m & 1 gives s1 (+
+ * when set), m & 2 gives s2. The derivative along k of node a's shape
+ * function at Gauss point g (at the signs of node g times G = 1 / sqrt 3)
+ * is the end's sign times W[k][g][m] = (1 + G s1 t1) (1 + G s2 t2) / 8,
+ * t1, t2 the point's signs on the other two axes. So a gradient along k is
+ * sum_m (u_plus - u_minus) W[k][g][m] (4 terms, not 8), and the nodal
+ * forces sum over the points per edge first. The table holds constant
+ * expressions (the unrolled loop folds them). */
 #define CTI_GP 0.57735026918962576451
 #define CTI_SX(a) ((a) == 1 || (a) == 2 || (a) == 5 || (a) == 6 ? 1 : -1)
 #define CTI_SY(a) ((a) == 2 || (a) == 3 || (a) == 6 || (a) == 7 ? 1 : -1)
 #define CTI_SZ(a) ((a) >= 4 ? 1 : -1)
-#define CTI_DN0(g, a)                                                                           \
-    ((ct_real)(CTI_SX(a) * (1 + CTI_GP * CTI_SY(g) * CTI_SY(a)) *                               \
-               (1 + CTI_GP * CTI_SZ(g) * CTI_SZ(a)) / 8))
-#define CTI_DN1(g, a)                                                                           \
-    ((ct_real)(CTI_SY(a) * (1 + CTI_GP * CTI_SX(g) * CTI_SX(a)) *                               \
-               (1 + CTI_GP * CTI_SZ(g) * CTI_SZ(a)) / 8))
-#define CTI_DN2(g, a)                                                                           \
-    ((ct_real)(CTI_SZ(a) * (1 + CTI_GP * CTI_SX(g) * CTI_SX(a)) *                               \
-               (1 + CTI_GP * CTI_SY(g) * CTI_SY(a)) / 8))
-
-#define CTI_DN_A(g, a) {CTI_DN0(g, a), CTI_DN1(g, a), CTI_DN2(g, a)}
-#define CTI_DN_G(g)                                                                             \
-    {CTI_DN_A(g, 0), CTI_DN_A(g, 1), CTI_DN_A(g, 2), CTI_DN_A(g, 3),                            \
-     CTI_DN_A(g, 4), CTI_DN_A(g, 5), CTI_DN_A(g, 6), CTI_DN_A(g, 7)}
-static const ct_real CTI_DN[8][8][3] = {CTI_DN_G(0), CTI_DN_G(1), CTI_DN_G(2), CTI_DN_G(3),
-                                        CTI_DN_G(4), CTI_DN_G(5), CTI_DN_G(6), CTI_DN_G(7)};
+#define CTI_MS1(m) ((m)&1 ? 1 : -1)
+#define CTI_MS2(m) ((m)&2 ? 1 : -1)
+#define CTI_W(t1, t2, m)                                                                        \
+    ((ct_real)((1 + CTI_GP * CTI_MS1(m) * (t1)) * (1 + CTI_GP * CTI_MS2(m) * (t2)) / 8))
+#define CTI_W4(t1, t2) {CTI_W(t1, t2, 0), CTI_W(t1, t2, 1), CTI_W(t1, t2, 2), CTI_W(t1, t2, 3)}
+#define CTI_WX(g) CTI_W4(CTI_SY(g), CTI_SZ(g))
+#define CTI_WY(g) CTI_W4(CTI_SX(g), CTI_SZ(g))
+#define CTI_WZ(g) CTI_W4(CTI_SX(g), CTI_SY(g))
+#define CTI_W8(F) {F(0), F(1), F(2), F(3), F(4), F(5), F(6), F(7)}
+static const ct_real CTI_EW[3][8][4] = {CTI_W8(CTI_WX), CTI_W8(CTI_WY), CTI_W8(CTI_WZ)};
+static const int CTI_EDGE[3][4][2] = {{{0, 1}, {3, 2}, {4, 5}, {7, 6}},
+                                      {{0, 3}, {1, 2}, {4, 7}, {5, 6}},
+                                      {{0, 4}, {1, 5}, {3, 7}, {2, 6}}};
 
 /* dN[g][a][k]: derivative of shape function a along natural axis k at
  * Gauss point g (points at +-1/sqrt(3), weights 1). */
@@ -237,7 +239,8 @@ void ctd_brick_mass(const ctd_brick *b, ct_real *m)
 /*
  * Per element and Gauss point g, with the reference Jacobian's inverse
  * J0^-1 and determinant det0 kept from the set-up (b->jinv, b->jdet): the
- * displacement gradient H = (sum_a u_a dN_a^T) J0^-1 (the shape gradients
+ * displacement gradient H = (sum_a u_a dN_a^T) J0^-1, its natural-axis
+ * part from the edge differences (CTI_EW; the shape gradients
  * G_a = J0^-T dN_a are never formed), F = I + H, the Green strain
  * E = (H + H^T + H^T H) / 2, S = lambda tr(E) I + 2 mu E, P = F S, and the
  * nodal forces -det0 P G_a = -Q dN_a with Q = det0 P J0^-T. The element's
@@ -265,7 +268,7 @@ int ctd_brick_forces(ctd_brick *b, const ct_real *CT_RESTRICT x, const ct_real *
 #pragma omp parallel for schedule(static) reduction(max : bad) reduction(min : best) \
     if (n > CTD_PAR_MIN / 32)
     for (ct_idx e = 0; e < n; e++) {
-        ct_real u[8][3], p[8][3], f[8][3];
+        ct_real u[8][3], p[8][3], f[8][3], D[3][4][3], R[3][4][3];
         for (int a = 0; a < 8; a++) {
             ct_idx v = conn[8 * (size_t)e + (size_t)a];
             p[a][0] = x[v];
@@ -274,8 +277,14 @@ int ctd_brick_forces(ctd_brick *b, const ct_real *CT_RESTRICT x, const ct_real *
             u[a][0] = p[a][0] - X0[v];
             u[a][1] = p[a][1] - Y0[v];
             u[a][2] = p[a][2] - Z0[v];
-            f[a][0] = f[a][1] = f[a][2] = 0;
         }
+        /* The displacement differences along the edges of each axis. */
+        for (int k = 0; k < 3; k++)
+            for (int m = 0; m < 4; m++)
+                for (int i = 0; i < 3; i++) {
+                    D[k][m][i] = u[CTI_EDGE[k][m][1]][i] - u[CTI_EDGE[k][m][0]][i];
+                    R[k][m][i] = 0;
+                }
         ct_real W = 0, V = 0;
         int ok = 1;
     /* Unrolled, the shape derivatives are constants. */
@@ -285,11 +294,11 @@ int ctd_brick_forces(ctd_brick *b, const ct_real *CT_RESTRICT x, const ct_real *
             ct_real iv[3][3];
             for (int k = 0; k < 9; k++)
                 iv[k / 3][k % 3] = jinv[72 * (size_t)e + (size_t)(9 * g + k)];
-            ct_real Hn[3][3] = {{0}};
-            for (int a = 0; a < 8; a++)
-                for (int i = 0; i < 3; i++)
-                    for (int k = 0; k < 3; k++)
-                        Hn[i][k] += u[a][i] * CTI_DN[g][a][k];
+            ct_real Hn[3][3];
+            for (int i = 0; i < 3; i++)
+                for (int k = 0; k < 3; k++)
+                    Hn[i][k] = D[k][0][i] * CTI_EW[k][g][0] + D[k][1][i] * CTI_EW[k][g][1] +
+                               D[k][2][i] * CTI_EW[k][g][2] + D[k][3][i] * CTI_EW[k][g][3];
             ct_real H[3][3], F[3][3], Es[3][3], S[3][3], P[3][3];
             for (int i = 0; i < 3; i++)
                 for (int j = 0; j < 3; j++) {
@@ -317,12 +326,22 @@ int ctd_brick_forces(ctd_brick *b, const ct_real *CT_RESTRICT x, const ct_real *
             for (int i = 0; i < 3; i++)
                 for (int k = 0; k < 3; k++)
                     Q[i][k] = d0 * (P[i][0] * iv[k][0] + P[i][1] * iv[k][1] + P[i][2] * iv[k][2]);
-            for (int a = 0; a < 8; a++)
-                for (int i = 0; i < 3; i++)
-                    f[a][i] -= Q[i][0] * CTI_DN[g][a][0] + Q[i][1] * CTI_DN[g][a][1] +
-                               Q[i][2] * CTI_DN[g][a][2];
+            for (int k = 0; k < 3; k++)
+                for (int m = 0; m < 4; m++)
+                    for (int i = 0; i < 3; i++)
+                        R[k][m][i] += Q[i][k] * CTI_EW[k][g][m];
             W += d0 * (lambda / 2 * tr * tr + mu * ee);
         }
+        /* f_a = -sum_g Q dN_a: each edge's sum R goes to its plus end with
+         * a minus sign and to its minus end with a plus sign. */
+        for (int a = 0; a < 8; a++)
+            f[a][0] = f[a][1] = f[a][2] = 0;
+        for (int k = 0; k < 3; k++)
+            for (int m = 0; m < 4; m++)
+                for (int i = 0; i < 3; i++) {
+                    f[CTI_EDGE[k][m][1]][i] -= R[k][m][i];
+                    f[CTI_EDGE[k][m][0]][i] += R[k][m][i];
+                }
         /* The stable step (elements.h): volume over the largest face area
          * over the wave speed; an inverted element gives 0. */
         ct_real amax = 0;
