@@ -6,6 +6,7 @@
  * output directories give errors naming the path.
  */
 #include <dirent.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -283,6 +284,70 @@ Test(output, vtu_1e5_nodes)
     cr_assert_eq(data_array(t, "offsets", 0, v, 4), nc);
     free(t);
     free(x), free(y), free(z), free(off), free(conn), free(ty);
+    rmtree(d);
+}
+
+/* The data arrays are formatted by the threads in chunks: the file must be
+ * the same bytes for 1 and 2 threads, and its numbers those of a plain
+ * serial printf, across several rounds of chunks (70001 nodes: 3 rounds of
+ * 32768 items; 70000 segments of 2 nodes). */
+Test(output, vtu_same_bytes_for_any_threads)
+{
+    const ct_idx n = 70001, nc = n - 1;
+    ct_real *x = calloc((size_t)n, sizeof *x), *y = calloc((size_t)n, sizeof *y),
+            *z = calloc((size_t)n, sizeof *z), *pen = calloc((size_t)n, sizeof *pen);
+    ct_idx *off = malloc(((size_t)nc + 1) * sizeof *off);
+    ct_idx *conn = malloc(2 * (size_t)nc * sizeof *conn);
+    uint8_t *ty = malloc((size_t)nc);
+    int32_t *part = malloc((size_t)n * sizeof *part);
+    cr_assert(x && y && z && pen && off && conn && ty && part);
+    for (ct_idx i = 0; i < n; i++) {
+        x[i] = (ct_real)(sin(0.37 * i) * 1e3);
+        y[i] = (ct_real)(1e-7 * i - 3e-3);
+        z[i] = (ct_real)(i % 7 == 0 ? 0 : 1.0 / (i + 1));
+        pen[i] = (ct_real)(i % 5 == 0 ? 2.5e-4 * i : 0);
+        part[i] = (int32_t)(i % 13);
+    }
+    for (ct_idx c = 0; c < nc; c++) {
+        conn[2 * c] = c;
+        conn[2 * c + 1] = c + 1;
+        ty[c] = CTD_VTK_LINE;
+        off[c] = 2 * c;
+    }
+    off[nc] = 2 * nc;
+    ctd_out_mesh m = {.nnode = n, .x = x, .y = y, .z = z, .x0 = y, .y0 = z, .z0 = x,
+                      .pen = pen, .node_part = part, .ncell = nc, .cell_type = ty,
+                      .cell_off = off, .cell_node = conn};
+    char *d = tmpdir(), p1[256], p2[256], err[512];
+    snprintf(p1, sizeof p1, "%s/t1.vtu", d);
+    snprintf(p2, sizeof p2, "%s/t2.vtu", d);
+    ctt_threads(1);
+    cr_assert_eq(ctd_vtu_write(p1, &m, err, sizeof err), CT_OK, "%s", err);
+    ctt_threads(2);
+    cr_assert_eq(ctd_vtu_write(p2, &m, err, sizeof err), CT_OK, "%s", err);
+    char *a = slurp(p1), *b = slurp(p2);
+    cr_assert(a && b);
+    cr_expect_str_eq(a, b, "the files differ between 1 and 2 threads");
+    /* The positions and the displacement as a serial printf writes them. */
+    size_t cap = (size_t)n * 3 * 20 + 256, len = 0;
+    char *want = malloc(cap), *wd = malloc(cap);
+    cr_assert(want && wd);
+    want[0] = wd[0] = 0;
+    for (ct_idx i = 0; i < n; i++)
+        len += (size_t)snprintf(want + len, cap - len, "%.9g %.9g %.9g\n", (double)x[i],
+                                (double)y[i], (double)z[i]);
+    len = 0;
+    for (ct_idx i = 0; i < n; i++)
+        len += (size_t)snprintf(wd + len, cap - len, "%.9g %.9g %.9g\n",
+                                (double)x[i] - (double)y[i], (double)y[i] - (double)z[i],
+                                (double)z[i] - (double)x[i]);
+    cr_expect(strstr(a, want) != NULL, "the Points array is not the serial text");
+    cr_expect(strstr(a, wd) != NULL, "the displacement array is not the serial text");
+    double v[4];
+    cr_expect_eq(data_array(a, "connectivity", 0, v, 4), 2 * nc);
+    cr_expect_eq(data_array(a, "penetration", 0, v, 4), n);
+    free(want), free(wd), free(a), free(b);
+    free(x), free(y), free(z), free(pen), free(off), free(conn), free(ty), free(part);
     rmtree(d);
 }
 
