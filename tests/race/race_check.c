@@ -226,6 +226,8 @@ int main(void)
     race_check_kernels(&failures);
     extern void race_check_cycle(int *failures);
     race_check_cycle(&failures);
+    extern void race_check_output(int *failures);
+    race_check_output(&failures);
     /* The scenes of data/scenes, found from this file's path. */
     extern void race_check_scenes(const char *dir, int *failures);
     const char *f = __FILE__, *slash = strrchr(f, '/');
