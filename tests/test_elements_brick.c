@@ -31,6 +31,16 @@ static ct_idx *block(ct_mesh *m, int n)
     return hex;
 }
 
+/* The n x n x n block as bricks of the test material in b. */
+static ct_idx *block_bricks(ct_mesh *m, int n, ctd_brick *b)
+{
+    ct_idx *hex = block(m, n);
+    ct_nodes *nd = &m->nodes;
+    cr_assert_eq(ctd_brick_init(b, n * n * n, hex, nd->n, nd->x, nd->y, nd->z, EY, NU, RHO, NULL),
+                 CT_OK);
+    return hex;
+}
+
 static ct_idx nid(int n, int i, int j, int k) { return i + (n + 1) * (j + (n + 1) * k); }
 
 /* SVK first Piola-Kirchhoff stress and energy density of F = I + H. */
@@ -359,12 +369,9 @@ Test(elements_brick, threads_bit_identical)
 {
     const int n = ctt_checking() ? 5 : 10;
     ct_mesh m;
-    ct_idx *hex = block(&m, n);
-    ct_nodes *nd = &m.nodes;
     ctd_brick b;
-    cr_assert_eq(ctd_brick_init(&b, n * n * n, hex, nd->n, nd->x, nd->y, nd->z, EY, NU, RHO,
-                                NULL),
-                 CT_OK);
+    ct_idx *hex = block_bricks(&m, n, &b);
+    ct_nodes *nd = &m.nodes;
     for (int a = 0; a < nd->n; a++) {
         nd->x[a] += 0.05 * urand() + 0.1 * nd->y[a];
         nd->y[a] += 0.05 * urand();
@@ -398,14 +405,10 @@ Test(elements_brick, threads_bit_identical)
  * block: the same number to round-off, for 1 and 2 threads. */
 Test(elements_brick, stable_step_of_forces_matches_dt)
 {
-    const int n = 6;
     ct_mesh m;
-    ct_idx *hex = block(&m, n);
-    ct_nodes *nd = &m.nodes;
     ctd_brick b;
-    cr_assert_eq(ctd_brick_init(&b, n * n * n, hex, nd->n, nd->x, nd->y, nd->z, EY, NU, RHO,
-                                NULL),
-                 CT_OK);
+    ct_idx *hex = block_bricks(&m, 6, &b);
+    ct_nodes *nd = &m.nodes;
     cr_expect_eq(ctd_brick_dt_last(&b), CTD_DT_NONE);
     for (int a = 0; a < nd->n; a++) {
         nd->x[a] += 0.05 * urand() + 0.2 * nd->y[a];

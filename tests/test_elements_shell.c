@@ -203,34 +203,7 @@ Test(elements_shell, energy_gradient_fd)
         w.y[i] = (ct_real)(m.nodes.y[i] + 0.01 * cos(2 * p));
         w.z[i] = (ct_real)(m.nodes.z[i] + 0.04 * sin(4 * p + q));
     }
-    forces(&s, w.x, w.y, w.z, w.fx, w.fy, w.fz);
-    ct_real *f0[3] = {ct_calloc((size_t)m.nodes.n, sizeof(ct_real)),
-                      ct_calloc((size_t)m.nodes.n, sizeof(ct_real)),
-                      ct_calloc((size_t)m.nodes.n, sizeof(ct_real))};
-    for (int k = 0; k < 3; k++) {
-        cr_assert_not_null(f0[k]);
-        memcpy(f0[k], k == 0 ? w.fx : k == 1 ? w.fy : w.fz, sizeof(ct_real) * (size_t)m.nodes.n);
-    }
-    double fmx = 0;
-    for (ct_idx i = 0; i < m.nodes.n; i++)
-        for (int k = 0; k < 3; k++)
-            fmx = fmax(fmx, fabs(f0[k][i]));
-    const double h = CTT_TOL(1e-6, 1e-3), tol = CTT_TOL(1e-6, 3e-2);
-    ct_real *xs[3] = {w.x, w.y, w.z};
-    for (ct_idx i = 0; i < m.nodes.n; i++)
-        for (int k = 0; k < 3; k++) {
-            ct_real keep = xs[k][i];
-            xs[k][i] = (ct_real)(keep + h);
-            double ep = forces(&s, w.x, w.y, w.z, w.fx, w.fy, w.fz);
-            xs[k][i] = (ct_real)(keep - h);
-            double em = forces(&s, w.x, w.y, w.z, w.fx, w.fy, w.fz);
-            xs[k][i] = keep;
-            double fd = -(ep - em) / (2 * h);
-            cr_expect_lt(fabs(fd - f0[k][i]), tol * fmx, "node %d comp %d: fd %g force %g",
-                         (int)i, k, fd, (double)f0[k][i]);
-        }
-    for (int k = 0; k < 3; k++)
-        ct_free(f0[k]);
+    expect_forces_are_energy_gradient(&s, &w);
     work_free(&w);
     ctd_shell_destroy(&s);
     ct_mesh_destroy(&m);

@@ -92,4 +92,40 @@ static inline void curved(ct_mesh *m, int nx, int ny, double h, double R)
     }
 }
 
+/* The forces at w's positions against central differences of the energy,
+ * node by node and component by component (tolerance relative to the
+ * largest force). */
+static inline void expect_forces_are_energy_gradient(ctd_shell *s, work *w)
+{
+    const ct_idx n = s->nnode;
+    forces(s, w->x, w->y, w->z, w->fx, w->fy, w->fz);
+    ct_real *f0[3];
+    for (int k = 0; k < 3; k++) {
+        f0[k] = ct_calloc((size_t)n, sizeof(ct_real));
+        cr_assert_not_null(f0[k]);
+        memcpy(f0[k], k == 0 ? w->fx : k == 1 ? w->fy : w->fz, sizeof(ct_real) * (size_t)n);
+    }
+    double fmx = 0;
+    for (ct_idx i = 0; i < n; i++)
+        for (int k = 0; k < 3; k++)
+            fmx = fmax(fmx, fabs(f0[k][i]));
+    cr_assert_gt(fmx, 0);
+    const double h = CTT_TOL(1e-6, 1e-3), tol = CTT_TOL(1e-6, 3e-2);
+    ct_real *xs[3] = {w->x, w->y, w->z};
+    for (ct_idx i = 0; i < n; i++)
+        for (int k = 0; k < 3; k++) {
+            ct_real keep = xs[k][i];
+            xs[k][i] = (ct_real)(keep + h);
+            double ep = forces(s, w->x, w->y, w->z, w->fx, w->fy, w->fz);
+            xs[k][i] = (ct_real)(keep - h);
+            double em = forces(s, w->x, w->y, w->z, w->fx, w->fy, w->fz);
+            xs[k][i] = keep;
+            double fd = -(ep - em) / (2 * h);
+            cr_expect_lt(fabs(fd - f0[k][i]), tol * fmx, "node %d comp %d: fd %g force %g",
+                         (int)i, k, fd, (double)f0[k][i]);
+        }
+    for (int k = 0; k < 3; k++)
+        ct_free(f0[k]);
+}
+
 #endif /* TEST_ELEMENTS_SHELL_H */

@@ -249,6 +249,12 @@ int ctd_shell_rest_angles(ctd_shell *s, const ct_real *x, const ct_real *y, cons
     return bad ? CT_ERR_DEGENERATE : CT_OK;
 }
 
+/* The end of block b of n items. */
+static inline ct_idx cti_block_end(ct_idx b, ct_idx n)
+{
+    return n - b * CTD_SHELL_BLOCK < CTD_SHELL_BLOCK ? n : (b + 1) * CTD_SHELL_BLOCK;
+}
+
 int ctd_shell_forces(ctd_shell *s, const ct_real *x, const ct_real *y, const ct_real *z,
                      ct_real *fx, ct_real *fy, ct_real *fz, double *energy)
 {
@@ -282,8 +288,7 @@ int ctd_shell_forces(ctd_shell *s, const ct_real *x, const ct_real *y, const ct_
          * c = -2 k_h (theta - theta0) signed for each side's triangle. */
 #pragma omp for schedule(static) reduction(| : bad_h)
         for (ct_idx b = 0; b < nbh; b++) {
-            const ct_idx j0 = b * CTD_SHELL_BLOCK;
-            const ct_idx j1 = nhinge - j0 < CTD_SHELL_BLOCK ? nhinge : j0 + CTD_SHELL_BLOCK;
+            const ct_idx j0 = b * CTD_SHELL_BLOCK, j1 = cti_block_end(b, nhinge);
             double eb = 0;
             int bad = 0;
 #pragma omp simd reduction(+ : eb) reduction(| : bad)
@@ -305,8 +310,7 @@ int ctd_shell_forces(ctd_shell *s, const ct_real *x, const ct_real *y, const ct_
          * side, which are along its normal. */
 #pragma omp for schedule(static) reduction(| : bad_t)
         for (ct_idx b = 0; b < nbt; b++) {
-            const ct_idx k0 = b * CTD_SHELL_BLOCK;
-            const ct_idx k1 = ntri - k0 < CTD_SHELL_BLOCK ? ntri : k0 + CTD_SHELL_BLOCK;
+            const ct_idx k0 = b * CTD_SHELL_BLOCK, k1 = cti_block_end(b, ntri);
             double eb = 0;
             int bad = 0;
 #pragma omp simd reduction(+ : eb) reduction(| : bad)
