@@ -7,6 +7,13 @@
 #include "ct_internal.h"
 #include "elements.h"
 
+/* Entry j (of per) of element e in the lane layout: blocks of
+ * CTD_BRICK_LANES elements, each holding entry j of its elements side by
+ * side. */
+#define CTI_LANE(e, per, j)                                                                     \
+    (((size_t)(e) / CTD_BRICK_LANES * (size_t)(per) + (size_t)(j)) * CTD_BRICK_LANES +         \
+     (size_t)(e) % CTD_BRICK_LANES)
+
 /* Natural coordinates of the nodes (hex8 order of ctd_block). */
 static const int XI[8] = {-1, 1, 1, -1, -1, 1, 1, -1};
 static const int ETA[8] = {-1, -1, 1, 1, -1, -1, 1, 1};
@@ -89,12 +96,6 @@ static inline ct_real jac_inv(const ct_real X[8][3], const ct_real dN[8][3], ct_
     return det;
 }
 
-static inline ct_real det3(const ct_real A[3][3])
-{
-    return A[0][0] * (A[1][1] * A[2][2] - A[1][2] * A[2][1]) -
-           A[0][1] * (A[1][0] * A[2][2] - A[1][2] * A[2][0]) +
-           A[0][2] * (A[1][0] * A[2][1] - A[1][1] * A[2][0]);
-}
 
 static void load(const ct_idx *conn, const ct_real *x, const ct_real *y, const ct_real *z,
                  ct_real P[8][3])
@@ -124,6 +125,7 @@ void ctd_brick_destroy(ctd_brick *b)
     ct_free(b->dte);
     ct_free(b->jinv);
     ct_free(b->jdet);
+    ct_free(b->lconn);
     for (int d = 0; d < 3; d++)
         ct_free(b->s[d]);
     ctd_gather_destroy(&b->g);
@@ -149,9 +151,13 @@ static int brick_init(ctd_brick *b, ct_idx n, const ct_idx *conn, ct_idx nnode,
     b->vol0 = ct_calloc(ne, sizeof *b->vol0);
     b->eint = ct_calloc(ne, sizeof *b->eint);
     b->dte = ct_calloc(ne, sizeof *b->dte);
-    b->jinv = ct_calloc(72 * ne, sizeof *b->jinv);
-    b->jdet = ct_calloc(8 * ne, sizeof *b->jdet);
-    int ok = b->conn && (shared || b->ref) && b->vol0 && b->eint && b->dte && b->jinv && b->jdet;
+    /* The lane copies, padded to whole blocks. */
+    const size_t nl = ((size_t)n + CTD_BRICK_LANES - 1) / CTD_BRICK_LANES * CTD_BRICK_LANES + 1;
+    b->jinv = ct_calloc(72 * nl, sizeof *b->jinv);
+    b->jdet = ct_calloc(8 * nl, sizeof *b->jdet);
+    b->lconn = ct_calloc(8 * nl, sizeof *b->lconn);
+    int ok = b->conn && (shared || b->ref) && b->vol0 && b->eint && b->dte && b->jinv &&
+             b->jdet && b->lconn;
     for (int d = 0; d < 3; d++) {
         b->s[d] = ct_calloc(8 * ne, sizeof *b->s[d]);
         ok = ok && b->s[d];
@@ -181,6 +187,15 @@ static int brick_init(ctd_brick *b, ct_idx n, const ct_idx *conn, ct_idx nnode,
         b->Z0 = Z0;
     }
     memcpy(b->conn, conn, (size_t)n * 8 * sizeof *conn);
+    /* The lane copy of the nodes; the lanes past the last element keep
+     * node 0 and a unit Jacobian (their results are not stored). */
+    for (size_t e = 0; e + 1 < nl; e++)
+        for (int a = 0; a < 8; a++) {
+            b->lconn[CTI_LANE(e, 8, a)] = e < (size_t)n ? conn[8 * e + (size_t)a] : 0;
+            b->jdet[CTI_LANE(e, 8, a)] = 1; /* a = g here: replaced below */
+            for (int k = 0; k < 3; k++)
+                b->jinv[CTI_LANE(e, 72, 9 * a + 4 * k)] = 1;
+        }
     const ct_idx *cs[8];
     for (int a = 0; a < 8; a++)
         cs[a] = b->conn + a;
@@ -198,9 +213,9 @@ static int brick_init(ctd_brick *b, ct_idx n, const ct_idx *conn, ct_idx nnode,
         for (int g = 0; g < 8; g++) {
             ct_real inv[3][3];
             ct_real det = jac_inv(X, dN[g], inv);
-            b->jdet[8 * (size_t)e + (size_t)g] = det;
+            b->jdet[CTI_LANE(e, 8, g)] = det;
             for (int k = 0; k < 9; k++)
-                b->jinv[72 * (size_t)e + (size_t)(9 * g + k)] = inv[k / 3][k % 3];
+                b->jinv[CTI_LANE(e, 72, 9 * g + k)] = inv[k / 3][k % 3];
             if (!(det > 0)) {
                 ctd_brick_destroy(b);
                 return cti_fail(diag, CT_ERR_DEGENERATE, e,
@@ -236,6 +251,80 @@ void ctd_brick_mass(const ctd_brick *b, ct_real *m)
             m[b->conn[8 * (int64_t)e + a]] += b->rho * b->vol0[e] / 8;
 }
 
+/* Gauss point g of the CTD_BRICK_LANES elements of a block, in vector
+ * lanes: from the edge differences D, the reference Jacobian's inverse jb
+ * and determinant db (the block's lane layout), add the point's edge sums
+ * to R, its energy to W, its volume det0 det F to V, and clear ok where
+ * det F <= 0. */
+static inline void cti_brick_gauss_point(int g, const ct_real *CT_RESTRICT jb,
+                                         const ct_real *CT_RESTRICT db,
+                                         ct_real (*CT_RESTRICT D)[4][3][CTD_BRICK_LANES],
+                                         ct_real (*CT_RESTRICT R)[4][3][CTD_BRICK_LANES],
+                                         ct_real *CT_RESTRICT W, ct_real *CT_RESTRICT V,
+                                         int *CT_RESTRICT ok, ct_real lambda, ct_real mu)
+{
+    enum { L = CTD_BRICK_LANES };
+#pragma omp simd
+    for (int l = 0; l < L; l++) {
+        const ct_real d0 = db[g * L + l];
+        ct_real iv[3][3], Hn[3][3], H[3][3], F[3][3], Es[3][3], S[3][3], P[3][3], Q[3][3];
+#pragma GCC unroll 16
+        for (int k = 0; k < 9; k++)
+            iv[k / 3][k % 3] = jb[(9 * g + k) * L + l];
+#pragma GCC unroll 16
+        for (int i = 0; i < 3; i++)
+#pragma GCC unroll 16
+            for (int k = 0; k < 3; k++)
+                Hn[i][k] = D[k][0][i][l] * CTI_EW[k][g][0] + D[k][1][i][l] * CTI_EW[k][g][1] +
+                           D[k][2][i][l] * CTI_EW[k][g][2] + D[k][3][i][l] * CTI_EW[k][g][3];
+#pragma GCC unroll 16
+        for (int i = 0; i < 3; i++)
+#pragma GCC unroll 16
+            for (int j = 0; j < 3; j++) {
+                H[i][j] = Hn[i][0] * iv[0][j] + Hn[i][1] * iv[1][j] + Hn[i][2] * iv[2][j];
+                F[i][j] = H[i][j] + (i == j);
+            }
+        ct_real dF = F[0][0] * (F[1][1] * F[2][2] - F[1][2] * F[2][1]) -
+                     F[0][1] * (F[1][0] * F[2][2] - F[1][2] * F[2][0]) +
+                     F[0][2] * (F[1][0] * F[2][1] - F[1][1] * F[2][0]);
+        ok[l] &= dF > 0;
+        V[l] += d0 * dF;
+#pragma GCC unroll 16
+        for (int i = 0; i < 3; i++)
+#pragma GCC unroll 16
+            for (int j = 0; j < 3; j++)
+                Es[i][j] = (H[i][j] + H[j][i] + H[0][i] * H[0][j] + H[1][i] * H[1][j] +
+                            H[2][i] * H[2][j]) / 2;
+        ct_real tr = Es[0][0] + Es[1][1] + Es[2][2];
+        ct_real ee = 0;
+#pragma GCC unroll 16
+        for (int i = 0; i < 3; i++)
+#pragma GCC unroll 16
+            for (int j = 0; j < 3; j++) {
+                S[i][j] = 2 * mu * Es[i][j] + (i == j ? lambda * tr : 0);
+                ee += Es[i][j] * Es[i][j];
+            }
+#pragma GCC unroll 16
+        for (int i = 0; i < 3; i++)
+#pragma GCC unroll 16
+            for (int j = 0; j < 3; j++)
+                P[i][j] = F[i][0] * S[0][j] + F[i][1] * S[1][j] + F[i][2] * S[2][j];
+#pragma GCC unroll 16
+        for (int i = 0; i < 3; i++)
+#pragma GCC unroll 16
+            for (int k = 0; k < 3; k++)
+                Q[i][k] = d0 * (P[i][0] * iv[k][0] + P[i][1] * iv[k][1] + P[i][2] * iv[k][2]);
+#pragma GCC unroll 16
+        for (int k = 0; k < 3; k++)
+#pragma GCC unroll 16
+            for (int m = 0; m < 4; m++)
+#pragma GCC unroll 16
+                for (int i = 0; i < 3; i++)
+                    R[k][m][i][l] += Q[i][k] * CTI_EW[k][g][m];
+        W[l] += d0 * (lambda / 2 * tr * tr + mu * ee);
+    }
+}
+
 /*
  * Per element and Gauss point g, with the reference Jacobian's inverse
  * J0^-1 and determinant det0 kept from the set-up (b->jinv, b->jdet): the
@@ -255,7 +344,6 @@ int ctd_brick_forces(ctd_brick *b, const ct_real *CT_RESTRICT x, const ct_real *
         return CT_ERR_ARG;
     const ct_idx n = b->n;
     const size_t nz = (size_t)n;
-    const ct_idx *CT_RESTRICT conn = b->conn;
     const ct_real *CT_RESTRICT X0 = b->X0, *CT_RESTRICT Y0 = b->Y0, *CT_RESTRICT Z0 = b->Z0;
     const ct_real *CT_RESTRICT jinv = b->jinv, *CT_RESTRICT jdet = b->jdet;
     const ct_real lambda = b->lambda, mu = b->mu;
@@ -263,108 +351,80 @@ int ctd_brick_forces(ctd_brick *b, const ct_real *CT_RESTRICT x, const ct_real *
     const ct_real cw = CTI_SQRT(mod / b->rho);
     ct_real *CT_RESTRICT sx = b->s[0], *CT_RESTRICT sy = b->s[1], *CT_RESTRICT sz = b->s[2];
     ct_real *CT_RESTRICT eint = b->eint, *CT_RESTRICT dte = b->dte;
+    const ct_idx nblk = (n + CTD_BRICK_LANES - 1) / CTD_BRICK_LANES;
     ct_idx bad = 0;
     ct_real best = CTD_DT_NONE;
 #pragma omp parallel for schedule(static) reduction(max : bad) reduction(min : best) \
     if (n > CTD_PAR_MIN / 32)
-    for (ct_idx e = 0; e < n; e++) {
-        ct_real u[8][3], p[8][3], f[8][3], D[3][4][3], R[3][4][3];
-        for (int a = 0; a < 8; a++) {
-            ct_idx v = conn[8 * (size_t)e + (size_t)a];
-            p[a][0] = x[v];
-            p[a][1] = y[v];
-            p[a][2] = z[v];
-            u[a][0] = p[a][0] - X0[v];
-            u[a][1] = p[a][1] - Y0[v];
-            u[a][2] = p[a][2] - Z0[v];
-        }
+    for (ct_idx bk = 0; bk < nblk; bk++) {
+        enum { L = CTD_BRICK_LANES };
+        const ct_idx *CT_RESTRICT lc = b->lconn + (size_t)bk * 8 * L;
+        const ct_real *CT_RESTRICT jb = jinv + (size_t)bk * 72 * L;
+        const ct_real *CT_RESTRICT db = jdet + (size_t)bk * 8 * L;
+        _Alignas(64) ct_real p[8][3][L], D[3][4][3][L], R[3][4][3][L], W[L], V[L];
+        _Alignas(64) int ok[L];
+        for (int a = 0; a < 8; a++)
+            for (int l = 0; l < L; l++) {
+                ct_idx v = lc[a * L + l];
+                p[a][0][l] = x[v];
+                p[a][1][l] = y[v];
+                p[a][2][l] = z[v];
+            }
         /* The displacement differences along the edges of each axis. */
         for (int k = 0; k < 3; k++)
             for (int m = 0; m < 4; m++)
-                for (int i = 0; i < 3; i++) {
-                    D[k][m][i] = u[CTI_EDGE[k][m][1]][i] - u[CTI_EDGE[k][m][0]][i];
-                    R[k][m][i] = 0;
+                for (int l = 0; l < L; l++) {
+                    ct_idx v1 = lc[CTI_EDGE[k][m][1] * L + l], v0 = lc[CTI_EDGE[k][m][0] * L + l];
+                    const int a1 = CTI_EDGE[k][m][1], a0 = CTI_EDGE[k][m][0];
+                    D[k][m][0][l] = (p[a1][0][l] - X0[v1]) - (p[a0][0][l] - X0[v0]);
+                    D[k][m][1][l] = (p[a1][1][l] - Y0[v1]) - (p[a0][1][l] - Y0[v0]);
+                    D[k][m][2][l] = (p[a1][2][l] - Z0[v1]) - (p[a0][2][l] - Z0[v0]);
+                    R[k][m][0][l] = R[k][m][1][l] = R[k][m][2][l] = 0;
                 }
-        ct_real W = 0, V = 0;
-        int ok = 1;
-    /* Unrolled, the shape derivatives are constants. */
-#pragma GCC unroll 8
-        for (int g = 0; g < 8; g++) {
-            const ct_real d0 = jdet[8 * (size_t)e + (size_t)g];
-            ct_real iv[3][3];
-            for (int k = 0; k < 9; k++)
-                iv[k / 3][k % 3] = jinv[72 * (size_t)e + (size_t)(9 * g + k)];
-            ct_real Hn[3][3];
-            for (int i = 0; i < 3; i++)
-                for (int k = 0; k < 3; k++)
-                    Hn[i][k] = D[k][0][i] * CTI_EW[k][g][0] + D[k][1][i] * CTI_EW[k][g][1] +
-                               D[k][2][i] * CTI_EW[k][g][2] + D[k][3][i] * CTI_EW[k][g][3];
-            ct_real H[3][3], F[3][3], Es[3][3], S[3][3], P[3][3];
-            for (int i = 0; i < 3; i++)
-                for (int j = 0; j < 3; j++) {
-                    H[i][j] = Hn[i][0] * iv[0][j] + Hn[i][1] * iv[1][j] + Hn[i][2] * iv[2][j];
-                    F[i][j] = H[i][j] + (i == j);
-                }
-            ct_real dF = det3(F);
-            ok &= dF > 0;
-            V += d0 * dF;
-            for (int i = 0; i < 3; i++)
-                for (int j = 0; j < 3; j++)
-                    Es[i][j] = (H[i][j] + H[j][i] + H[0][i] * H[0][j] + H[1][i] * H[1][j] +
-                                H[2][i] * H[2][j]) / 2;
-            ct_real tr = Es[0][0] + Es[1][1] + Es[2][2];
-            ct_real ee = 0;
-            for (int i = 0; i < 3; i++)
-                for (int j = 0; j < 3; j++) {
-                    S[i][j] = 2 * mu * Es[i][j] + (i == j ? lambda * tr : 0);
-                    ee += Es[i][j] * Es[i][j];
-                }
-            for (int i = 0; i < 3; i++)
-                for (int j = 0; j < 3; j++)
-                    P[i][j] = F[i][0] * S[0][j] + F[i][1] * S[1][j] + F[i][2] * S[2][j];
-            ct_real Q[3][3];
-            for (int i = 0; i < 3; i++)
-                for (int k = 0; k < 3; k++)
-                    Q[i][k] = d0 * (P[i][0] * iv[k][0] + P[i][1] * iv[k][1] + P[i][2] * iv[k][2]);
+        for (int l = 0; l < L; l++) {
+            W[l] = V[l] = 0;
+            ok[l] = 1;
+        }
+        for (int g = 0; g < 8; g++)
+            cti_brick_gauss_point(g, jb, db, D, R, W, V, ok, lambda, mu);
+        for (int l = 0; l < L; l++) {
+            const ct_idx e = bk * L + l;
+            if (e >= n)
+                break;
+            /* f_a = -sum_g Q dN_a: each edge's sum R goes to its plus end
+             * with a minus sign and to its minus end with a plus sign. */
+            ct_real f[8][3] = {{0}};
             for (int k = 0; k < 3; k++)
                 for (int m = 0; m < 4; m++)
-                    for (int i = 0; i < 3; i++)
-                        R[k][m][i] += Q[i][k] * CTI_EW[k][g][m];
-            W += d0 * (lambda / 2 * tr * tr + mu * ee);
+                    for (int i = 0; i < 3; i++) {
+                        f[CTI_EDGE[k][m][1]][i] -= R[k][m][i][l];
+                        f[CTI_EDGE[k][m][0]][i] += R[k][m][i][l];
+                    }
+            /* The stable step (elements.h): volume over the largest face
+             * area over the wave speed; an inverted element gives 0. */
+            ct_real amax = 0;
+            for (int q = 0; q < 6; q++) {
+                const int i0 = FACE[q][0], i1 = FACE[q][1], i2 = FACE[q][2], i3 = FACE[q][3];
+                ct_real d1x = p[i2][0][l] - p[i0][0][l], d1y = p[i2][1][l] - p[i0][1][l],
+                        d1z = p[i2][2][l] - p[i0][2][l];
+                ct_real d2x = p[i3][0][l] - p[i1][0][l], d2y = p[i3][1][l] - p[i1][1][l],
+                        d2z = p[i3][2][l] - p[i1][2][l];
+                ct_real cx = d1y * d2z - d1z * d2y, cy = d1z * d2x - d1x * d2z,
+                        cz = d1x * d2y - d1y * d2x;
+                amax = CTI_FMAX(amax, CTI_SQRT(cx * cx + cy * cy + cz * cz) / 2);
+            }
+            ct_real dt = (V[l] > 0 && amax > 0) ? V[l] / amax / cw : 0;
+            dte[e] = dt;
+            best = CTI_MIN(best, dt);
+            if (!(ok[l] && W[l] == W[l]))
+                bad = CTI_MAX(bad, e + 1);
+            for (int a = 0; a < 8; a++) {
+                sx[(size_t)a * nz + (size_t)e] = f[a][0];
+                sy[(size_t)a * nz + (size_t)e] = f[a][1];
+                sz[(size_t)a * nz + (size_t)e] = f[a][2];
+            }
+            eint[e] = W[l];
         }
-        /* f_a = -sum_g Q dN_a: each edge's sum R goes to its plus end with
-         * a minus sign and to its minus end with a plus sign. */
-        for (int a = 0; a < 8; a++)
-            f[a][0] = f[a][1] = f[a][2] = 0;
-        for (int k = 0; k < 3; k++)
-            for (int m = 0; m < 4; m++)
-                for (int i = 0; i < 3; i++) {
-                    f[CTI_EDGE[k][m][1]][i] -= R[k][m][i];
-                    f[CTI_EDGE[k][m][0]][i] += R[k][m][i];
-                }
-        /* The stable step (elements.h): volume over the largest face area
-         * over the wave speed; an inverted element gives 0. */
-        ct_real amax = 0;
-        for (int q = 0; q < 6; q++) {
-            const ct_real *p0 = p[FACE[q][0]], *p1 = p[FACE[q][1]], *p2 = p[FACE[q][2]],
-                          *p3 = p[FACE[q][3]];
-            ct_real d1x = p2[0] - p0[0], d1y = p2[1] - p0[1], d1z = p2[2] - p0[2];
-            ct_real d2x = p3[0] - p1[0], d2y = p3[1] - p1[1], d2z = p3[2] - p1[2];
-            ct_real cx = d1y * d2z - d1z * d2y, cy = d1z * d2x - d1x * d2z,
-                    cz = d1x * d2y - d1y * d2x;
-            amax = CTI_FMAX(amax, CTI_SQRT(cx * cx + cy * cy + cz * cz) / 2);
-        }
-        ct_real dt = (V > 0 && amax > 0) ? V / amax / cw : 0;
-        dte[e] = dt;
-        best = CTI_MIN(best, dt);
-        if (!(ok && W == W))
-            bad = CTI_MAX(bad, e + 1);
-        for (int a = 0; a < 8; a++) {
-            sx[(size_t)a * nz + (size_t)e] = f[a][0];
-            sy[(size_t)a * nz + (size_t)e] = f[a][1];
-            sz[(size_t)a * nz + (size_t)e] = f[a][2];
-        }
-        eint[e] = W;
     }
     b->dt_last = best;
     if (bad > 0) {

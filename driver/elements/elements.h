@@ -158,6 +158,10 @@ ct_real ctd_truss_dt(const ctd_truss *t, const ct_real *x, const ct_real *y, con
  * step of a cube is exactly its limit 2 / omega_max; for nu = 0 the two
  * speeds agree. The solver still applies its safety factor.
  */
+/* Elements per block of the brick forces' vector loops (the lanes of two
+ * 256-bit vectors in double precision, one in single). */
+#define CTD_BRICK_LANES 8
+
 typedef struct ctd_brick {
     ct_idx n, nnode;
     ct_idx *conn;          /* 8 n, interleaved (element-major) */
@@ -169,10 +173,14 @@ typedef struct ctd_brick {
     ct_real *vol0;         /* reference volumes */
     ct_real *eint;         /* strain energy of each element, last force call */
     ct_real *dte;          /* scratch: each element's stable step */
-    /* The reference Jacobian at each Gauss point g, per element e (kept so
-     * that the forces need not rebuild it): its inverse, entry (i, j) at
-     * jinv[72 e + 9 g + 3 i + j], and its determinant at jdet[8 e + g]. */
+    /* In blocks of L = CTD_BRICK_LANES elements, entry j of element e at
+     * ((e / L) per + j) L + e % L (per: the entries of an element): the
+     * reference Jacobian's inverse at Gauss point g (per 72, entry (i, k)
+     * at j = 9 g + 3 i + k) and its determinant (per 8, j = g), kept so
+     * that the forces need not rebuild them, and the element's nodes (per
+     * 8). The forces run the elements of a block in vector lanes. */
     ct_real *jinv, *jdet;
+    ct_idx *lconn;
     ct_real dt_last;       /* the set's stable step at the last force call */
     ct_real *s[3];         /* private force slots, 8 n each */
     ctd_gather g;
