@@ -239,7 +239,6 @@ Test(iface, type11_crossed_rods)
     tn_set(&t, 2, 0.2, -0.8, 0.12);
     tn_set(&t, 3, -0.3, 1.2, 0.32);
     ct_real g[4] = {(ct_real)r, (ct_real)r, (ct_real)r, (ct_real)r};
-    const ct_idx a1[1] = {0}, a2[1] = {1}, b1[1] = {2}, b2[1] = {3};
     /* Independent geometry: the common normal and distance of the lines. */
     double A1[3] = {-0.6, 0, 0}, eA[3] = {2.0, 0.1, 0}, B1[3] = {0.2, -0.8, 0.12},
            eB[3] = {-0.5, 2.0, 0.2}, n[3];
@@ -261,16 +260,7 @@ Test(iface, type11_crossed_rods)
         cfg.Stfac = (ct_real)K0;
         cfg.VisS = 0;
         cfg.algo = algo ? CT_SEARCH_BUCKET : CT_SEARCH_DIRECT;
-        ctd_iface_data d;
-        memset(&d, 0, sizeof d);
-        d.nnode = 4;
-        d.nea = 1;
-        d.ea1 = a1;
-        d.ea2 = a2;
-        d.neb = 1;
-        d.eb1 = b1;
-        d.eb2 = b2;
-        d.gap_node = g;
+        ctd_iface_data d = edge_pair_data(g);
         ctd_iface *it = NULL;
         ct_diag diag;
         cr_assert_eq(ctd_iface_init(&it, &cfg, &d, &diag), CT_OK, "%s", diag.msg);

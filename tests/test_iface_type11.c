@@ -9,9 +9,6 @@
 #include "test_iface_util.h"
 #include "interfaces/type11_internal.h"
 
-/* The edge indices of the single pair below: A = nodes 0-1, B = 2-3. */
-static const ct_idx pa1[1] = {0}, pa2[1] = {1}, pb1[1] = {2}, pb2[1] = {3};
-
 /* Edge A from (-1, 0, 0) to (1, 0, 0) and edge B across it at x = 0.5 from
  * (0.5, -1, h) to (0.5, 1, h), with the node gaps g: t gets the nodes, the
  * data is returned. */
@@ -22,17 +19,7 @@ static ctd_iface_data one_pair(tnodes *t, double h, const ct_real g[4])
     tn_set(t, 1, 1, 0, 0);
     tn_set(t, 2, 0.5, -1, h);
     tn_set(t, 3, 0.5, 1, h);
-    ctd_iface_data d;
-    memset(&d, 0, sizeof d);
-    d.nnode = 4;
-    d.nea = 1;
-    d.ea1 = pa1;
-    d.ea2 = pa2;
-    d.neb = 1;
-    d.eb1 = pb1;
-    d.eb2 = pb2;
-    d.gap_node = g;
-    return d;
+    return edge_pair_data(g);
 }
 
 /* One pair: A from (-1, 0, 0) to (1, 0, 0), B across it at x = 0.5 from

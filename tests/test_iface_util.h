@@ -62,4 +62,22 @@ static inline double fsum(const ct_real *f, ct_idx n)
     return s;
 }
 
+/* The interface data of one edge pair over four nodes: edge A from node 0
+ * to node 1, edge B from node 2 to node 3, node gaps g (4). */
+static inline ctd_iface_data edge_pair_data(const ct_real g[4])
+{
+    static const ct_idx a1[1] = {0}, a2[1] = {1}, b1[1] = {2}, b2[1] = {3};
+    ctd_iface_data d;
+    memset(&d, 0, sizeof d);
+    d.nnode = 4;
+    d.nea = 1;
+    d.ea1 = a1;
+    d.ea2 = a2;
+    d.neb = 1;
+    d.eb1 = b1;
+    d.eb2 = b2;
+    d.gap_node = g;
+    return d;
+}
+
 #endif /* TEST_IFACE_UTIL_H */
