@@ -119,7 +119,7 @@ typedef struct wbuf {
     char b[1 << 16];
     size_t n;
     int bad;
-    char *pool;                     /* CTI_VTU_GROUP x CTI_VTU_CHUNK x CTI_VTU_ITEM */
+    char *pool; /* up to CTI_VTU_GROUP chunks of CTI_VTU_CHUNK x CTI_VTU_ITEM bytes */
     size_t len[CTI_VTU_GROUP];      /* bytes in each chunk's slot */
 } wbuf;
 
@@ -271,8 +271,14 @@ int ctd_vtu_write(const char *path, const ctd_out_mesh *m, char *err, size_t err
             return CT_ERR_RANGE;
         }
     }
+    /* The pool holds the chunks of the longest array, at most a group. */
+    ct_idx most = m->nnode > m->ncell ? m->nnode : m->ncell;
+    if (m->ncell > 0 && m->cell_off[m->ncell] > most)
+        most = m->cell_off[m->ncell];
+    size_t nch = ((size_t)most + CTI_VTU_CHUNK - 1) / CTI_VTU_CHUNK;
+    nch = nch < 1 ? 1 : nch > CTI_VTU_GROUP ? CTI_VTU_GROUP : nch;
     wbuf *w = malloc(sizeof *w);
-    char *pool = malloc((size_t)CTI_VTU_GROUP * CTI_VTU_CHUNK * CTI_VTU_ITEM);
+    char *pool = malloc(nch * CTI_VTU_CHUNK * CTI_VTU_ITEM);
     if (!w || !pool) {
         free(w);
         free(pool);
