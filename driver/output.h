@@ -1,7 +1,9 @@
 /*
  * output.h -- what a run writes for a user to look at (prefix ctd_):
  *
- *   DIR/<base>_NNNNNN.vtu   VTK XML UnstructuredGrid (ASCII) per output step
+ *   DIR/<base>_NNNNNN.vtu   VTK XML UnstructuredGrid per output step, its
+ *                           arrays raw binary in an appended block (the
+ *                           default of a scene) or ASCII text
  *   DIR/<base>.pvd          the ParaView collection indexing them by time
  *                           (rewritten after every step, so it is valid
  *                           whenever the run stops)
@@ -50,8 +52,18 @@ typedef struct ctd_out_mesh {
     const int32_t *cell_part;          /* "part_id" (cell data) */
 } ctd_out_mesh;
 
-/* Write one VTU file (no output directory needed: the "last good state"). */
+/* How a VTU file holds its arrays: as text ("%.9g" reals), or as the
+ * machine's own bytes in one appended block (encoding "raw": every array is
+ * an 8-byte byte count and its values, reals exactly as computed, in the
+ * precision of the build). ParaView and VTK read both; the raw form is
+ * several times smaller and faster to write. */
+enum { CTD_VTU_ASCII = 0, CTD_VTU_RAW = 1 };
+
+/* Write one VTU file (no output directory needed: the "last good state"),
+ * in ASCII (ctd_vtu_write) or in the given format. */
 int ctd_vtu_write(const char *path, const ctd_out_mesh *m, char *err, size_t errlen);
+int ctd_vtu_write_as(const char *path, const ctd_out_mesh *m, int format, char *err,
+                     size_t errlen);
 
 typedef struct ctd_output ctd_output;
 
@@ -59,6 +71,7 @@ typedef struct ctd_output_opts {
     const char *dir;   /* created if missing (its parent must exist) */
     const char *base;  /* file name stem of the VTU series (NULL: "state") */
     int vtu, csv;      /* which series to write */
+    int vtu_format;    /* CTD_VTU_ASCII (0) or CTD_VTU_RAW */
 } ctd_output_opts;
 
 /*

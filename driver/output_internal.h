@@ -11,7 +11,7 @@
 
 struct ctd_output {
     char *dir, *base;
-    int vtu, csv;
+    int vtu, csv, vtu_format;
     /* VTU series: the steps written so far (time, file name). */
     int nstep, capstep;
     double *step_time;
@@ -25,5 +25,9 @@ char *cti_out_path(const char *dir, const char *name);
 
 /* Record "what 'path': strerror(errno)" in o->err; returns CT_ERR_ARG. */
 int cti_out_fail(char *err, size_t len, const char *what, const char *path, int errnum);
+
+/* The raw appended form of a checked mesh into an open file
+ * (output_vtu_raw.c); 0, or -1 when a write or an allocation failed. */
+int cti_vtu_write_raw(FILE *f, const ctd_out_mesh *m);
 
 #endif

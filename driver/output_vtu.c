@@ -40,6 +40,12 @@ int ctd_output_open(ctd_output **out, const ctd_output_opts *opts, char *err, si
         return CT_ERR_ARG;
     }
     *out = NULL;
+    if (opts->vtu_format != CTD_VTU_ASCII && opts->vtu_format != CTD_VTU_RAW) {
+        if (err && errlen)
+            snprintf(err, errlen, "unknown VTU format %d (expected ascii 0 or raw 1)",
+                     opts->vtu_format);
+        return CT_ERR_ARG;
+    }
     const char *dir = opts->dir;
     struct stat st;
     if (stat(dir, &st) != 0) {
@@ -80,6 +86,7 @@ int ctd_output_open(ctd_output **out, const ctd_output_opts *opts, char *err, si
     o->base = strdup(opts->base ? opts->base : "state");
     o->vtu = opts->vtu;
     o->csv = opts->csv;
+    o->vtu_format = opts->vtu_format;
     if (!o->dir || !o->base) {
         ctd_output_close(o);
         return CT_ERR_NOMEM;
@@ -248,8 +255,36 @@ static int cell_nodes_ok(uint8_t type, ct_idx count)
     }
 }
 
+/* The raw form: the file opened, written and closed here. */
+static int vtu_write_raw(const char *path, const ctd_out_mesh *m, char *err, size_t errlen)
+{
+    FILE *f = fopen(path, "wb");
+    if (!f)
+        return cti_out_fail(err, errlen, "cannot create VTU file", path, errno);
+    errno = 0;
+    int bad = cti_vtu_write_raw(f, m) != 0;
+    int e = errno;
+    if (fclose(f) != 0) {
+        bad = 1;
+        e = errno;
+    }
+    return bad ? cti_out_fail(err, errlen, "cannot write VTU file", path, e ? e : EIO) : CT_OK;
+}
+
 int ctd_vtu_write(const char *path, const ctd_out_mesh *m, char *err, size_t errlen)
 {
+    return ctd_vtu_write_as(path, m, CTD_VTU_ASCII, err, errlen);
+}
+
+int ctd_vtu_write_as(const char *path, const ctd_out_mesh *m, int format, char *err,
+                     size_t errlen)
+{
+    if (format != CTD_VTU_ASCII && format != CTD_VTU_RAW) {
+        if (err && errlen)
+            snprintf(err, errlen, "VTU '%s': unknown format %d (expected ascii 0 or raw 1)",
+                     path, format);
+        return CT_ERR_ARG;
+    }
     if (!m || !m->x || !m->y || !m->z || m->nnode < 0 || m->ncell < 0 ||
         (m->ncell > 0 && (!m->cell_type || !m->cell_off || !m->cell_node))) {
         if (err && errlen)
@@ -271,6 +306,8 @@ int ctd_vtu_write(const char *path, const ctd_out_mesh *m, char *err, size_t err
             return CT_ERR_RANGE;
         }
     }
+    if (format == CTD_VTU_RAW)
+        return vtu_write_raw(path, m, err, errlen);
     /* The pool holds the chunks of the longest array, at most a group. */
     ct_idx most = m->nnode > m->ncell ? m->nnode : m->ncell;
     if (m->ncell > 0 && m->cell_off[m->ncell] > most)
@@ -406,7 +443,7 @@ int ctd_output_vtu(ctd_output *o, double time, const ctd_out_mesh *m)
     char *path = cti_out_path(o->dir, fn);
     if (!path)
         return CT_ERR_NOMEM;
-    int rc = ctd_vtu_write(path, m, o->err, sizeof o->err);
+    int rc = ctd_vtu_write_as(path, m, o->vtu_format, o->err, sizeof o->err);
     free(path);
     if (rc != CT_OK)
         return rc;

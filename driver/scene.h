@@ -40,6 +40,9 @@
  *                        relative to the working directory);
  *                 every  number > 0, the output interval (default end_time/100);
  *                 vtu    bool (true): VTU + PVD series;
+ *                 format "binary" (default) or "ascii": the VTU arrays as
+ *                        raw bytes in an appended block (exact, fast to
+ *                        write) or as "%.9g" text;
  *                 csv    bool (true): CSV time history.
  *   solver      optional mapping:
  *                 dt_scale  number in (0, 1] (0.9): safety factor on the
@@ -298,6 +301,8 @@ typedef struct ctd_scene_output {
     char *dir;
     double every;
     bool vtu, csv;
+    char *format_name; /* VTU arrays: "binary" (default) or "ascii" */
+    int format;        /* filled by the loader: CTD_VTU_RAW or CTD_VTU_ASCII */
 } ctd_scene_output;
 
 typedef struct ctd_scene_solver {

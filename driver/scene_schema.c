@@ -124,6 +124,7 @@ static const cyaml_schema_field_t f_output[] = {
     NUM("every", OPT, ctd_scene_output, every),
     CYAML_FIELD_BOOL("vtu", OPT, ctd_scene_output, vtu),
     CYAML_FIELD_BOOL("csv", OPT, ctd_scene_output, csv),
+    STR("format", OPT, ctd_scene_output, format_name),
     CYAML_FIELD_END};
 
 static const cyaml_schema_field_t f_solver[] = {

@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "meshgen.h"
+#include "output.h"
 #include "scene_validate_internal.h"
 
 const char *const cti_elem_names[CTD_ELEM_NKIND] = {"brick", "shell", "truss", "spring", "rigid"};
@@ -396,6 +397,13 @@ static int check_top(vctx *v)
         o->vtu = true;
     if (!cti_vhas(v, "output.csv"))
         o->csv = true;
+    {
+        static const char *const formats[] = {"binary", "ascii"};
+        o->format = o->format_name && cti_venum(v, "output.format", o->format_name, formats,
+                                                2) == 1
+                        ? CTD_VTU_ASCII
+                        : CTD_VTU_RAW;
+    }
     if (!cti_vhas(v, "output.every"))
         o->every = isfinite(sc->end_time) && sc->end_time > 0 ? sc->end_time / 100 : 1.0;
     else

@@ -178,7 +178,8 @@ int ctd_solver_init(ctd_solver *s, ctd_model *m, const ctd_solver_opts *opts,
     /* Output directory: checked now, so a bad one fails before the run. */
     if (!s->opts.no_output) {
         const char *dir = s->opts.out_dir ? s->opts.out_dir : sc->out_dir;
-        ctd_output_opts oo = {dir, "state", sc->output->vtu, sc->output->csv};
+        ctd_output_opts oo = {dir, "state", sc->output->vtu, sc->output->csv,
+                              sc->output->format};
         char msg[512];
         int rc = ctd_output_open(&w->out, &oo, msg, sizeof msg);
         if (rc)

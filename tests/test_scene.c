@@ -9,6 +9,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "output.h"
 #include "scene.h"
 #include "test_util.h"
 
@@ -45,6 +46,7 @@ Test(scene, valid_scene_values)
     cr_assert_str_eq(sc->out_dir, "out/valid");
     cr_assert_eq(sc->output->every, 1.0e-4);
     cr_assert(sc->output->vtu && !sc->output->csv);
+    cr_assert_eq(sc->output->format, CTD_VTU_ASCII);
     cr_assert_eq(sc->solver->dt_scale, 0.8);
     cr_assert_eq(sc->solver->threads, 2);
 
@@ -128,6 +130,7 @@ Test(scene, defaults)
     cr_assert_str_eq(sc->out_dir, "out/base_ok");
     cr_assert_eq(sc->output->every, 0.01 / 100);
     cr_assert(sc->output->vtu && sc->output->csv);
+    cr_assert_eq(sc->output->format, CTD_VTU_RAW); /* binary unless asked */
     cr_assert_eq(sc->solver->dt_scale, 0.9);
     cr_assert_eq(sc->solver->threads, 0);
     cr_assert_eq(sc->refine, 1);
@@ -174,6 +177,7 @@ static const broken broken_files[] = {
     {"unknown_interface.yaml", 12, "interfaces[0].type", "expected one of 3, 5, 6, 7, 11, 24, got 9", CT_ERR_ARG},
     {"unknown_key.yaml", 12, "interfaces[0].Frik", "unknown field, expected one of type, name, main", CT_ERR_ARG},
     {"bad_search.yaml", 12, "interfaces[0].search", "expected one of direct, topological, bucket, bsp, got 'octree'", CT_ERR_ARG},
+    {"bad_output_format.yaml", 4, "output.format", "expected one of binary, ascii, got 'hdf5'", CT_ERR_ARG},
     {"bad_part_ref.yaml", 12, "interfaces[0].secondary.part", "part 7 does not exist", CT_ERR_RANGE},
     {"bad_node_ref.yaml", 10, "boundary[0].nodes.ids[2]", "node 9999 does not exist", CT_ERR_RANGE},
     {"impossible_param.yaml", 7, "parts[0].material.nu", "expected a number in (-1, 0.5), got 0.5", CT_ERR_ARG},

@@ -2,7 +2,9 @@
  * race_output.c -- the race check of the VTU writer (race_check.c runs
  * it): its data arrays are formatted by the threads in chunks. A file of
  * 70001 nodes (three rounds of chunks) written with 2 threads, watched by
- * ThreadSanitizer, must be the bytes of the same file written with 1.
+ * ThreadSanitizer, must be the bytes of the same file written with 1; and
+ * so must its raw binary form, whose 3-component arrays the threads
+ * interleave (above 65536 nodes).
  */
 #include <stdio.h>
 #include <stdlib.h>
@@ -60,26 +62,30 @@ void race_check_output(int *failures)
         ty[k] = CTD_VTK_LINE;
         off[k + 1] = 2 * (k + 1);
     }
-    ctd_out_mesh m = {.nnode = n, .x = c, .y = c + n, .z = c + 2 * n, .pen = c + 3 * n,
-                      .ncell = nc, .cell_type = ty, .cell_off = off, .cell_node = conn};
-    char p[2][64], err[512];
-    long len[2] = {0, 0};
-    char *t[2] = {NULL, NULL};
-    for (int k = 0; k < 2; k++) {
-        snprintf(p[k], sizeof p[k], "/tmp/race_output_%d_%d.vtu", (int)getpid(), k);
-        SET_THREADS(2 - k);
-        if (ctd_vtu_write(p[k], &m, err, sizeof err) != CT_OK) {
-            printf("FAIL race_output: %s\n", err);
+    ctd_out_mesh m = {.nnode = n, .x = c, .y = c + n, .z = c + 2 * n, .x0 = c + n,
+                      .y0 = c + 2 * n, .z0 = c, .pen = c + 3 * n, .ncell = nc,
+                      .cell_type = ty, .cell_off = off, .cell_node = conn};
+    for (int fmt = CTD_VTU_ASCII; fmt <= CTD_VTU_RAW; fmt++) {
+        char p[2][64], err[512];
+        long len[2] = {0, 0};
+        char *t[2] = {NULL, NULL};
+        for (int k = 0; k < 2; k++) {
+            snprintf(p[k], sizeof p[k], "/tmp/race_output_%d_%d.vtu", (int)getpid(), k);
+            SET_THREADS(2 - k);
+            if (ctd_vtu_write_as(p[k], &m, fmt, err, sizeof err) != CT_OK) {
+                printf("FAIL race_output: %s\n", err);
+                (*failures)++;
+            }
+            t[k] = slurp(p[k], &len[k]);
+            remove(p[k]);
+        }
+        SET_THREADS(2);
+        if (!t[0] || !t[1] || len[0] != len[1] || memcmp(t[0], t[1], (size_t)len[0]) != 0) {
+            printf("FAIL race_output: the %s VTU file differs between 2 threads and 1\n",
+                   fmt == CTD_VTU_RAW ? "raw" : "ASCII");
             (*failures)++;
         }
-        t[k] = slurp(p[k], &len[k]);
-        remove(p[k]);
+        free(t[0]), free(t[1]);
     }
-    SET_THREADS(2);
-    if (!t[0] || !t[1] || len[0] != len[1] || memcmp(t[0], t[1], (size_t)len[0]) != 0) {
-        printf("FAIL race_output: the VTU file differs between 2 threads and 1\n");
-        (*failures)++;
-    }
-    free(t[0]), free(t[1]);
     free(c), free(off), free(conn), free(ty);
 }
