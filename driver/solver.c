@@ -13,6 +13,8 @@
 #include "solver.h"
 #include "solver_internal.h"
 
+#include "ct_internal.h"
+
 #ifdef _OPENMP
 #include <omp.h>
 static double now_s(void) { return omp_get_wtime(); }
@@ -264,7 +266,7 @@ static int contact_forces(ctd_solver *s, int want_fields)
     ct_idx nn = s->nnode;
     if (!s->nhook)
         return 0;
-#pragma omp parallel for if (nn > CTD_PAR_MIN) schedule(static)
+    CTI_PAR_FOR(nn > CTD_PAR_MIN, (schedule(static)),
     for (ct_idx i = 0; i < nn; i++) {
         w->fcx[i] = 0;
         w->fcy[i] = 0;
@@ -273,7 +275,7 @@ static int contact_forces(ctd_solver *s, int want_fields)
             w->pen[i] = 0;
             w->nact[i] = 0;
         }
-    }
+    });
     ctd_state st = {s->time, w->dt_prev, s->cycle, nn, s->x, s->y, s->z, s->vx, s->vy, s->vz,
                     s->model->mesh.nodes.m, s->model->node_part};
     double ec = 0;
@@ -316,12 +318,12 @@ static int contact_forces(ctd_solver *s, int want_fields)
             s->if_active_max[i] = r->active;
     }
     w->contact = ec;
-#pragma omp parallel for if (nn > CTD_PAR_MIN) schedule(static)
+    CTI_PAR_FOR(nn > CTD_PAR_MIN, (schedule(static)),
     for (ct_idx i = 0; i < nn; i++) {
         w->fx[i] += w->fcx[i];
         w->fy[i] += w->fcy[i];
         w->fz[i] += w->fcz[i];
-    }
+    });
     return 0;
 }
 
@@ -329,9 +331,10 @@ static int contact_forces(ctd_solver *s, int want_fields)
 static ct_idx first_nonfinite(ct_idx n, const ct_real *a, const ct_real *b, const ct_real *c)
 {
     int bad = 0;
-#pragma omp parallel for if (n > CTD_PAR_MIN) schedule(static) reduction(| : bad)
+    CTI_PAR_FOR(n > CTD_PAR_MIN, (schedule(static) reduction(| : bad)),
     for (ct_idx i = 0; i < n; i++)
         bad |= !isfinite(a[i]) || !isfinite(b[i]) || !isfinite(c[i]);
+    );
     if (!bad)
         return -1;
     for (ct_idx i = 0; i < n; i++)
@@ -397,7 +400,7 @@ static void kick(ctd_solver *s, double dtk, double dt_new, int keep_old)
     const ct_real *mass = m->mesh.nodes.m;
     ct_idx nn = s->nnode;
     const ct_real dk = (ct_real)dtk;
-#pragma omp parallel for if (nn > CTD_PAR_MIN) schedule(static)
+    CTI_PAR_FOR(nn > CTD_PAR_MIN, (schedule(static)),
     for (ct_idx i = 0; i < nn; i++) {
         if (keep_old) {
             w->vox[i] = s->vx[i];
@@ -410,7 +413,7 @@ static void kick(ctd_solver *s, double dtk, double dt_new, int keep_old)
             s->vy[i] += im * w->fy[i];
             s->vz[i] += im * w->fz[i];
         }
-    }
+    });
     double wb = 0, wf = 0;
     ct_real *v[3] = {s->vx, s->vy, s->vz};
     for (ct_idx k = 0; k < w->nbc; k++) {
@@ -471,13 +474,14 @@ static int drift(ctd_solver *s, double dt)
     ctd_model *m = s->model;
     ct_idx nn = s->nnode;
     const ct_real d = (ct_real)dt;
-#pragma omp parallel for if (nn > CTD_PAR_MIN) schedule(static)
+    CTI_PAR_FOR(nn > CTD_PAR_MIN, (schedule(static)),
     for (ct_idx i = 0; i < nn; i++)
         if (m->node_body[i] < 0) {
             s->x[i] += d * s->vx[i];
             s->y[i] += d * s->vy[i];
             s->z[i] += d * s->vz[i];
         }
+    );
     for (int b = 0; b < m->nbody; b++) {
         ctd_rigid *r = &m->body[b].rigid;
         int rc = ctd_rigid_advance(r, dt);
@@ -544,12 +548,12 @@ int ctd_solver_run(ctd_solver *s)
         int out_step = s->time >= next_out - tol || final;
         int check = out_step || s->cycle % 100 == 0;
         /* Forces at x(n). */
-#pragma omp parallel for if (nn > CTD_PAR_MIN) schedule(static)
+        CTI_PAR_FOR(nn > CTD_PAR_MIN, (schedule(static)),
         for (ct_idx i = 0; i < nn; i++) {
             w->fx[i] = 0;
             w->fy[i] = 0;
             w->fz[i] = 0;
-        }
+        });
         if (element_forces(s))
             break;
         double t1 = now_s();
@@ -560,12 +564,12 @@ int ctd_solver_run(ctd_solver *s)
         if (m->has_gravity) {
             const ct_real gx = (ct_real)m->gravity[0], gy = (ct_real)m->gravity[1],
                           gz = (ct_real)m->gravity[2];
-#pragma omp parallel for if (nn > CTD_PAR_MIN) schedule(static)
+            CTI_PAR_FOR(nn > CTD_PAR_MIN, (schedule(static)),
             for (ct_idx i = 0; i < nn; i++) {
                 w->fx[i] += mass[i] * gx;
                 w->fy[i] += mass[i] * gy;
                 w->fz[i] += mass[i] * gz;
-            }
+            });
         }
         ct_idx bad = first_nonfinite(nn, w->fx, w->fy, w->fz);
         if (bad >= 0) {

@@ -13,6 +13,8 @@
 #include "solver.h"
 #include "solver_internal.h"
 
+#include "ct_internal.h"
+
 #ifdef _OPENMP
 #include <omp.h>
 static double now_s(void) { return omp_get_wtime(); }
@@ -34,7 +36,7 @@ double cti_solver_kinetic(ctd_solver *s)
     const ct_real *mass = s->model->mesh.nodes.m;
     const ct_idx nn = s->nnode;
     const int first = s->cycle == 0;
-#pragma omp parallel for if (w->nchunk > 1) schedule(static)
+    CTI_PAR_FOR(w->nchunk > 1, (schedule(static)),
     for (int c = 0; c < w->nchunk; c++) {
         ct_idx lo = (ct_idx)c * CTI_CHUNK, hi = lo + CTI_CHUNK < nn ? lo + CTI_CHUNK : nn;
         double sum = 0;
@@ -50,7 +52,7 @@ double cti_solver_kinetic(ctd_solver *s)
             sum += 0.5 * mass[i] * (ax * s->vx[i] + ay * s->vy[i] + az * s->vz[i]);
         }
         w->part_sum[c] = sum;
-    }
+    });
     double k = 0;
     for (int c = 0; c < w->nchunk; c++)
         k += w->part_sum[c];
@@ -92,7 +94,7 @@ double cti_solver_gravity_work(ctd_solver *s)
     const ct_nodes *nd = &m->mesh.nodes;
     const ct_idx nn = s->nnode;
     const double g0 = m->gravity[0], g1 = m->gravity[1], g2 = m->gravity[2];
-#pragma omp parallel for if (w->nchunk > 1) schedule(static)
+    CTI_PAR_FOR(w->nchunk > 1, (schedule(static)),
     for (int c = 0; c < w->nchunk; c++) {
         ct_idx lo = (ct_idx)c * CTI_CHUNK, hi = lo + CTI_CHUNK < nn ? lo + CTI_CHUNK : nn;
         double sum = 0;
@@ -101,7 +103,7 @@ double cti_solver_gravity_work(ctd_solver *s)
                                g1 * ((double)s->y[i] - nd->y[i]) +
                                g2 * ((double)s->z[i] - nd->z[i]));
         w->part_sum[c] = sum;
-    }
+    });
     double sum = 0;
     for (int c = 0; c < w->nchunk; c++)
         sum += w->part_sum[c];
@@ -179,7 +181,7 @@ int cti_solver_output(ctd_solver *s)
     if (!rc && sc->output->vtu) {
         const ct_idx nn = s->nnode;
         const int first = s->cycle == 0;
-#pragma omp parallel for if (nn > CTD_PAR_MIN) schedule(static)
+        CTI_PAR_FOR(nn > CTD_PAR_MIN, (schedule(static)),
         for (ct_idx i = 0; i < nn; i++) {
             if (w->free_node[i]) {
                 /* v(n) = (v- + v+) / 2; at cycle 0 this is v(0), kept in vo. */
@@ -191,7 +193,7 @@ int cti_solver_output(ctd_solver *s)
                 w->vmy[i] = s->vy[i];
                 w->vmz[i] = s->vz[i];
             }
-        }
+        });
         ctd_out_mesh om;
         out_mesh(s, &om, s->x, s->y, s->z, w->vmx, w->vmy, w->vmz);
         rc = ctd_output_vtu(w->out, s->time, &om);

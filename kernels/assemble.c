@@ -206,14 +206,14 @@ double ct_sum_fixed(int64_t n, const ct_real *restrict v)
     if (nb > CTI_SUM_MAXBLOCK)
         nb = CTI_SUM_MAXBLOCK;
     int64_t bl = (n + nb - 1) / nb;
-#pragma omp parallel for schedule(static) if (nb > 1)
+    CTI_PAR_FOR(nb > 1, (schedule(static)),
     for (int64_t b = 0; b < nb; b++) {
         int64_t lo = b * bl, hi = CTI_MIN(n, lo + bl);
         double s = 0.0;
         for (int64_t i = lo; i < hi; i++)
             s += (double)v[i];
         part[b] = s;
-    }
+    });
     double s = 0.0;
     for (int64_t b = 0; b < nb; b++)
         s += part[b];

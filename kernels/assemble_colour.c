@@ -309,6 +309,17 @@ static inline void scalar_pair(ct_idx k, int ns, const ct_idx *const slot[],
     }
 }
 
+/* Block b's pairs, in order. */
+static void scalar_block(ct_idx b, ct_idx B, ct_idx npair, int ns, const ct_idx *const slot[],
+                         const ct_real *const w[], const ct_real *sign,
+                         const ct_real *restrict f, ct_real *restrict fn)
+{
+    ct_idx lo, hi;
+    cti_block_range(b, B, npair, &lo, &hi);
+    for (ct_idx k = lo; k < hi; k++)
+        scalar_pair(k, ns, slot, w, sign, f, fn);
+}
+
 int ct_assemble_scalar(const ct_assemble_ws *ws, ct_assemble_variant variant,
                        const ct_asm_map *map, const ct_real *const w[],
                        const ct_real *restrict f, ct_idx nnode, ct_real *restrict fn)
@@ -328,15 +339,20 @@ int ct_assemble_scalar(const ct_assemble_ws *ws, ct_assemble_variant variant,
         return CT_ERR_ARG;
     const ct_idx B = ws->block, ncol = ws->ncolour;
     const ct_idx *restrict off = ws->col_off, *restrict bperm = ws->bperm;
-#pragma omp parallel if (npair > 4096)
-    for (ct_idx c = 0; c < ncol; c++) {
+    /* Colour by colour, the blocks of a colour in order: on one thread (a
+     * small list: no team, see CTI_PAR_FOR) the additions to each node come
+     * in the order the threads make them. */
+    if (npair > 4096) {
+#pragma omp parallel
+        for (ct_idx c = 0; c < ncol; c++) {
 #pragma omp for schedule(static)
-        for (ct_idx j = off[c]; j < off[c + 1]; j++) {
-            ct_idx lo, hi;
-            cti_block_range(bperm[j], B, npair, &lo, &hi);
-            for (ct_idx k = lo; k < hi; k++)
-                scalar_pair(k, ns, slot, w, sign, f, fn);
+            for (ct_idx j = off[c]; j < off[c + 1]; j++)
+                scalar_block(bperm[j], B, npair, ns, slot, w, sign, f, fn);
         }
+    } else {
+        for (ct_idx c = 0; c < ncol; c++)
+            for (ct_idx j = off[c]; j < off[c + 1]; j++)
+                scalar_block(bperm[j], B, npair, ns, slot, w, sign, f, fn);
     }
     return CT_OK;
 }

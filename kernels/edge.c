@@ -88,7 +88,7 @@ int ct_narrow_edge_edge(ct_idx npair, const ct_idx *restrict ea, const ct_idx *r
     uint8_t *restrict oflag = out->flag;
     ct_idx nblock = (ct_idx)((npair + CTI_EE_BLOCK - 1) / CTI_EE_BLOCK);
     /* A call of one block runs without a thread team (cheaper). */
-#pragma omp parallel for schedule(static) if (nblock > 1)
+    CTI_PAR_FOR(nblock > 1, (schedule(static)),
     for (ct_idx bi = 0; bi < nblock; bi++) {
         ct_idx k0 = bi * CTI_EE_BLOCK, nb = CTI_MIN(npair - k0, CTI_EE_BLOCK);
         /* The block's gaps, and its end points copied by a scalar loop into
@@ -213,16 +213,16 @@ int ct_narrow_edge_edge(ct_idx npair, const ct_idx *restrict ea, const ct_idx *r
                        : ((clamped ? CTI_NR_F(OUTSIDE) : 0) | (par ? CTI_NR_F(PARALLEL) : 0));
         }
         cti_nr_flags_out(F, oflag + k0, nb);
-    }
+    });
     if (stats) {
         int64_t act = 0, dg = 0, nf = 0, os = 0;
-#pragma omp parallel for schedule(static) reduction(+ : act, dg, nf, os) if (nblock > 1)
+        CTI_PAR_FOR(nblock > 1, (schedule(static) reduction(+ : act, dg, nf, os)),
         for (ct_idx k = 0; k < npair; k++) {
             act += open[k] > 0;
             dg += (oflag[k] & CT_NARROW_DEGENERATE) != 0;
             nf += (oflag[k] & CT_NARROW_NONFINITE) != 0;
             os += (oflag[k] & CT_NARROW_OUTSIDE) != 0;
-        }
+        });
         stats->active = act;
         stats->degenerate = dg;
         stats->nonfinite = nf;
@@ -244,7 +244,7 @@ int ct_edge_edge_forces(ct_idx npair, const ct_real *restrict fmag,
     if (!fmag || !nx || !ny || !nz || !sa || !sb || !fx || !fy || !fz)
         return CT_ERR_ARG;
     ct_idx nblock = (ct_idx)((npair + CTI_EE_BLOCK - 1) / CTI_EE_BLOCK);
-#pragma omp parallel for schedule(static) if (nblock > 1)
+    CTI_PAR_FOR(nblock > 1, (schedule(static)),
     for (ct_idx bi = 0; bi < nblock; bi++) {
         ct_idx k0 = bi * CTI_EE_BLOCK, k1 = CTI_MIN(npair, k0 + CTI_EE_BLOCK);
         CTI_NR_SIMD
@@ -265,6 +265,6 @@ int ct_edge_edge_forces(ct_idx npair, const ct_real *restrict fmag,
             fz[4 * k + 2] = -(wb1 * Fz);
             fz[4 * k + 3] = -(wb2 * Fz);
         }
-    }
+    });
     return CT_OK;
 }

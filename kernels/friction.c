@@ -85,9 +85,10 @@ int ct_friction_mu(ct_idx npair, int law, const ct_real coef[7], const ct_real *
     ct_real c[7];
     for (int i = 0; i < 7; i++)
         c[i] = coef[i];
-#pragma omp parallel for schedule(static) if (npair > CTI_PAR_MIN)
+    CTI_PAR_FOR(npair > CTI_PAR_MIN, (schedule(static)),
     for (ct_idx i = 0; i < npair; i++)
         mu[i] = cti_mu(law, c, pressure ? pressure[i] : 0, speed[i]);
+    );
     return CT_OK;
 }
 
@@ -146,19 +147,19 @@ int ct_friction_step(ct_idx npair, const ct_real *nx, const ct_real *ny, const c
     const int variant = (mu != NULL) | (kt != NULL) << 1 | (dissip != NULL) << 2 |
                         (alpha < 1) << 3;
     const int64_t nblk = ((int64_t)npair + CTI_FRIC_BLOCK - 1) / CTI_FRIC_BLOCK;
-#pragma omp parallel for schedule(static) if (npair > CTI_PAR_MIN)
-    for (int64_t b = 0; b < nblk; b++) {
-        int64_t i0, i1;
-        cti_block_range(b, CTI_FRIC_BLOCK, npair, &i0, &i1);
 #define CTI_FRIC_CASE(V)                                                                   \
     case V:                                                                                \
         cti_friction_block(i0, i1, nx, ny, nz, vx, vy, vz, fn, mu, mu0, kt, kt0, dt, alpha, \
                            ftx, fty, ftz, dissip, (V)&1, ((V) >> 1) & 1, ((V) >> 2) & 1,    \
                            ((V) >> 3) & 1);                                                \
         break;
+    CTI_PAR_FOR(npair > CTI_PAR_MIN, (schedule(static)),
+    for (int64_t b = 0; b < nblk; b++) {
+        int64_t i0, i1;
+        cti_block_range(b, CTI_FRIC_BLOCK, npair, &i0, &i1);
         switch (variant) { CTI_CASES16(CTI_FRIC_CASE) }
+    });
 #undef CTI_FRIC_CASE
-    }
     return CT_OK;
 }
 
@@ -184,14 +185,16 @@ int ct_pair_match(ct_idx nold, const ct_idx *old_node, const ct_idx *old_seg, ct
     /* Both lists must be strictly ascending (min-reductions: the first
      * offender, whatever the thread count). */
     ct_idx bad_old = nold, bad_new = nnew;
-#pragma omp parallel for schedule(static) reduction(min : bad_old) if (nold > CTI_PAR_MIN)
+    CTI_PAR_FOR(nold > CTI_PAR_MIN, (schedule(static) reduction(min : bad_old)),
     for (ct_idx i = 1; i < nold; i++)
         if (!(cti_key(old_node[i - 1], old_seg[i - 1]) < cti_key(old_node[i], old_seg[i])))
             bad_old = i < bad_old ? i : bad_old;
-#pragma omp parallel for schedule(static) reduction(min : bad_new) if (nnew > CTI_PAR_MIN)
+    );
+    CTI_PAR_FOR(nnew > CTI_PAR_MIN, (schedule(static) reduction(min : bad_new)),
     for (ct_idx i = 1; i < nnew; i++)
         if (!(cti_key(new_node[i - 1], new_seg[i - 1]) < cti_key(new_node[i], new_seg[i])))
             bad_new = i < bad_new ? i : bad_new;
+    );
     if (bad_new < nnew)
         return cti_fail(diag, CT_ERR_ARG, bad_new,
                         "New pair %ld is not above the previous one in (node, seg) order.",
@@ -201,7 +204,7 @@ int ct_pair_match(ct_idx nold, const ct_idx *old_node, const ct_idx *old_seg, ct
                         "Old pair %ld is not above the previous one in (node, seg) order.",
                         (long)bad_old);
     ct_idx nblock = (ct_idx)(((int64_t)nnew + CTI_MATCH_BLOCK - 1) / CTI_MATCH_BLOCK);
-#pragma omp parallel for schedule(static) if (nblock > 1)
+    CTI_PAR_FOR(nblock > 1, (schedule(static)),
     for (ct_idx b = 0; b < nblock; b++) {
         int64_t k0 = (int64_t)b * CTI_MATCH_BLOCK, k1 = k0 + CTI_MATCH_BLOCK;
         k1 = k1 < nnew ? k1 : nnew;
@@ -222,7 +225,7 @@ int ct_pair_match(ct_idx nold, const ct_idx *old_node, const ct_idx *old_seg, ct
                 j++;
             old_of_new[k] = (j < nold && cti_key(old_node[j], old_seg[j]) == key) ? j : -1;
         }
-    }
+    });
     return CT_OK;
 }
 
@@ -234,9 +237,10 @@ int ct_pair_remap(ct_idx nnew, const ct_idx *old_of_new, const ct_real *src, ct_
     const ct_idx *restrict map = old_of_new;
     const ct_real *restrict s = src;
     ct_real *restrict d = dst;
-#pragma omp parallel for schedule(static) if (nnew > CTI_PAR_MIN)
+    CTI_PAR_FOR(nnew > CTI_PAR_MIN, (schedule(static)),
     for (ct_idx k = 0; k < nnew; k++)
         d[k] = (map[k] >= 0 && s) ? s[map[k]] : fill;
+    );
     return CT_OK;
 }
 

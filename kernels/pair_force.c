@@ -204,7 +204,7 @@ int ct_relative_velocity(ct_idx npair, const ct_idx *node, const ct_idx *s1, con
                       !ny || !nz || !vx || !vy || !vz || !rx || !ry || !rz || !vn))
         return CT_ERR_ARG;
     const int64_t nblk = ((int64_t)npair + CTI_RELVEL_BLOCK - 1) / CTI_RELVEL_BLOCK;
-#pragma omp parallel for schedule(static) if (npair > CTI_PAR_MIN)
+    CTI_PAR_FOR(npair > CTI_PAR_MIN, (schedule(static)),
     for (int64_t b = 0; b < nblk; b++) {
         int64_t i0, i1;
         cti_block_range(b, CTI_RELVEL_BLOCK, npair, &i0, &i1);
@@ -214,6 +214,6 @@ int ct_relative_velocity(ct_idx npair, const ct_idx *node, const ct_idx *s1, con
         else
             cti_relvel_block(i0, i1, node, s1, s2, s3, s4, h1, h2, h3, h4, nx, ny, nz, vx, vy,
                              vz, NULL, rx, ry, rz, vn, NULL, 0);
-    }
+    });
     return CT_OK;
 }

@@ -9,26 +9,32 @@
 /* Blocks of the deterministic sums (fixed: the order depends on n only). */
 #define CTI_SUM_BLOCKS 64
 
+/* The sum of a[lo, hi) (of its positive values only). The vector
+ * reduction order is fixed by the compiled code, not by the thread count. */
+static double cti_sum_block(const ct_real *restrict a, int64_t lo, int64_t hi,
+                            int positive_only)
+{
+    double s = 0;
+    if (positive_only) {
+#pragma omp simd reduction(+ : s)
+        for (int64_t i = lo; i < hi; i++)
+            s += a[i] > 0 ? (double)a[i] : 0.0;
+    } else {
+#pragma omp simd reduction(+ : s)
+        for (int64_t i = lo; i < hi; i++)
+            s += (double)a[i];
+    }
+    return s;
+}
+
 static double cti_sum_blocks(ct_idx n, const ct_real *restrict a, int positive_only)
 {
     double part[CTI_SUM_BLOCKS];
-#pragma omp parallel for schedule(static) if (n > CTI_PAR_MIN)
+    CTI_PAR_FOR(n > CTI_PAR_MIN, (schedule(static)),
     for (int b = 0; b < CTI_SUM_BLOCKS; b++) {
         int64_t lo = (int64_t)n * b / CTI_SUM_BLOCKS, hi = (int64_t)n * (b + 1) / CTI_SUM_BLOCKS;
-        double s = 0;
-        /* The vector reduction order is fixed by the compiled code, not by
-         * the thread count. */
-        if (positive_only) {
-#pragma omp simd reduction(+ : s)
-            for (int64_t i = lo; i < hi; i++)
-                s += a[i] > 0 ? (double)a[i] : 0.0;
-        } else {
-#pragma omp simd reduction(+ : s)
-            for (int64_t i = lo; i < hi; i++)
-                s += (double)a[i];
-        }
-        part[b] = s;
-    }
+        part[b] = cti_sum_block(a, lo, hi, positive_only);
+    });
     double s = 0;
     for (int b = 0; b < CTI_SUM_BLOCKS; b++)
         s += part[b];
@@ -78,7 +84,7 @@ int ct_penalty_linear(ct_idx npair, const ct_real *p, const ct_real *vn, const c
     const ct_real *restrict pp_ = p, *restrict v = vn, *restrict kk_ = K;
     ct_real *restrict q0 = p0, *restrict pprev = p_prev, *restrict fc = fcap,
                       *restrict qj_ = qjump, *restrict f = fel, *restrict en = energy;
-#pragma omp parallel for schedule(static) if (npair > CTI_PAR_MIN)
+    CTI_PAR_FOR(npair > CTI_PAR_MIN, (schedule(static)),
     for (ct_idx i = 0; i < npair; i++) {
         ct_real kk = kk_[i] > 0 ? kk_[i] : 0; /* NaN or negative: no force */
         ct_real q = pp_[i] > 0 ? pp_[i] : 0;
@@ -122,7 +128,7 @@ int ct_penalty_linear(ct_idx npair, const ct_real *p, const ct_real *vn, const c
         f[i] = fi;
         if (en)
             en[i] = ei;
-    }
+    });
     return CT_OK;
 }
 
@@ -133,14 +139,14 @@ int ct_initial_penetration(ct_idx npair, int mode, const ct_real *p_init, ct_rea
         (mode != CT_INACTI_IGNORE && mode != CT_INACTI_SUBTRACT))
         return CT_ERR_ARG;
     int ndead = 0;
-#pragma omp parallel for schedule(static) reduction(+ : ndead) if (npair > CTI_PAR_MIN)
+    CTI_PAR_FOR(npair > CTI_PAR_MIN, (schedule(static) reduction(+ : ndead)),
     for (ct_idx i = 0; i < npair; i++) {
         ct_real q = p_init[i] > 0 ? p_init[i] : 0;
         int dead = pen_max > 0 && q > pen_max;
         active[i] = !dead;
         p0[i] = (mode == CT_INACTI_SUBTRACT && !dead) ? q : 0;
         ndead += dead;
-    }
+    });
     return ndead;
 }
 
@@ -228,18 +234,18 @@ int ct_penalty_type7(ct_idx npair, const ct_real *p, const ct_real *g, const ct_
         return CT_ERR_ARG;
     const int variant = (ktan != NULL) | (energy != NULL) << 1 | (flag != NULL) << 2;
     const int64_t nblk = ((int64_t)npair + CTI_TYPE7_BLOCK - 1) / CTI_TYPE7_BLOCK;
-#pragma omp parallel for schedule(static) if (npair > CTI_PAR_MIN)
-    for (int64_t b = 0; b < nblk; b++) {
-        int64_t i0, i1;
-        cti_block_range(b, CTI_TYPE7_BLOCK, npair, &i0, &i1);
 #define CTI_T7_CASE(V)                                                                     \
     case V:                                                                                \
         cti_type7_block(i0, i1, p, g, K0, fel, ktan, energy, flag, (V)&1, ((V) >> 1) & 1,  \
                         ((V) >> 2) & 1);                                                   \
         break;
+    CTI_PAR_FOR(npair > CTI_PAR_MIN, (schedule(static)),
+    for (int64_t b = 0; b < nblk; b++) {
+        int64_t i0, i1;
+        cti_block_range(b, CTI_TYPE7_BLOCK, npair, &i0, &i1);
         switch (variant) { CTI_CASES8(CTI_T7_CASE) }
+    });
 #undef CTI_T7_CASE
-    }
     return CT_OK;
 }
 
@@ -294,9 +300,10 @@ int ct_penalty_type6(ct_idx npair, const ct_real *p, ct_idx ncurve, const ct_rea
     if (rc != CT_OK)
         return rc;
     ct_real pm = 0;
-#pragma omp parallel for schedule(static) reduction(max : pm) if (npair > CTI_PAR_MIN)
+    CTI_PAR_FOR(npair > CTI_PAR_MIN, (schedule(static) reduction(max : pm)),
     for (ct_idx i = 0; i < npair; i++)
         pm = p[i] > pm ? p[i] : pm; /* NaN compares false: ignored */
+    );
     ct_real slope = 0, F = 0, kc = 0;
     if (pm > 0) {
         F = ct_curve_eval(ncurve, cx, cy, pm, &slope);
@@ -306,9 +313,10 @@ int ct_penalty_type6(ct_idx npair, const ct_real *p, ct_idx ncurve, const ct_rea
     }
     double sum = npair > 0 ? cti_sum_blocks(npair, p, 1) : 0;
     ct_real scale = sum > 0 ? (ct_real)((double)F / sum) : 0;
-#pragma omp parallel for simd schedule(static) if (npair > CTI_PAR_MIN)
+    CTI_PAR_FOR_SIMD(npair > CTI_PAR_MIN, (schedule(static)),
     for (ct_idx i = 0; i < npair; i++)
         fel[i] = p[i] > 0 ? scale * p[i] : 0;
+    );
     if (pmax)
         *pmax = pm;
     if (ftotal)
@@ -377,18 +385,18 @@ int ct_normal_finish(ct_idx npair, const ct_real *p, const ct_real *fel, const c
     const ct_real vs = viss > 0 ? viss : 0;
     const int variant = (mm != NULL) | (fn != NULL) << 1 | (dissip != NULL) << 2;
     const int64_t nblk = ((int64_t)npair + CTI_FINISH_BLOCK - 1) / CTI_FINISH_BLOCK;
-#pragma omp parallel for schedule(static) if (npair > CTI_PAR_MIN)
-    for (int64_t b = 0; b < nblk; b++) {
-        int64_t i0, i1;
-        cti_block_range(b, CTI_FINISH_BLOCK, npair, &i0, &i1);
 #define CTI_NFIN_CASE(V)                                                                   \
     case V:                                                                                \
         cti_finish_block(i0, i1, p, fel, kd, vn, ms, mm, vs, dt, nx, ny, nz, fn, fx, fy, fz, \
                          dissip, (V)&1, ((V) >> 1) & 1, ((V) >> 2) & 1);                   \
         break;
+    CTI_PAR_FOR(npair > CTI_PAR_MIN, (schedule(static)),
+    for (int64_t b = 0; b < nblk; b++) {
+        int64_t i0, i1;
+        cti_block_range(b, CTI_FINISH_BLOCK, npair, &i0, &i1);
         switch (variant) { CTI_CASES8(CTI_NFIN_CASE) }
+    });
 #undef CTI_NFIN_CASE
-    }
     return CT_OK;
 }
 
@@ -437,18 +445,18 @@ int ct_normal_force(ct_idx npair, const ct_real *p, const ct_real *nx, const ct_
     const int variant = (K != NULL) | (mm != NULL) << 1 | (fn != NULL) << 2 |
                         (energy != NULL) << 3 | (dissip != NULL) << 4;
     const int64_t nblk = ((int64_t)npair + CTI_NORMAL_BLOCK - 1) / CTI_NORMAL_BLOCK;
-#pragma omp parallel for schedule(static) if (npair > CTI_PAR_MIN)
-    for (int64_t b = 0; b < nblk; b++) {
-        int64_t i0, i1;
-        cti_block_range(b, CTI_NORMAL_BLOCK, npair, &i0, &i1);
 #define CTI_NF_CASE(V)                                                                     \
     case V:                                                                                \
         cti_normal_block(i0, i1, p, nx, ny, nz, vn, K, K0, ms, mm, vs, dt, fx, fy, fz, fn,  \
                          energy, dissip, (V)&1, ((V) >> 1) & 1, ((V) >> 2) & 1,             \
                          ((V) >> 3) & 1, ((V) >> 4) & 1);                                  \
         break;
+    CTI_PAR_FOR(npair > CTI_PAR_MIN, (schedule(static)),
+    for (int64_t b = 0; b < nblk; b++) {
+        int64_t i0, i1;
+        cti_block_range(b, CTI_NORMAL_BLOCK, npair, &i0, &i1);
         switch (variant) { CTI_CASES32(CTI_NF_CASE) }
+    });
 #undef CTI_NF_CASE
-    }
     return CT_OK;
 }

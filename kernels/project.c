@@ -130,6 +130,25 @@ void cti_nr_block_tri(const cti_nr_args *a, ct_idx k0, ct_idx n, cti_nr_blk *b)
 
 typedef void (*cti_nr_kernel)(const cti_nr_args *, ct_idx, ct_idx, cti_nr_blk *);
 
+/* Block bi of the pairs, in runs of one segment kind. */
+static void cti_nr_one_block(const cti_nr_args *a, cti_nr_kernel quad, ct_idx npair,
+                             ct_idx bi, cti_nr_blk *blk)
+{
+    const ct_idx *seg = a->seg, *n3 = a->n3, *n4 = a->n4;
+    ct_idx k0 = bi * CTI_NR_BLOCK;
+    ct_idx k1 = CTI_MIN(npair, k0 + CTI_NR_BLOCK);
+    while (k0 < k1) {
+        int tri = n3[seg[k0]] == n4[seg[k0]];
+        ct_idx e = k0 + 1;
+        while (e < k1 && (n3[seg[e]] == n4[seg[e]]) == tri)
+            e++;
+        cti_nr_gather(a, k0, e - k0, blk);
+        cti_nr_fetch(a, k0, e - k0, !tri, blk);
+        (tri ? cti_nr_block_tri : quad)(a, k0, e - k0, blk);
+        k0 = e;
+    }
+}
+
 int ct_narrow_node_segment(ct_idx npair, const ct_idx *restrict node,
                            const ct_idx *restrict seg, const ct_idx *restrict n1,
                            const ct_idx *restrict n2, const ct_idx *restrict n3,
@@ -161,32 +180,25 @@ int ct_narrow_node_segment(ct_idx npair, const ct_idx *restrict node,
      * when blocks were 128 pairs; the results do not depend on it.) Nor
      * does a call from inside the caller's own parallel region. */
     const int team = npair > 128 && !cti_in_parallel();
-#pragma omp parallel if (team)
-    {
-        /* One block scratch per thread, on its stack. */
-        cti_nr_blk blk;
+    if (team) {
+#pragma omp parallel
+        {
+            /* One block scratch per thread, on its stack. */
+            cti_nr_blk blk;
 #pragma omp for schedule(static)
-        for (ct_idx bi = 0; bi < nblock; bi++) {
-            ct_idx k0 = bi * CTI_NR_BLOCK;
-            ct_idx k1 = CTI_MIN(npair, k0 + CTI_NR_BLOCK);
-            /* Runs of one segment kind. */
-            while (k0 < k1) {
-                int tri = n3[seg[k0]] == n4[seg[k0]];
-                ct_idx e = k0 + 1;
-                while (e < k1 && (n3[seg[e]] == n4[seg[e]]) == tri)
-                    e++;
-                cti_nr_gather(&a, k0, e - k0, &blk);
-                cti_nr_fetch(&a, k0, e - k0, !tri, &blk);
-                (tri ? cti_nr_block_tri : quad)(&a, k0, e - k0, &blk);
-                k0 = e;
-            }
+            for (ct_idx bi = 0; bi < nblock; bi++)
+                cti_nr_one_block(&a, quad, npair, bi, &blk);
         }
+    } else { /* no team at all (see CTI_PAR_FOR) */
+        cti_nr_blk blk;
+        for (ct_idx bi = 0; bi < nblock; bi++)
+            cti_nr_one_block(&a, quad, npair, bi, &blk);
     }
     if (stats) {
         int64_t act = 0, fb = 0, dg = 0, nf = 0, bh = 0, os = 0;
         const ct_real *restrict pen = out->pen;
         const uint8_t *restrict fl = out->flag;
-#pragma omp parallel for schedule(static) reduction(+ : act, fb, dg, nf, bh, os) if (team)
+        CTI_PAR_FOR(team, (schedule(static) reduction(+ : act, fb, dg, nf, bh, os)),
         for (ct_idx k = 0; k < npair; k++) {
             act += pen[k] > 0;
             fb += (fl[k] & CT_NARROW_FALLBACK) != 0;
@@ -194,7 +206,7 @@ int ct_narrow_node_segment(ct_idx npair, const ct_idx *restrict node,
             nf += (fl[k] & CT_NARROW_NONFINITE) != 0;
             bh += (fl[k] & CT_NARROW_BEHIND) != 0;
             os += (fl[k] & CT_NARROW_OUTSIDE) != 0;
-        }
+        });
         stats->active = act;
         stats->fallbacks = fb;
         stats->degenerate = dg;

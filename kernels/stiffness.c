@@ -81,7 +81,7 @@ int ct_seg_stiffness(ct_idx nseg, ct_real stfac, const ct_real *E, const ct_real
     const ct_real *restrict e = E, *restrict th = t, *restrict b = B, *restrict a = A,
                             *restrict v = V;
     ct_real *restrict k = K;
-#pragma omp parallel for schedule(static) if (nseg > CTI_PAR_MIN)
+    CTI_PAR_FOR(nseg > CTI_PAR_MIN, (schedule(static)),
     for (ct_idx i = 0; i < nseg; i++) {
         ct_real ksh = 0, kbr = 0;
         int shell = 0;
@@ -92,7 +92,7 @@ int ct_seg_stiffness(ct_idx nseg, ct_real stfac, const ct_real *E, const ct_real
         if (v && v[i] > 0)
             kbr = stfac * b[i] * (a[i] * a[i] / v[i]);
         k[i] = shell ? ksh : kbr;
-    }
+    });
     return CT_OK;
 }
 
@@ -114,9 +114,10 @@ int ct_node_stiffness(ct_idx n, const ct_real *B, const ct_real *vnode,
             return cti_fail(diag, code, i, "Node %ld has a NaN or negative stiffness input.",
                             (long)i);
     }
-#pragma omp parallel for schedule(static) if (n > CTI_PAR_MIN)
+    CTI_PAR_FOR(n > CTI_PAR_MIN, (schedule(static)),
     for (ct_idx i = 0; i < n; i++)
         K[i] = ct_node_stiffness1(B ? B[i] : 0, vnode ? vnode[i] : 0, et_mean ? et_mean[i] : 0);
+    );
     return CT_OK;
 }
 
@@ -171,13 +172,13 @@ int ct_stiffness_pairs(ct_idx npair, int mode, const ct_idx *node, const ct_idx 
     ct_idx bad = npair;
     /* The smallest offending index is a min-reduction: the same for any
      * thread count. */
-#pragma omp parallel for schedule(static) reduction(min : bad) if (npair > CTI_PAR_MIN)
+    CTI_PAR_FOR(npair > CTI_PAR_MIN, (schedule(static) reduction(min : bad)),
     for (ct_idx i = 0; i < npair; i++) {
         ct_real km = ksg[sg[i]], ks = kn[nd[i]];
         if (!(km >= 0) || !(ks >= 0))
             bad = i < bad ? i : bad;
         k[i] = cti_clamp_stiff(cti_combine(mode, km, ks, s), stmin, stmax);
-    }
+    });
     if (bad < npair) {
         ct_real km = Kseg[seg[bad]], ks = Knode[node[bad]];
         int code = (km != km || ks != ks) ? CT_ERR_NONFINITE : CT_ERR_ARG;

@@ -112,50 +112,67 @@ static int cti_dt_chunk(const struct cti_dt_in *in, ct_idx i0, int n, ct_real *r
     return any != 0;
 }
 
+/* Chunk c of the scan: its steps (into dt when given), and its minimum,
+ * lowest index and first NaN item folded into the running (lb, li, ln). */
+static void cti_dt_scan_chunk(ct_idx n, const struct cti_dt_in *in, ct_idx c, ct_real *dt,
+                              ct_real *lb, ct_idx *li, ct_idx *ln)
+{
+    _Alignas(64) ct_real d[CTI_DT_CHUNK];
+    _Alignas(64) cti_lane nan[CTI_DT_CHUNK];
+    const ct_idx i0 = c * CTI_DT_CHUNK;
+    const int m = (int)(n - i0 < CTI_DT_CHUNK ? n - i0 : CTI_DT_CHUNK);
+    if (cti_dt_chunk(in, i0, m, d, nan)) {
+        for (int k = 0; k < m; k++)
+            if (nan[k]) {
+                d[k] = CT_DT_NONE;
+                *ln = i0 + k < *ln ? i0 + k : *ln;
+            }
+    }
+    if (dt)
+        for (int k = 0; k < m; k++)
+            dt[i0 + k] = d[k];
+    ct_real cm = CT_DT_NONE;
+    CTI_DT_MIN_SIMD
+    for (int k = 0; k < m; k++)
+        cm = d[k] < cm ? d[k] : cm;
+    if (cm < *lb) {
+        int k = 0;
+        while (!(d[k] == cm))
+            k++;
+        *lb = d[k];
+        *li = i0 + k;
+    }
+}
+
 /* The scan shared by the per-item limits: dt[i] = the step of item i
  * (CT_DT_NONE where an input is NaN), the minimum and its lowest index, or
  * CT_ERR_NONFINITE with the first NaN item. In chunks: the steps of a
  * chunk in a vector loop, its minimum by a vector reduction (exact), then
- * the first index holding it, so the answer is the item-by-item scan's. */
+ * the first index holding it, so the answer is the item-by-item scan's.
+ * Below CTI_PAR_MIN items the chunks run without a thread team (see
+ * CTI_PAR_FOR); the fold is the same. */
 static int cti_dt_scan(ct_idx n, const struct cti_dt_in *in, ct_real *dt, ct_real *dtmin,
                        ct_idx *imin)
 {
     ct_real best = CT_DT_NONE;
     ct_idx bi = -1, nan_idx = n;
     const ct_idx nch = (n + CTI_DT_CHUNK - 1) / CTI_DT_CHUNK;
-#pragma omp parallel if (n > CTI_PAR_MIN)
-    {
+    if (n > CTI_PAR_MIN) {
+#pragma omp parallel
+        {
+            ct_real lb = CT_DT_NONE;
+            ct_idx li = -1, ln = n;
+#pragma omp for schedule(static) nowait
+            for (ct_idx c = 0; c < nch; c++)
+                cti_dt_scan_chunk(n, in, c, dt, &lb, &li, &ln);
+#pragma omp critical(cti_dt)
+            cti_dt_fold(lb, li, ln, &best, &bi, &nan_idx);
+        }
+    } else {
         ct_real lb = CT_DT_NONE;
         ct_idx li = -1, ln = n;
-        _Alignas(64) ct_real d[CTI_DT_CHUNK];
-        _Alignas(64) cti_lane nan[CTI_DT_CHUNK];
-#pragma omp for schedule(static) nowait
-        for (ct_idx c = 0; c < nch; c++) {
-            const ct_idx i0 = c * CTI_DT_CHUNK;
-            const int m = (int)(n - i0 < CTI_DT_CHUNK ? n - i0 : CTI_DT_CHUNK);
-            if (cti_dt_chunk(in, i0, m, d, nan)) {
-                for (int k = 0; k < m; k++)
-                    if (nan[k]) {
-                        d[k] = CT_DT_NONE;
-                        ln = i0 + k < ln ? i0 + k : ln;
-                    }
-            }
-            if (dt)
-                for (int k = 0; k < m; k++)
-                    dt[i0 + k] = d[k];
-            ct_real cm = CT_DT_NONE;
-            CTI_DT_MIN_SIMD
-            for (int k = 0; k < m; k++)
-                cm = d[k] < cm ? d[k] : cm;
-            if (cm < lb) {
-                int k = 0;
-                while (!(d[k] == cm))
-                    k++;
-                lb = d[k];
-                li = i0 + k;
-            }
-        }
-#pragma omp critical(cti_dt)
+        for (ct_idx c = 0; c < nch; c++)
+            cti_dt_scan_chunk(n, in, c, dt, &lb, &li, &ln);
         cti_dt_fold(lb, li, ln, &best, &bi, &nan_idx);
     }
     return cti_dt_result(n, best, bi, nan_idx, dtmin, imin);

@@ -477,7 +477,7 @@ ct_real ctd_brick_dt(const ctd_brick *b, const ct_real *x, const ct_real *y, con
     const ct_real c = CTI_SQRT(mod / b->rho);
     ct_real *dte = b->dte;
     ct_real best = CTD_DT_NONE;
-#pragma omp parallel for schedule(static) reduction(min : best) if (n > CTD_PAR_MIN / 8)
+    CTI_PAR_FOR(n > CTD_PAR_MIN / 8, (schedule(static) reduction(min : best)),
     for (ct_idx e = 0; e < n; e++) {
         ct_real P[8][3];
         load(b->conn + 8 * (int64_t)e, x, y, z, P);
@@ -496,7 +496,7 @@ ct_real ctd_brick_dt(const ctd_brick *b, const ct_real *x, const ct_real *y, con
         ct_real dt = (v > 0 && amax > 0) ? v / amax / c : 0;
         dte[e] = dt;
         best = CTI_MIN(best, dt);
-    }
+    });
     if (imin) {
         ct_idx arg = -1;
         for (ct_idx e = 0; e < n && arg < 0; e++)

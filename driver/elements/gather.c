@@ -88,7 +88,7 @@ void ctd_gather_add(const ctd_gather *g, const ct_real *CT_RESTRICT sx,
     const ct_idx *node = g->node;
     const int64_t *off = g->off, *slot = g->slot;
     const int do_y = sy && fy, do_z = sz && fz;
-#pragma omp parallel for schedule(static) if (nt > CTD_PAR_MIN)
+    CTI_PAR_FOR(nt > CTD_PAR_MIN, (schedule(static)),
     for (ct_idx t = 0; t < nt; t++) {
         ct_real ax = 0, ay = 0, az = 0;
         for (int64_t k = off[t]; k < off[t + 1]; k++) {
@@ -105,5 +105,5 @@ void ctd_gather_add(const ctd_gather *g, const ct_real *CT_RESTRICT sx,
             fy[v] += ay;
         if (do_z)
             fz[v] += az;
-    }
+    });
 }

@@ -125,7 +125,7 @@ static ct_idx truss_slots(ct_idx n, const ct_idx *CT_RESTRICT n1, const ct_idx *
                           ct_real *CT_RESTRICT sy, ct_real *CT_RESTRICT sz,
                           ct_real *CT_RESTRICT eint)
 {
-#pragma omp parallel for simd schedule(static) if (n > CTD_PAR_MIN)
+    CTI_PAR_FOR_SIMD(n > CTD_PAR_MIN, (schedule(static)),
     for (ct_idx e = 0; e < n; e++) {
         ct_idx a = n1[e], b = n2[e];
         ct_real dx = x[b] - x[a], dy = y[b] - y[a], dz = z[b] - z[a];
@@ -141,12 +141,13 @@ static ct_idx truss_slots(ct_idx n, const ct_idx *CT_RESTRICT n1, const ct_idx *
         sy[n + e] = -s * dy;
         sz[n + e] = -s * dz;
         eint[e] = ok ? k[e] * d * d / 2 : -1;
-    }
+    });
     /* A negative energy marks a bad element. */
     ct_idx nbad = 0;
-#pragma omp parallel for schedule(static) reduction(+ : nbad) if (n > CTD_PAR_MIN)
+    CTI_PAR_FOR(n > CTD_PAR_MIN, (schedule(static) reduction(+ : nbad)),
     for (ct_idx e = 0; e < n; e++)
         nbad += eint[e] < 0;
+    );
     return nbad;
 }
 

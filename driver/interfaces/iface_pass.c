@@ -232,7 +232,7 @@ static void pair_stiffness(const ctd_iface *it, const ctdi_pass *p, ct_idx n,
     ct_real kc = c->Stfac * it->kconst;
     if (t7)
         kc = c->Istf == 1 ? c->Stfac : kc / 2;
-#pragma omp parallel for schedule(static) if (n > CTDI_PAR_MIN)
+    CTI_PAR_FOR(n > CTDI_PAR_MIN, (schedule(static)),
     for (ct_idx k = 0; k < n; k++) {
         ct_real v;
         if (t7 && c->Istf == 1)
@@ -250,7 +250,7 @@ static void pair_stiffness(const ctd_iface *it, const ctdi_pass *p, ct_idx n,
         if (stmax > 0 && v > stmax)
             v = stmax;
         K[k] = v;
-    }
+    });
 }
 
 /* The search and everything that depends on the pair list. */
@@ -307,17 +307,18 @@ static int pass_search(ctd_iface *it, ctdi_pass *p, const ct_real *x, const ct_r
     pair_stiffness(it, p, n, np->node, np->seg, p->r[CTDI_R_K]);
     const ct_idx *restrict nd = np->node;
     ct_real *restrict ms = p->r[CTDI_R_MS];
-#pragma omp parallel for simd schedule(static) if (n > CTDI_PAR_MIN)
+    CTI_PAR_FOR_SIMD(n > CTDI_PAR_MIN, (schedule(static)),
     for (ct_idx k = 0; k < n; k++)
         ms[k] = m[nd[k]];
+    );
     ct_real *restrict a = p->x0, *restrict b = p->y0, *restrict c = p->z0;
     const ct_idx nn = it->nnode;
-#pragma omp parallel for simd schedule(static) if (nn > CTDI_PAR_MIN)
+    CTI_PAR_FOR_SIMD(nn > CTDI_PAR_MIN, (schedule(static)),
     for (ct_idx i = 0; i < nn; i++) {
         a[i] = x[i];
         b[i] = y[i];
         c[i] = z[i];
-    }
+    });
     p->cur = now;
     p->need_sort = 0;
     *did = 1;

@@ -32,7 +32,7 @@ int ctdi_pass_kinematics(ctdi_pass *p, ct_idx n, const ct_idx *restrict node,
                                   p->r[CTDI_R_MM]);
     if (rc != CT_OK || !want_area)
         return rc;
-#pragma omp parallel for schedule(static) if (n > CTDI_PAR_MIN)
+    CTI_PAR_FOR(n > CTDI_PAR_MIN, (schedule(static)),
     for (ct_idx k = 0; k < n; k++) {
         ct_idx i1 = s1[k], i2 = s2[k], i3 = s3[k], i4 = s4[k];
         ct_real ax = x[i3] - x[i1], ay = y[i3] - y[i1], az = z[i3] - z[i1];
@@ -47,7 +47,7 @@ int ctdi_pass_kinematics(ctdi_pass *p, ct_idx n, const ct_idx *restrict node,
         }
         ct_real cx = ay * bz - az * by, cy = az * bx - ax * bz, cz = ax * by - ay * bx;
         area[k] = (ct_real)0.5 * CTI_SQRT(cx * cx + cy * cy + cz * cz);
-    }
+    });
     return CT_OK;
 }
 
@@ -66,13 +66,13 @@ int ctdi_pass_friction(ctd_iface *it, ctdi_pass *p, ct_idx n, ct_real dt)
                                 *restrict nx = g->nx, *restrict ny = g->ny,
                                 *restrict nz = g->nz, *restrict fn = r[CTDI_R_FN];
         const int usep = law == CT_FRIC_POLY || law == CT_FRIC_DARMSTAD;
-#pragma omp parallel for simd schedule(static) if (n > CTDI_PAR_MIN)
+        CTI_PAR_FOR_SIMD(n > CTDI_PAR_MIN, (schedule(static)),
         for (ct_idx k = 0; k < n; k++) {
             ct_real tx = rx[k] - vn[k] * nx[k], ty = ry[k] - vn[k] * ny[k],
                     tz = rz[k] - vn[k] * nz[k];
             spd[k] = CTI_SQRT(tx * tx + ty * ty + tz * tz);
             prs[k] = usep && prs[k] > 0 ? fn[k] / prs[k] : 0;
-        }
+        });
         int rc = ct_friction_mu(n, law, it->coef, prs, spd, r[CTDI_R_MU]);
         if (rc != CT_OK)
             return rc;
@@ -82,9 +82,10 @@ int ctdi_pass_friction(ctd_iface *it, ctdi_pass *p, ct_idx n, ct_real dt)
         ct_real *restrict kt = r[CTDI_R_KT];
         const ct_real *restrict K = r[CTDI_R_K];
         const ct_real s = it->cfg.kt_scale;
-#pragma omp parallel for simd schedule(static) if (n > CTDI_PAR_MIN)
+        CTI_PAR_FOR_SIMD(n > CTDI_PAR_MIN, (schedule(static)),
         for (ct_idx k = 0; k < n; k++)
             kt[k] = s * K[k];
+        );
     }
     ct_real alpha = ct_filter_alpha(it->cfg.Ifiltr, it->cfg.Xfreq, dt);
     int rc = ct_friction_step(n, g->nx, g->ny, g->nz, r[CTDI_R_VRX], r[CTDI_R_VRY],
@@ -96,12 +97,12 @@ int ctdi_pass_friction(ctd_iface *it, ctdi_pass *p, ct_idx n, ct_real dt)
     ct_real *restrict fx = r[CTDI_R_FX], *restrict fy = r[CTDI_R_FY], *restrict fz = r[CTDI_R_FZ];
     const ct_real *restrict tx = ft[CTDI_ST_FTX], *restrict ty = ft[CTDI_ST_FTY],
                             *restrict tz = ft[CTDI_ST_FTZ];
-#pragma omp parallel for simd schedule(static) if (n > CTDI_PAR_MIN)
+    CTI_PAR_FOR_SIMD(n > CTDI_PAR_MIN, (schedule(static)),
     for (ct_idx k = 0; k < n; k++) {
         fx[k] += tx[k];
         fy[k] += ty[k];
         fz[k] += tz[k];
-    }
+    });
     return CT_OK;
 }
 
@@ -141,9 +142,10 @@ int ctdi_pass_normal_force(ctd_iface *it, ctdi_pass *p, ct_idx n, ct_real dt)
          * contact to the next segment (pair_select.c). */
         const ct_real *restrict pen = g->pen;
         ct_real *restrict pp = st[CTDI_ST_PPREV];
-#pragma omp parallel for simd schedule(static) if (n > CTDI_PAR_MIN)
+        CTI_PAR_FOR_SIMD(n > CTDI_PAR_MIN, (schedule(static)),
         for (ct_idx k = 0; k < n; k++)
             pp[k] = pen[k] > 0 ? pen[k] : 0;
+        );
     } else if (p->law == CTDI_LAW_TYPE6) {
         rc = ctdi_type6_normal(it, p, n);
     } else {
@@ -159,18 +161,20 @@ int ctdi_pass_normal_force(ctd_iface *it, ctdi_pass *p, ct_idx n, ct_real dt)
         ct_real *restrict spd = r[CTDI_R_SPD];
         const ct_real *restrict ux = r[CTDI_R_VRX], *restrict uy = r[CTDI_R_VRY],
                                 *restrict uz = r[CTDI_R_VRZ];
-#pragma omp parallel for simd schedule(static) if (n > CTDI_PAR_MIN)
+        CTI_PAR_FOR_SIMD(n > CTDI_PAR_MIN, (schedule(static)),
         for (ct_idx k = 0; k < n; k++)
             spd[k] = CTI_SQRT(ux[k] * ux[k] + uy[k] * uy[k] + uz[k] * uz[k]);
+        );
         ct_real *p0 = it->cfg.Inacti != 0 && it->cfg.Ipen0 == 0 ? st[CTDI_ST_P0] : NULL;
         rc = ct_penalty_linear(n, g->pen, spd, r[CTDI_R_K], dt, p0, st[CTDI_ST_PPREV],
                                st[CTDI_ST_FCAP], st[CTDI_ST_QJUMP], r[CTDI_R_FEL],
                                r[CTDI_R_EN]);
         const ct_real *restrict pen = g->pen, *restrict K = r[CTDI_R_K];
         ct_real *restrict kt = r[CTDI_R_KTAN];
-#pragma omp parallel for simd schedule(static) if (n > CTDI_PAR_MIN)
+        CTI_PAR_FOR_SIMD(n > CTDI_PAR_MIN, (schedule(static)),
         for (ct_idx k = 0; k < n; k++)
             kt[k] = pen[k] > 0 ? K[k] : 0;
+        );
     }
     if (rc != CT_OK)
         return rc;
@@ -190,12 +194,12 @@ int ctdi_pass_normal_force(ctd_iface *it, ctdi_pass *p, ct_idx n, ct_real dt)
     const ct_real *restrict fn = r[CTDI_R_FN], *restrict fel = r[CTDI_R_FEL],
                             *restrict vn = r[CTDI_R_VN], *restrict pen = g->pen;
     ct_real *restrict dd = r[CTDI_R_DD], *restrict fprev = st[CTDI_ST_FDAMP];
-#pragma omp parallel for simd schedule(static) if (n > CTDI_PAR_MIN)
+    CTI_PAR_FOR_SIMD(n > CTDI_PAR_MIN, (schedule(static)),
     for (ct_idx k = 0; k < n; k++) {
         ct_real fd = pen[k] > 0 ? fn[k] - fel[k] : 0;
         dd[k] = -(ct_real)0.5 * (fprev[k] + fd) * vn[k] * dt;
         fprev[k] = fd;
-    }
+    });
     return CT_OK;
 }
 
@@ -225,9 +229,10 @@ int ctdi_pass_timestep(ctd_iface *it, ctdi_pass *p, ct_idx n, const ct_real *m,
             p->law == CTDI_LAW_LINEAR ? p->r[CTDI_R_K] : p->r[CTDI_R_KTAN];
         const uint8_t *restrict carry = p->carry;
         ct_real *restrict kdt = p->r[CTDI_R_KDT];
-#pragma omp parallel for simd schedule(static) if (n > CTDI_PAR_MIN)
+        CTI_PAR_FOR_SIMD(n > CTDI_PAR_MIN, (schedule(static)),
         for (ct_idx k = 0; k < n; k++)
             kdt[k] = carry[k] ? ks[k] : 0;
+        );
         ct_asm_map map = ct_asm_map_nodeseg(n, p->pairs[p->cur].node, p->s[0], p->s[1],
                                             p->s[2], p->s[3]);
         for (int s = 0; s < map.nslot; s++)
@@ -249,7 +254,7 @@ int ctdi_pass_timestep(ctd_iface *it, ctdi_pass *p, ct_idx n, const ct_real *m,
                             *restrict ry = p->r[CTDI_R_VRY], *restrict rz = p->r[CTDI_R_VRZ],
                             *restrict kt = p->r[CTDI_R_KTAN];
     ct_real gmin = CT_DT_NONE, v2max = 0, kmax = 0;
-#pragma omp parallel for schedule(static) reduction(min : gmin) reduction(max : v2max, kmax) if (n > CTDI_PAR_MIN)
+    CTI_PAR_FOR(n > CTDI_PAR_MIN, (schedule(static) reduction(min : gmin) reduction(max : v2max, kmax)),
     for (ct_idx k = 0; k < n; k++) {
         if (gap[k] > 0 && gap[k] < gmin)
             gmin = gap[k];
@@ -258,7 +263,7 @@ int ctdi_pass_timestep(ctd_iface *it, ctdi_pass *p, ct_idx n, const ct_real *m,
             v2max = v2;
         if (kt[k] > kmax)
             kmax = kt[k];
-    }
+    });
     ctdi_report_limits(rep, kmax, gmin, v2max);
     return CT_OK;
 }
@@ -271,12 +276,14 @@ void ctdi_nodal_begin(ctd_iface *it)
         const ctdi_pass *p = &it->pass[i];
         ct_real *restrict kc = it->kc;
         const ct_idx *restrict sec = p->sec, *restrict mn = p->mainn;
-#pragma omp parallel for simd schedule(static) if (p->nsec > CTDI_PAR_MIN)
+        CTI_PAR_FOR_SIMD(p->nsec > CTDI_PAR_MIN, (schedule(static)),
         for (ct_idx k = 0; k < p->nsec; k++)
             kc[sec[k]] = 0;
-#pragma omp parallel for simd schedule(static) if (p->nmain > CTDI_PAR_MIN)
+        );
+        CTI_PAR_FOR_SIMD(p->nmain > CTDI_PAR_MIN, (schedule(static)),
         for (ct_idx k = 0; k < p->nmain; k++)
             kc[mn[k]] = 0;
+        );
     }
 }
 
@@ -298,11 +305,11 @@ void ctdi_nodal_finish(ctd_iface *it, const ct_real *m, ctd_iface_report *rep)
         for (int side = 0; side < 2; side++) {
             const ct_idx n = side ? p->nmain : p->nsec, *restrict l = side ? p->mainn : p->sec;
             double d = CT_DT_NONE;
-#pragma omp parallel for schedule(static) reduction(min : d) if (n > CTDI_PAR_MIN)
+            CTI_PAR_FOR(n > CTDI_PAR_MIN, (schedule(static) reduction(min : d)),
             for (ct_idx k = 0; k < n; k++) {
                 double v = node_dt(kc, ke, m, l[k]);
                 d = v < d ? v : d;
-            }
+            });
             if (d < dmin) {
                 /* The first node (in this list's order) that reaches it. */
                 dmin = d;

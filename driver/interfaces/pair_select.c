@@ -131,7 +131,7 @@ int64_t ctdi_pass_select(ctdi_pass *p, const ct_real *x, const ct_real *y, const
     const ct_idx n = pp->n, *restrict node = pp->node;
     ct_real *const *st = p->st[p->cur];
     int64_t active = 0;
-#pragma omp parallel for schedule(static) reduction(+ : active) if (n > CTDI_PAR_MIN)
+    CTI_PAR_FOR(n > CTDI_PAR_MIN, (schedule(static) reduction(+ : active)),
     for (ct_idx k = 0; k < n; k++) {
         if (k > 0 && node[k - 1] == node[k])
             continue;
@@ -139,6 +139,6 @@ int64_t ctdi_pass_select(ctdi_pass *p, const ct_real *x, const ct_real *y, const
         while (e < n && node[e] == node[k])
             e++;
         active += select_run(p, k, e, x, y, z, st);
-    }
+    });
     return active;
 }

@@ -24,6 +24,8 @@
  */
 #include "iface_internal.h"
 
+#include "ct_internal.h"
+
 #include <stdio.h>
 #include <string.h>
 
@@ -119,7 +121,7 @@ int ctdi_type6_normal(ctd_iface *it, ctdi_pass *p, ct_idx n)
     ct_real *restrict kt = r[CTDI_R_KTAN], *restrict K = r[CTDI_R_K], *restrict en = r[CTDI_R_EN],
                       *restrict pp = p->st[p->cur][CTDI_ST_PPREV];
     const ct_real share = F > 0 ? kc / F : 0;
-#pragma omp parallel for simd schedule(static) if (n > CTDI_PAR_MIN)
+    CTI_PAR_FOR_SIMD(n > CTDI_PAR_MIN, (schedule(static)),
     for (ct_idx k = 0; k < n; k++) {
         const int on = pen[k] > 0;
         kt[k] = on ? kc : 0;
@@ -128,7 +130,7 @@ int ctdi_type6_normal(ctd_iface *it, ctdi_pass *p, ct_idx n)
         /* The pair carried the node this step: its states follow the
          * contact to the next segment (pair_select.c). */
         pp[k] = on ? pen[k] : 0;
-    }
+    });
     return CT_OK;
 }
 
