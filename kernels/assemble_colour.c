@@ -247,6 +247,17 @@ ct_idx ct_colour_degree(ct_assemble_ws *ws, const ct_asm_map *map, ct_idx nnode)
     return ws->max_degree;
 }
 
+/* Block b's pairs onto the nodes, in order. */
+static void colour_block(ct_idx b, ct_idx B, ct_idx npair, int ns, int mode,
+                         const ct_idx *const slot[], const ct_real *const w[],
+                         const ct_real *sign, const ct_real *fx, const ct_real *fy,
+                         const ct_real *fz, ct_real *fxn, ct_real *fyn, ct_real *fzn)
+{
+    ct_idx lo, hi;
+    cti_block_range(b, B, npair, &lo, &hi);
+    cti_asm_range(lo, hi, ns, mode, slot, w, sign, fx, fy, fz, fxn, fyn, fzn);
+}
+
 int ct_assemble_coloured(const ct_assemble_ws *ws, const ct_asm_map *map,
                          const ct_real *const w[], const ct_real *restrict fx,
                          const ct_real *restrict fy, const ct_real *restrict fz,
@@ -284,16 +295,22 @@ int ct_assemble_coloured(const ct_assemble_ws *ws, const ct_asm_map *map,
             }
         }
 #undef CTI_COLOUR_SIMD
-    } else {
+    } else if (npair > 4096) {
 #pragma omp parallel
         for (ct_idx c = 0; c < ncol; c++) {
 #pragma omp for schedule(static)
-            for (ct_idx j = off[c]; j < off[c + 1]; j++) {
-                ct_idx lo, hi;
-                cti_block_range(bperm[j], B, npair, &lo, &hi);
-                cti_asm_range(lo, hi, ns, mode, slot, w, sign, fx, fy, fz, fxn, fyn, fzn);
-            }
+            for (ct_idx j = off[c]; j < off[c + 1]; j++)
+                colour_block(bperm[j], B, npair, ns, mode, slot, w, sign, fx, fy, fz, fxn, fyn,
+                             fzn);
         }
+    } else {
+        /* A small list on one thread, without a team (see CTI_PAR_FOR):
+         * colour by colour, the blocks of a colour in order, so each node
+         * receives its additions in the order the threads make them. */
+        for (ct_idx c = 0; c < ncol; c++)
+            for (ct_idx j = off[c]; j < off[c + 1]; j++)
+                colour_block(bperm[j], B, npair, ns, mode, slot, w, sign, fx, fy, fz, fxn, fyn,
+                             fzn);
     }
     return CT_OK;
 }

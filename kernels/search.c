@@ -233,8 +233,10 @@ static void resort_list(ct_idx n, const ct_idx *list, const ct_real *x0, const c
 {
     ct_real m = 0, lx = (ct_real)INFINITY, ly = (ct_real)INFINITY, lz = (ct_real)INFINITY;
     ct_real hx = -(ct_real)INFINITY, hy = -(ct_real)INFINITY, hz = -(ct_real)INFINITY;
-#pragma omp parallel for schedule(static) reduction(max : m, hx, hy, hz) \
-    reduction(min : lx, ly, lz)
+    /* A small list (an interface of a small model, every cycle) without a
+     * thread team (see CTI_PAR_FOR). */
+    CTI_PAR_FOR(n > 8192,
+                (schedule(static) reduction(max : m, hx, hy, hz) reduction(min : lx, ly, lz)),
     for (ct_idx i = 0; i < n; i++) {
         ct_idx k = list[i];
         ct_real dx = x[k] - x0[k], dy = y[k] - y0[k], dz = z[k] - z0[k];
@@ -247,7 +249,7 @@ static void resort_list(ct_idx n, const ct_idx *list, const ct_real *x0, const c
         hx = dx > hx ? dx : hx;
         hy = dy > hy ? dy : hy;
         hz = dz > hz ? dz : hz;
-    }
+    });
     *m2 = m;
     lo[0] = lx, lo[1] = ly, lo[2] = lz;
     hi[0] = hx, hi[1] = hy, hi[2] = hz;
