@@ -27,6 +27,7 @@
 
 #include "bench_cycle.h"
 #include "bench_elements.h"
+#include "bench_scene.h"
 #include "bench_paired.h"
 #include "bench_floor.h"
 #include "bench_kernels.h"
@@ -64,6 +65,8 @@ static void usage(FILE *f)
                "       cycle/<folded|crumpled>/t<threads>/<nodes>/real_time\n"
                "       paired/<family>/<b>-vs-<a>/t<threads>/<nodes>/real_time\n"
                "       efficiency/<kernel|triad/dram>/t<threads>/<n>/real_time\n"
+               "       elements/<shell/plate|brick/block>/t<threads>/<nodes>/real_time\n"
+               "       scene/<showcase|folding-sheet-r10>/t<threads>/<cycles>/real_time\n"
                "env: CT_BENCH_FULL=1, CT_BENCH_BIND, CT_BENCH_DIRECT_BUDGET,\n"
                "     CT_SHARED (the Radioss decks), CT_BENCH_MESH=deck.rad\n");
 }
@@ -181,7 +184,7 @@ int main(int argc, char **argv)
         ctb_kernels_register(&cfg) < 0 || ctb_floor_register(&cfg) < 0 ||
         ctb_real_register(&cfg) < 0 || ctb_trade_register(&cfg) < 0 ||
         ctb_cycle_register(&cfg) < 0 || ctb_paired_register(&cfg) < 0 ||
-        ctb_elements_register(&cfg) < 0) {
+        ctb_elements_register(&cfg) < 0 || ctb_scene_register(&cfg) < 0) {
         fprintf(stderr, "bench: out of memory registering benchmarks\n");
         rc = 1;
     } else {
@@ -201,6 +204,7 @@ int main(int argc, char **argv)
     ctb_cycle_cleanup();
     ctb_paired_cleanup();
     ctb_elements_cleanup();
+    ctb_scene_cleanup();
     ctb_topology_close();
     free(args);
     return rc;

@@ -137,6 +137,13 @@ ELEM_RE = re.compile(
     r"^elements/(?P<element>[^/]+)/(?P<family>[^/]+)/t(?P<threads>\d+)/(?P<n>\d+)"
     r"(?:/iterations:\d+)?(?:/(?:real_time|manual_time))?$")
 COUNTERS += ["ns_per_elem", "ns_per_node", "elements", "triangles", "hinges"]
+# Whole runs of the driver's scenes (bench_scene.c):
+# scene/<name>/t<threads>/<cycles>.
+SCENE_RE = re.compile(
+    r"^scene/(?P<scene>[^/]+)/t(?P<threads>\d+)/(?P<n>\d+)"
+    r"(?:/iterations:\d+)?(?:/(?:real_time|manual_time))?$")
+COUNTERS += ["ns_per_node_cycle", "us_per_cycle", "cycles", "elements_share", "contact_share",
+             "other_share"]
 PREC_ORDER = ["double", "single"]
 
 
@@ -675,6 +682,38 @@ def print_elements(rows, out):
     out.append("")
 
 
+def print_scenes(rows, out):
+    """Whole runs of the driver: one row per scene and thread count."""
+    if not rows:
+        return
+    out.append("## Whole runs (the driver)\n")
+    out.append("Median of the repetitions; one iteration is a run of the scene from its start "
+               "for the given cycles, no output written (bench_scene.c); the split is the "
+               "run's own timers; speed-up = time with 1 thread / time with this row's "
+               "threads.\n")
+    out.append("| scene | nodes | cycles | threads | µs/cycle | ns/node/cycle | elements "
+               "| contact | other | speed-up |")
+    out.append("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+    rows = sorted(rows, key=lambda r: (r["scene"], r["threads"]))
+    one = {r["scene"]: r["counters"].get("ns_per_node_cycle")
+           for r in rows if r["threads"] == 1 and not r["error"]}
+    pct = lambda v: "%.0f %%" % (100 * v) if v is not None else "-"
+    for r in rows:
+        if r["error"]:
+            out.append("| %s | - | %d | %d | %s | - | - | - | - | - |" % (
+                r["scene"], r["n"], r["threads"], r["error"]))
+            continue
+        c = r["counters"]
+        t1, ns = one.get(r["scene"]), c.get("ns_per_node_cycle")
+        speedup = "%.2f" % (t1 / ns) if r["threads"] > 1 and t1 and ns else "-"
+        out.append("| %s | %s | %s | %d | %s | %s | %s | %s | %s | %s |" % (
+            r["scene"], fmt_num(c.get("nodes"), 0), fmt_num(c.get("cycles"), 0),
+            r["threads"], fmt_ns(c.get("us_per_cycle")), fmt_ns(ns),
+            pct(c.get("elements_share")), pct(c.get("contact_share")),
+            pct(c.get("other_share")), speedup))
+    out.append("")
+
+
 def parse_paired(other):
     """Split the paired records (paired/<family>/<b>-vs-<a>/t<threads>/<nodes>)
     from the others."""
@@ -1004,10 +1043,11 @@ def report(datas, names=None, compare=None, inter=None):
         paired, other = parse_paired(other)
         eff, other = split_named(other, EFF_RE)
         elem, other = split_named(other, ELEM_RE)
+        scen, other = split_named(other, SCENE_RE)
         files.append({"tag": tag, "name": name, "data": data, "search": search,
                       "kern": kern, "flo": flo, "other": other, "peers": peers,
                       "trade": trade, "cycle": cyc, "paired": paired, "eff": eff,
-                      "elem": elem})
+                      "elem": elem, "scene": scen})
     for f in files:
         if multi:
             out.append("# %s precision (%s)\n" % (f["tag"], f["name"]))
@@ -1029,6 +1069,7 @@ def report(datas, names=None, compare=None, inter=None):
                 out)
     print_cycle([r for f in files for r in f["cycle"]], out)
     print_elements([r for f in files for r in f["elem"]], out)
+    print_scenes([r for f in files for r in f["scene"]], out)
     print_paired([r for f in files for r in f["paired"]], out)
     for f in files:
         print_peers(f["peers"], f["search"], out)

@@ -162,6 +162,22 @@ Test(bench_report, elements_table_from_sample)
     free(out);
 }
 
+Test(bench_report, scenes_table_from_sample)
+{
+    char *out = sample_report("");
+    expect_line(out, "## Whole runs (the driver)");
+    expect_line(out, "| scene | nodes | cycles | threads | µs/cycle | ns/node/cycle | elements "
+                     "| contact | other | speed-up |");
+    /* 1 thread: us_per_cycle 127.708, ns_per_node_cycle 174.942, shares
+     * 0.869, 0.0528, 0.0782. */
+    expect_line(out, "| showcase | 730 | 3000 | 1 | 127.7 | 174.9 | 87 % | 5 % | 8 % | - |");
+    /* 2 threads: 130.515 and 178.788; speed-up 174.942 / 178.788 = 0.978. */
+    expect_line(out, "| showcase | 730 | 3000 | 2 | 130.5 | 178.8 | 82 % | 7 % | 11 % | 0.98 |");
+    cr_expect(strstr(out, "| scene/") == NULL, "scene rows left in the \"other\" table:\n%s",
+              out);
+    free(out);
+}
+
 Test(bench_report, missing_file_fails)
 {
     int status = 0;
