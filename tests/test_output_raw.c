@@ -12,23 +12,6 @@
 
 #include "test_output_util.h"
 
-/* A whole file and its length. */
-static char *slurp_n(const char *path, size_t *len)
-{
-    FILE *f = fopen(path, "rb");
-    cr_assert_not_null(f, "cannot open %s", path);
-    fseek(f, 0, SEEK_END);
-    long n = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    char *b = malloc((size_t)n + 1);
-    cr_assert_not_null(b);
-    cr_assert_eq(fread(b, 1, (size_t)n, f), (size_t)n);
-    b[n] = '\0';
-    fclose(f);
-    *len = (size_t)n;
-    return b;
-}
-
 /* The value of attribute `key` in the tag that starts at tag (which ends at
  * the next '>'), copied into out; 0 when absent. */
 static int tag_attr(const char *tag, const char *key, char *out, size_t cap)

@@ -42,7 +42,8 @@ static inline void rmtree(const char *d)
     rmdir(d);
 }
 
-static inline char *slurp(const char *path)
+/* A whole file, NUL-terminated, and its length. */
+static inline char *slurp_n(const char *path, size_t *len)
 {
     FILE *f = fopen(path, "rb");
     cr_assert_not_null(f, "cannot open %s", path);
@@ -50,10 +51,18 @@ static inline char *slurp(const char *path)
     long n = ftell(f);
     fseek(f, 0, SEEK_SET);
     char *b = malloc((size_t)n + 1);
+    cr_assert_not_null(b);
     cr_assert_eq(fread(b, 1, (size_t)n, f), (size_t)n);
     b[n] = '\0';
     fclose(f);
+    *len = (size_t)n;
     return b;
+}
+
+static inline char *slurp(const char *path)
+{
+    size_t n;
+    return slurp_n(path, &n);
 }
 
 /* ---- A small mesh: 2 hexahedra side by side, a quad on top, a triangle
