@@ -126,9 +126,14 @@ Test(output_raw, parse_back_bit_for_bit)
     expect_raw(f, len, "offsets", 0, idx_type(), 1, OFF + 1, 5, is);
     expect_raw(f, len, "types", 0, "UInt8", 1, TYPES, 5, 1);
     /* The point data between <PointData> and </PointData>, the cell part
-     * in <CellData>. */
-    const char *pd = strstr(f, "<PointData>"), *cd = strstr(f, "<CellData>");
-    cr_assert(pd && cd && pd < strstr(f, "Name=\"velocity\"") && cd < strstr(pd, "</PointData>") + 20);
+     * between <CellData> and </CellData>. */
+    const char *pd = strstr(f, "<PointData>"), *pe = strstr(f, "</PointData>");
+    const char *cd = strstr(f, "<CellData>"), *ce = strstr(f, "</CellData>");
+    cr_assert(pd && pe && cd && ce);
+    const char *vt = strstr(f, "Name=\"velocity\""), *cp = strstr(pe, "Name=\"part_id\"");
+    cr_assert(vt && cp);
+    cr_expect(pd < vt && vt < pe, "velocity outside <PointData>");
+    cr_expect(cd < cp && cp < ce, "the cells' part_id outside <CellData>");
     /* The block closes after the last array's values. */
     uint64_t nb;
     const char *last = raw_array(f, len, "types", 0, "UInt8", 1, &nb);

@@ -254,7 +254,8 @@ int ctdi_pass_timestep(ctd_iface *it, ctdi_pass *p, ct_idx n, const ct_real *m,
                             *restrict ry = p->r[CTDI_R_VRY], *restrict rz = p->r[CTDI_R_VRZ],
                             *restrict kt = p->r[CTDI_R_KTAN];
     ct_real gmin = CT_DT_NONE, v2max = 0, kmax = 0;
-    CTI_PAR_FOR(n > CTDI_PAR_MIN, (schedule(static) reduction(min : gmin) reduction(max : v2max, kmax)),
+    CTI_PAR_FOR(n > CTDI_PAR_MIN,
+                (schedule(static) reduction(min : gmin) reduction(max : v2max, kmax)),
     for (ct_idx k = 0; k < n; k++) {
         if (gap[k] > 0 && gap[k] < gmin)
             gmin = gap[k];
