@@ -10,8 +10,11 @@
  *   kernels/prepare/<slots|colour|colour-b1|gather>/t<T>  (once per pair list:
  *       the segment slots, the colourings, the gather map; the thread
  *       buffers' ranges cost nothing measurable and are not listed)
- * Counters: ns_per_pair, threads, npair (and per kernel: active, fallbacks,
- * ncolour). The label starts with "prec=<double|single>" and names the
+ * Counters: ns_per_pair, threads, npair; bytes_per_pair and
+ * stream_bytes_per_pair (the byte model of floor.h for the call's arrays,
+ * and for its per-pair arrays alone: the report divides them by the triad
+ * bandwidth of the same thread count); per kernel: active, fallbacks,
+ * ncolour. The label starts with "prec=<double|single>" and names the
  * setting; the context gets ct_precision.
  *
  * The pairs are realistic and in node order: the plates case of meshgen.h
@@ -42,6 +45,7 @@
 #include "bench_kernels_data.h"
 #include "bench_topology.h"
 #include "contact.h"
+#include "floor.h"
 #include "gbench.h"
 #include "meshgen.h"
 
@@ -181,6 +185,79 @@ static int asm_prepare(const kdesc *d, pdata *p)
     }
 }
 
+/* The arrays the call of d reads and writes (floor.h): 0 when d has no
+ * floor (the colourings' and the gather map's preparation, whose work is a
+ * sort, not a stream). */
+static int kernel_streams(const kdesc *d, ctb_kernel_streams *s)
+{
+    memset(s, 0, sizeof *s);
+    switch (d->group) {
+    case G_NARROW: /* node, seg; the 13 results and the flag; n1..n4; x, y, z */
+        *s = (ctb_kernel_streams){.pair_idx_in = 2, .pair_real_out = 13, .pair_b1_out = 1,
+                                  .seg_idx_in = 4, .node_real_in = 3};
+        return 1;
+    case G_EDGE: /* ea, eb; the 14 results and the flag; e1, e2; x, y, z */
+        *s = (ctb_kernel_streams){.pair_idx_in = 2, .pair_real_out = 14, .pair_b1_out = 1,
+                                  .seg_idx_in = 2, .node_real_in = 3};
+        return 1;
+    case G_FORCE:
+        if (d->sub == F_PAIR_FUSED) {
+            /* In: p, n (3), v (3), vn, K, ms, the tangential force (3); out:
+             * the normal force (3), fn, energy, damping work, the tangential
+             * force (3), friction work. */
+            s->pair_real_in = 13;
+            s->pair_real_out = 10;
+        } else {
+            /* ct_normal_force: in p, n, vn, K, ms; out f, fn, energy, damping
+             * work. ct_friction_step: in n, v, fn, the tangential force;
+             * out the tangential force, friction work. */
+            s->pair_real_in = 7 + 10;
+            s->pair_real_out = 6 + 4;
+        }
+        return 1;
+    case G_TYPE7: /* in p, gap, K; out force, tangent, energy, flag */
+        *s = (ctb_kernel_streams){.pair_real_in = 3, .pair_real_out = 3, .pair_b4_out = 1};
+        return 1;
+    case G_MU: /* mu out; pressure and speed in as the law uses them */
+        s->pair_real_out = 1;
+        s->pair_real_in = d->sub == CT_FRIC_COULOMB                                  ? 0
+                          : (d->sub == CT_FRIC_POLY || d->sub == CT_FRIC_DARMSTAD) ? 2
+                                                                                   : 1;
+        return 1;
+    case G_ASM: /* node, s1..s4; f (3), h1..h4; the nodal forces read and written */
+        *s = (ctb_kernel_streams){.pair_idx_in = 5, .pair_real_in = 7, .node_real_in = 3,
+                                  .node_real_out = 3};
+        return 1;
+    default:
+        if (d->sub != P_SLOTS)
+            return 0;
+        /* seg in; n1..n4 per segment; s1..s4 out */
+        *s = (ctb_kernel_streams){.pair_idx_in = 1, .pair_idx_out = 4, .seg_idx_in = 4};
+        return 1;
+    }
+}
+
+/* The floor's bytes of one call of d over npair pairs of p (-1: none);
+ * with pairs_only, of its per-pair arrays alone. */
+static double kernel_bytes(const kdesc *d, const pdata *p, int64_t npair, int pairs_only)
+{
+    ctb_kernel_streams s;
+    if (!kernel_streams(d, &s))
+        return -1;
+    if (pairs_only)
+        return ctb_floor_kernel_bytes(&s, npair, 0, 0, sizeof(ct_real), sizeof(ct_idx));
+    int64_t nseg = 0, nnode = 0;
+    if (d->group == G_EDGE) { /* each pair its own two edges and four nodes */
+        nseg = 2 * npair;
+        nnode = 4 * npair;
+    } else if (d->group == G_NARROW || d->group == G_ASM || d->group == G_PREP) {
+        if (ctb_floor_pairs_touched(p->nnode, p->nseg, npair, p->node, p->seg, p->n1, p->n2,
+                                    p->n3, p->n4, &nseg, &nnode) != 0)
+            return -1;
+    }
+    return ctb_floor_kernel_bytes(&s, npair, nseg, nnode, sizeof(ct_real), sizeof(ct_idx));
+}
+
 static const char *setting(const kdesc *d, char *buf, size_t len)
 {
     switch (d->group) {
@@ -276,6 +353,11 @@ static void bm_kernel(gb_state *st, void *arg)
     gb_set_counter(st, "ns_per_pair", dt * 1e9 / ((double)it * (double)npair), GB_PLAIN);
     gb_set_counter(st, "threads", (double)d->threads, GB_PLAIN);
     gb_set_counter(st, "npair", (double)npair, GB_PLAIN);
+    double bytes = kernel_bytes(d, p, npair, 0), sbytes = kernel_bytes(d, p, npair, 1);
+    if (bytes > 0 && sbytes > 0) {
+        gb_set_counter(st, "bytes_per_pair", bytes / (double)npair, GB_PLAIN);
+        gb_set_counter(st, "stream_bytes_per_pair", sbytes / (double)npair, GB_PLAIN);
+    }
     char extra[160] = "";
     if (d->group == G_NARROW || d->group == G_EDGE) {
         gb_set_counter(st, "active", (double)stats.active / (double)npair, GB_PLAIN);

@@ -124,4 +124,90 @@ static inline int64_t ctb_floor_touched_nodes(int64_t nnode_all, int64_t nsec,
     return bad ? -1 : count;
 }
 
+/*
+ * The floor of a kernel over candidate pairs, by the same convention: every
+ * array the kernel's call reads is read once, every array it writes is
+ * written once (an array read and written, like a friction history, counts
+ * both ways), the extra read of a write-allocate cache counted nowhere.
+ * Per-pair arrays count per pair; arrays indexed by segment (connectivity)
+ * or by node (coordinates, nodal forces) count once per segment or node the
+ * pairs touch, however many pairs share it. It is the least any
+ * implementation of the call, with the same arrays in and out, must move:
+ * a kernel at its floor is bound by memory, one far above it by its
+ * arithmetic or its latency.
+ */
+typedef struct ctb_kernel_streams {
+    int pair_real_in, pair_real_out; /* per-pair ct_real arrays read, written */
+    int pair_idx_in, pair_idx_out;   /* per-pair ct_idx arrays read, written */
+    int pair_b1_out, pair_b4_out;    /* per-pair 1-byte and 4-byte arrays written */
+    int seg_idx_in;                  /* ct_idx arrays indexed by segment, read */
+    int node_real_in, node_real_out; /* ct_real arrays indexed by node, read, written */
+} ctb_kernel_streams;
+
+/* The bytes of one call over npair pairs touching nseg segments and nnode
+ * nodes; -1 when a count is negative or a size is zero. */
+static inline double ctb_floor_kernel_bytes(const ctb_kernel_streams *s, int64_t npair,
+                                            int64_t nseg, int64_t nnode, size_t real_size,
+                                            size_t idx_size)
+{
+    if (!s || npair < 0 || nseg < 0 || nnode < 0 || real_size == 0 || idx_size == 0)
+        return -1;
+    const double r = (double)real_size, i = (double)idx_size;
+    double per_pair = (s->pair_real_in + s->pair_real_out) * r +
+                      (s->pair_idx_in + s->pair_idx_out) * i + s->pair_b1_out +
+                      4.0 * s->pair_b4_out;
+    return (double)npair * per_pair + (double)nseg * s->seg_idx_in * i +
+           (double)nnode * (s->node_real_in + s->node_real_out) * r;
+}
+
+/*
+ * The segments and nodes that npair pairs (node[k], seg[k]) touch: the
+ * distinct segments, and the union of the pairs' nodes and their segments'
+ * corners n1..n4 (nodes in [0, nnode_all), segments in [0, nseg_all)).
+ * Returns 0, or -1 on allocation failure or an index out of range.
+ */
+static inline int ctb_floor_pairs_touched(int64_t nnode_all, int64_t nseg_all, int64_t npair,
+                                          const ct_idx *node, const ct_idx *seg,
+                                          const ct_idx *n1, const ct_idx *n2,
+                                          const ct_idx *n3, const ct_idx *n4,
+                                          int64_t *nseg_out, int64_t *nnode_out)
+{
+    if (nnode_all < 0 || nseg_all < 0 || npair < 0)
+        return -1;
+    unsigned char *seen = calloc((size_t)nnode_all + 1, 1);
+    unsigned char *sseen = calloc((size_t)nseg_all + 1, 1);
+    int bad = !seen || !sseen;
+    int64_t nn = 0, ns = 0;
+    const ct_idx *corner[4] = {n1, n2, n3, n4};
+    for (int64_t k = 0; k < npair && !bad; k++) {
+        ct_idx v = node[k], e = seg[k];
+        if (v < 0 || v >= nnode_all || e < 0 || e >= nseg_all) {
+            bad = 1;
+            break;
+        }
+        nn += !seen[v];
+        seen[v] = 1;
+        if (sseen[e])
+            continue;
+        sseen[e] = 1;
+        ns++;
+        for (int c = 0; c < 4; c++) {
+            ct_idx w = corner[c][e];
+            if (w < 0 || w >= nnode_all) {
+                bad = 1;
+                break;
+            }
+            nn += !seen[w];
+            seen[w] = 1;
+        }
+    }
+    free(seen);
+    free(sseen);
+    if (bad)
+        return -1;
+    *nseg_out = ns;
+    *nnode_out = nn;
+    return 0;
+}
+
 #endif /* CTB_FLOOR_H */

@@ -77,7 +77,8 @@ NAME_RE = re.compile(
 COUNTERS = ["ns_per_node", "nsec", "nseg", "pairs", "bytes_per_node", "misses", "extra",
             "ns_per_pair", "threads", "npair", "active", "fallbacks", "ncolour", "GBps",
             "array_MiB", "GBps_dram", "GBps_ws", "floor_bytes_per_node", "floor_ns_dram",
-            "floor_ns_ws", "ratio_dram", "ratio_ws", "nnode"]
+            "floor_ns_ws", "ratio_dram", "ratio_ws", "nnode", "bytes_per_pair",
+            "stream_bytes_per_pair"]
 # The peers' benchmarks (bench_peers.c).
 PEER_RE = re.compile(
     r"^peer/(?P<family>[^/]+)/(?P<peer>[^/@]+)(?:@(?P<setting>[^/]+))?/t(?P<threads>\d+)/"
@@ -945,6 +946,63 @@ def print_kernels(kern, precs, out):
     out.append("")
 
 
+def triad_gbps(flo):
+    """{threads: the best dram triad GB/s (STREAM's count) of any file}."""
+    bw = {}
+    for r in flo:
+        g = r["counters"].get("GBps")
+        if r["what"] == "triad/dram" and not r["error"] and g:
+            bw[r["threads"]] = max(bw.get(r["threads"], 0), g)
+    return bw
+
+
+def print_kernel_floor(kern, flo, out):
+    """The kernels at their largest pair count against the memory floor."""
+    bw = triad_gbps(flo)
+    rows = [r for r in kern if not r["error"] and "bytes_per_pair" in r["counters"]]
+    if not rows or not bw:
+        return
+    nmax = {}
+    for r in rows:
+        key = (r["group"], r["kernel"])
+        nmax[key] = max(nmax.get(key, 0), r["n"])
+    rows = [r for r in rows if r["n"] == nmax[(r["group"], r["kernel"])]
+            and r["threads"] in bw]
+    gorder = {g: i for i, g in enumerate(KERNEL_GROUPS)}
+    first = {}
+    for i, r in enumerate(kern):
+        first.setdefault((r["group"], r["kernel"]), i)
+    rows.sort(key=lambda r: (gorder.get(r["group"], 99), first[(r["group"], r["kernel"])],
+                             PREC_ORDER.index(r["prec"]) if r["prec"] in PREC_ORDER else 99,
+                             r["threads"]))
+    out.append("## Kernels against the memory floor\n")
+    out.append("At the largest pair count. bytes/pair: the least any implementation of the "
+               "call must move (bench/floor.h: every array the call reads read once, every "
+               "array it writes written once; node and segment arrays once per node or "
+               "segment the pairs touch); floor = bytes / the dram triad bandwidth of the "
+               "run with the same threads (STREAM's count, as for the search); ratio = "
+               "measured / floor: near 1 the kernel is bound by memory, far above it by its "
+               "arithmetic or latency. bound: the per-pair arrays alone (they exceed the "
+               "last-level cache several times and must cross the memory bus) at the "
+               "triad's real traffic, its write-allocate read counted (4/3 of its GB/s): "
+               "no call with these arrays can run faster on this machine.\n")
+    out.append("| kernel | precision | pairs | threads | bytes/pair | GB/s | floor ns/pair | "
+               "per-pair bytes | bound ns/pair | measured ns/pair | ratio |")
+    out.append("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+    for r in rows:
+        c = r["counters"]
+        g = bw[r["threads"]]
+        floor = c["bytes_per_pair"] / g
+        sb = c.get("stream_bytes_per_pair")
+        bound = "%.2f" % (sb / (g * 4.0 / 3.0)) if sb else "-"
+        ns = c.get("ns_per_pair")
+        out.append("| %s/%s | %s | %d | %d | %.1f | %.2f | %.2f | %s | %s | %s | %s |" % (
+            r["group"], r["kernel"], r["prec"], r["n"], r["threads"], c["bytes_per_pair"], g,
+            floor, "%.1f" % sb if sb else "-", bound, fmt_ns(ns) if ns else "-",
+            "%.1f" % (ns / floor) if ns and floor > 0 else "-"))
+    out.append("")
+
+
 def print_floor(flo, searches, out):
     """searches: {precision: search records of that file}."""
     bucket = [r for r in flo if r["what"] == "bucket/plates"]
@@ -1063,6 +1121,8 @@ def report(datas, names=None, compare=None, inter=None):
                 precs.append(r["prec"])
     precs.sort(key=lambda p: (PREC_ORDER.index(p) if p in PREC_ORDER else 99, p))
     print_kernels([r for f in files for r in f["kern"]], precs, out)
+    print_kernel_floor([r for f in files for r in f["kern"]],
+                       [r for f in files for r in f["flo"]], out)
     print_interleaved(inter, out)
     print_eff([r for f in files for r in f["eff"]], out)
     print_floor([r for f in files for r in f["flo"]], {f["tag"]: f["search"] for f in files},

@@ -3,8 +3,9 @@
  * the byte model of the search on hand-computed cases, the floor in ns per
  * node for a given bandwidth, the triad byte count, and the count of the
  * nodes a search touches on a small plates case whose numbers are known;
- * and the kernel and floor tables of bench/report.py on two small fixed
- * files (double and single precision), merged.
+ * the kernels' byte model and the segments and nodes pairs touch, by hand;
+ * and the kernel, kernel floor and floor tables of bench/report.py on two
+ * small fixed files (double and single precision), merged.
  */
 #include <stdio.h>
 #include <stdlib.h>
@@ -98,6 +99,56 @@ Test(bench_floor, plates_case_counts)
     ctd_case_destroy(&c);
 }
 
+/* The kernels' byte model on hand counts. The narrow phase over 1000 pairs
+ * touching 300 segments and 500 nodes, double, 4-byte indices: per pair 2
+ * indices in (8), 13 results out (104) and a flag (1) = 113, times 1000 =
+ * 113000; connectivity 4 * 300 * 4 = 4800; coordinates 3 * 500 * 8 =
+ * 12000; total 129800. The fused force: 13 in, 10 out, 23 * 8 = 184 per
+ * pair. The coloured assembly: 5 indices and 7 reals per pair (76), the
+ * nodal forces read and written (6 * 8 = 48 per node). TYPE7: 3 in, 3 out
+ * and a 4-byte flag = 52 per pair. */
+Test(bench_floor, kernel_byte_model_hand_count)
+{
+    ctb_kernel_streams narrow = {.pair_idx_in = 2, .pair_real_out = 13, .pair_b1_out = 1,
+                                 .seg_idx_in = 4, .node_real_in = 3};
+    cr_expect_eq(ctb_floor_kernel_bytes(&narrow, 1000, 300, 500, 8, 4), 129800.0);
+    /* Single precision: 8 + 52 + 1 = 61 per pair, 4800, 3 * 500 * 4 = 6000. */
+    cr_expect_eq(ctb_floor_kernel_bytes(&narrow, 1000, 300, 500, 4, 4), 61000.0 + 10800.0);
+    /* The per-pair arrays alone. */
+    cr_expect_eq(ctb_floor_kernel_bytes(&narrow, 1000, 0, 0, 8, 4), 113000.0);
+    ctb_kernel_streams fused = {.pair_real_in = 13, .pair_real_out = 10};
+    cr_expect_eq(ctb_floor_kernel_bytes(&fused, 1000000, 0, 0, 8, 4), 184e6);
+    ctb_kernel_streams colour = {.pair_idx_in = 5, .pair_real_in = 7, .node_real_in = 3,
+                                 .node_real_out = 3};
+    cr_expect_eq(ctb_floor_kernel_bytes(&colour, 100, 0, 40, 8, 4), 7600.0 + 1920.0);
+    ctb_kernel_streams type7 = {.pair_real_in = 3, .pair_real_out = 3, .pair_b4_out = 1};
+    cr_expect_eq(ctb_floor_kernel_bytes(&type7, 10, 0, 0, 8, 4), 520.0);
+    cr_expect_eq(ctb_floor_kernel_bytes(&type7, -1, 0, 0, 8, 4), -1.0);
+    cr_expect_eq(ctb_floor_kernel_bytes(NULL, 1, 0, 0, 8, 4), -1.0);
+    cr_expect_eq(ctb_floor_kernel_bytes(&type7, 1, 0, 0, 0, 4), -1.0);
+}
+
+/* The segments and nodes pairs touch, by hand: nodes 0..9, segments
+ * 0 (2 3 4 5), 1 (5 6 7 7), 2 (8 9 9 9, never a pair's); pairs (0, 0),
+ * (1, 0), (1, 1), (2, 1): segments {0, 1}, nodes {0, 1, 2} and corners
+ * {2..7}: 8 nodes. */
+Test(bench_floor, pairs_touched_hand_case)
+{
+    const ct_idx n1[] = {2, 5, 8}, n2[] = {3, 6, 9}, n3[] = {4, 7, 9}, n4[] = {5, 7, 9};
+    const ct_idx node[] = {0, 1, 1, 2}, seg[] = {0, 0, 1, 1};
+    int64_t ns = -1, nn = -1;
+    cr_assert_eq(ctb_floor_pairs_touched(10, 3, 4, node, seg, n1, n2, n3, n4, &ns, &nn), 0);
+    cr_expect_eq(ns, 2);
+    cr_expect_eq(nn, 8);
+    /* The first two pairs only: segment 0, nodes {0, 1, 2, 3, 4, 5}. */
+    cr_assert_eq(ctb_floor_pairs_touched(10, 3, 2, node, seg, n1, n2, n3, n4, &ns, &nn), 0);
+    cr_expect_eq(ns, 1);
+    cr_expect_eq(nn, 6);
+    /* A segment out of range. */
+    const ct_idx badseg[] = {0, 3};
+    cr_expect_eq(ctb_floor_pairs_touched(10, 3, 2, node, badseg, n1, n2, n3, n4, &ns, &nn), -1);
+}
+
 /* ---- The kernel and floor tables of bench/report.py ---------------------- */
 
 /* Write text to dir/name (the path is left in path). */
@@ -142,6 +193,15 @@ Test(bench_floor, report_merges_precisions)
         "\"real_time\": 92000000, \"time_unit\": \"ns\", \"floor_bytes_per_node\": 92, "
         "\"GBps_dram\": 10, \"floor_ns_dram\": 9.2, \"ns_per_node\": 92, \"ratio_dram\": 10, "
         "\"GBps_ws\": 20, \"floor_ns_ws\": 4.6, \"ratio_ws\": 20, \"label\": \"prec=double x\"},"
+        "{\"name\": \"kernels/force/fused/t1/1000000/real_time\", \"run_name\": "
+        "\"kernels/force/fused/t1/1000000/real_time\", \"run_type\": \"iteration\", "
+        "\"real_time\": 1, \"time_unit\": \"ns\", \"ns_per_pair\": 24, "
+        "\"bytes_per_pair\": 180, \"stream_bytes_per_pair\": 160, "
+        "\"label\": \"prec=double fused\"},"
+        "{\"name\": \"floor/triad/dram/t1/8388608/real_time\", \"run_name\": "
+        "\"floor/triad/dram/t1/8388608/real_time\", \"run_type\": \"iteration\", "
+        "\"real_time\": 1, \"time_unit\": \"ns\", \"GBps\": 15, \"array_MiB\": 64, "
+        "\"label\": \"\"},"
         "{\"name\": \"search/plates/bucket/natural/t1/1000000/real_time\", \"run_name\": "
         "\"search/plates/bucket/natural/t1/1000000/real_time\", \"run_type\": \"iteration\", "
         "\"real_time\": 46000000, \"time_unit\": \"ns\", \"nsec\": 1000000, "
@@ -164,6 +224,13 @@ Test(bench_floor, report_merges_precisions)
     const char *frow = "| double | 1000000 | 1 | 92.0 | 10.00 | 9.20 | 92.0 | 10.0 | 20.00 | "
                        "4.60 | 20.0 | 46.0 | 5.0 |";
     cr_expect(strstr(out, frow) != NULL, "missing:\n%s\nin:\n%s", frow, out);
+    /* The kernel at its largest pair count against the floor: 180 bytes at
+     * 15 GB/s take 12 ns, 24 / 12 = 2.0; the per-pair 160 bytes at 4/3 of
+     * 15 = 20 GB/s take 8 ns. The 4tri rows, 1000 pairs without bytes, are
+     * not in this table. */
+    const char *krow = "| force/fused | double | 1000000 | 1 | 180.0 | 15.00 | 12.00 | 160.0 | "
+                       "8.00 | 24.0 | 2.0 |";
+    cr_expect(strstr(out, krow) != NULL, "missing:\n%s\nin:\n%s", krow, out);
     free(out);
     remove(p1);
     remove(p2);
