@@ -19,7 +19,12 @@
  *                               the search benchmarks: gap 0.3 h, margin
  *                               0.2 h), its time per node, the byte model
  *                               of floor.h, and the floor and ratio
- *                               measured / floor for both bandwidths.
+ *                               measured / floor for both bandwidths;
+ *   efficiency/triad/dram/t<T>/<n> and efficiency/compute/t<T>/<n>  the
+ *                               machine's own 2-thread efficiency on a loop
+ *                               that only streams memory and on one that
+ *                               only computes (bench_eff.c): the ceilings of
+ *                               the kernels' efficiency rows.
  * The arrays are allocated and first touched by the team that runs the
  * kernel (static schedule, the same as the kernel's), and kept while the
  * thread count stays the same. The bandwidth used for the floor is the best
@@ -49,7 +54,8 @@ enum { TRIAD_DRAM = 0, TRIAD_WS = 1 };
 static const char *const triad_kind_name[2] = {"dram", "ws"};
 
 typedef struct floor_desc {
-    int kind;      /* benchmark: 0 triad, 1 bucket, 2 triad efficiency */
+    int kind;      /* benchmark: 0 triad, 1 bucket, 2 triad efficiency, 3 compute
+                      efficiency */
     int triad;     /* TRIAD_DRAM or TRIAD_WS */
     int64_t n;     /* triad elements per array, or target nodes */
     int threads;
@@ -364,6 +370,58 @@ static void bm_triad_eff(gb_state *st, void *arg)
     gb_set_label(st, msg);
 }
 
+/* The machine's own 2-thread efficiency on a loop that only computes: the
+ * ceiling of the kernels bound by their arithmetic, as the triad is of
+ * those bound by memory. Each block of COMPUTE_STEPS steps runs
+ * COMPUTE_LANES independent multiply-adds per step on its own accumulators
+ * (registers, no memory traffic); the blocks are shared among the team.
+ * Below 90 % here, the host's second core was not all ours. */
+#define COMPUTE_LANES 32
+#define COMPUTE_STEPS 4096
+
+static double compute_block(int64_t b)
+{
+    double acc[COMPUTE_LANES];
+    for (int j = 0; j < COMPUTE_LANES; j++)
+        acc[j] = 1.0 + 1e-3 * (double)(j + b % 7);
+    const double m = 0.999999, c = 1e-6;
+    for (int i = 0; i < COMPUTE_STEPS; i++) {
+#pragma omp simd
+        for (int j = 0; j < COMPUTE_LANES; j++)
+            acc[j] = acc[j] * m + c;
+    }
+    double s = 0;
+    for (int j = 0; j < COMPUTE_LANES; j++)
+        s += acc[j];
+    return s;
+}
+
+static double compute_sink;
+
+static int compute_call(void *arg)
+{
+    const floor_desc *d = arg;
+    const int64_t nblock = d->n / ((int64_t)COMPUTE_LANES * COMPUTE_STEPS);
+    double s = 0;
+#pragma omp parallel for schedule(static) reduction(+ : s)
+    for (int64_t b = 0; b < nblock; b++)
+        s += compute_block(b);
+    compute_sink += s;
+    return 0;
+}
+
+static void bm_compute_eff(gb_state *st, void *arg)
+{
+    const floor_desc *d = arg;
+    char where[256], msg[400];
+    ctb_eff_run(st, compute_call, (void *)d, (double)d->n, d->threads, cfg.bind, where,
+                sizeof where);
+    snprintf(msg, sizeof msg, "multiply-adds in registers, %d independent per step; ns_t1 "
+             "and ns_tn per multiply-add; 1 against %d threads; %s[%s]", COMPUTE_LANES,
+             d->threads, ctb_bind_name(cfg.bind), where);
+    gb_set_label(st, msg);
+}
+
 /* ---- Registration -------------------------------------------------------- */
 
 static int add(int kind, int triad_kind, int64_t n, int threads, int64_t iterations)
@@ -378,6 +436,10 @@ static int add(int kind, int triad_kind, int64_t n, int threads, int64_t iterati
     d->next = descs;
     descs = d;
     char name[128];
+    if (kind == 3) {
+        snprintf(name, sizeof name, "efficiency/compute/t%d", threads);
+        return gb_register(name, bm_compute_eff, d, n, 1, 1, 0);
+    }
     if (kind == 2) {
         snprintf(name, sizeof name, "efficiency/triad/%s/t%d", triad_kind_name[triad_kind],
                  threads);
@@ -408,9 +470,11 @@ int ctb_floor_register(const ctb_search_config *c)
         count += 2;
     }
     if (nt > 1) {
-        if (add(2, TRIAD_DRAM, triad_n(TRIAD_DRAM), cfg.max_threads, 0) != 0)
+        /* 2^29 multiply-adds: about 35 ms on one core of this machine kind. */
+        if (add(2, TRIAD_DRAM, triad_n(TRIAD_DRAM), cfg.max_threads, 0) != 0 ||
+            add(3, 0, (int64_t)1 << 29, cfg.max_threads, 0) != 0)
             return -1;
-        count++;
+        count += 2;
     }
     int64_t nmax = cfg.full ? 10000000 : 1000000;
     for (int64_t n = 1000000; n <= nmax; n *= 10)

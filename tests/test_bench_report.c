@@ -321,7 +321,15 @@ Test(bench_report, efficiency_table_from_sample)
      * kernels. */
     expect_line(out, "| triad/dram | 8388608 | 2 | 22.8 GB/s | 30.3 GB/s | 66 % | 63 %-72 % "
                      "| 66 % | (ceiling) |");
+    /* The compute ceiling: 1 / 0.0655 = 15.27 and 1 / 0.0330 = 30.30 G
+     * multiply-adds per second, eff 0.9810, range 0.7338-1.0062, best
+     * 0.9969; a ceiling, no verdict, listed before the triad (sorted by
+     * name among the ceilings). */
+    expect_line(out, "| compute | 536870912 | 2 | 15.3 G mul-add/s | 30.3 G mul-add/s "
+                     "| 98 % | 73 %-101 % | 100 % | (ceiling) |");
     const char *k = strstr(out, "| narrow/4tri | 1000000 | 2 | 36.0");
+    const char *cc = strstr(out, "| compute | 536870912");
+    cr_expect(k && cc && k < cc, "the compute ceiling is not after the kernels:\n%s", out);
     const char *t = strstr(out, "| triad/dram | 8388608");
     cr_expect(k && t && k < t, "the triad is not after the kernels:\n%s", out);
     cr_expect(strstr(out, "| efficiency/") == NULL,
