@@ -5,21 +5,7 @@
  */
 #include <stdlib.h>
 
-#include "ct_internal.h"
-
-int cti_bucket_boxes(const ct_search_input *in, ct_real *restrict xyzw, ct_real *restrict box,
-                     float *restrict fbox, ct_real *restrict srec, ct_real mb[6]);
-int cti_bucket_scattered(const ct_search_input *in);
-int cti_bucket_check_sec(const ct_search_input *in);
-int64_t cti_bucket_offsets(ct_idx *cnt, int nb, size_t stride, int64_t ncell, ct_idx *start);
-int cti_bucket_bin_nodes(const ct_search_input *in, const ct_real lo[3], const ct_real hi[3],
-                         const ct_real inv[3], const ct_idx n[3], int nb, ct_idx *cnt,
-                         size_t stride, ct_idx *ncl, ct_idx *ord, ct_idx *ordc,
-                         ct_idx *nbinned);
-int cti_bucket_local(const ct_search_input *in, const ct_real lo[3], const ct_real hi[3],
-                     const ct_real inv[3], const ct_idx n[3]);
-void cti_bucket_size(const ct_real lo[3], const ct_real hi[3], ct_idx nseg, double factor,
-                     int64_t maxc, ct_idx n[3], ct_real inv[3]);
+#include "search_bucket_grid.h"
 
 /* v rounded to a float not above it (round_down) or not below it. */
 static inline float bk_float_out(ct_real v, int round_down)

@@ -47,7 +47,7 @@
  */
 #include <stdlib.h>
 
-#include "ct_internal.h"
+#include "search_bucket_grid.h"
 
 int cti_search_bucket_v0(ct_search *s, const ct_search_input *in, ct_pairs *out);
 
@@ -254,48 +254,16 @@ static int v0_boxes(const ct_search_input *in, ct_real *restrict srec, ct_real s
     return bad ? CT_ERR_NONFINITE : CT_OK;
 }
 
-/* Cells per axis from the Radioss sizing, capped at maxc in total. */
+/* Cells per axis as the default search sizes them (cti_bucket_size), and
+ * the tolerance of the cell coordinates: 8 machine epsilons of the largest
+ * coordinate magnitude of the grid's box. */
 static void v0_size(const ct_real lo[3], const ct_real hi[3], ct_idx nseg, double factor,
-                     int64_t maxc, ct_idx n_out[3], ct_real inv[3], ct_real *tol)
+                    int64_t maxc, ct_idx n_out[3], ct_real inv[3], ct_real *tol)
 {
-    double L[3], n[3];
-    for (int k = 0; k < 3; k++)
-        L[k] = (double)hi[k] - (double)lo[k];
-    double area = L[0] * L[1] + L[1] * L[2] + L[2] * L[0];
-    double lmax = CTI_MAX(L[0], CTI_MAX(L[1], L[2]));
-    double a;
-    if (area > 0)
-        a = factor * 0.75 * sqrt((double)nseg / area);
-    else if (lmax > 0) /* all on a line: about one cell per segment */
-        a = factor * 0.75 * (double)nseg / lmax;
-    else
-        a = 0;
-    double prod = 1;
-    for (int k = 0; k < 3; k++) {
-        double c = floor(L[k] * a);
-        n[k] = (c >= 1 && c == c) ? CTI_MIN(c, (double)maxc) : 1;
-        prod *= n[k];
-    }
-    if (prod > (double)maxc) {
-        int act = (n[0] > 1) + (n[1] > 1) + (n[2] > 1);
-        double sc = pow((double)maxc / prod, 1.0 / act);
-        prod = 1;
-        for (int k = 0; k < 3; k++) {
-            n[k] = CTI_MAX(1.0, floor(n[k] * sc));
-            prod *= n[k];
-        }
-        while (prod > (double)maxc) { /* rounding left it a little high */
-            int kk = (n[0] >= n[1] && n[0] >= n[2]) ? 0 : (n[1] >= n[2] ? 1 : 2);
-            prod = prod / n[kk] * (n[kk] - 1);
-            n[kk] -= 1;
-        }
-    }
+    cti_bucket_size(lo, hi, nseg, factor, maxc, n_out, inv);
     double mag = 0;
-    for (int k = 0; k < 3; k++) {
-        n_out[k] = (ct_idx)n[k];
-        inv[k] = L[k] > 0 ? (ct_real)(n[k] / L[k]) : 0;
+    for (int k = 0; k < 3; k++)
         mag = CTI_MAX(mag, CTI_MAX(fabs((double)lo[k]), fabs((double)hi[k])));
-    }
     *tol = (ct_real)(8.0 * CTI_EPS * mag);
 }
 
