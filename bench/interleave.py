@@ -20,11 +20,12 @@ files). Standard library only.
 """
 import json
 import os
-import re
 import statistics
 import subprocess
 import sys
 import tempfile
+
+from benchjson import base_name
 
 
 def run_once(binary, flt, out_path):
@@ -42,8 +43,7 @@ def run_once(binary, flt, out_path):
     for b in data.get("benchmarks", []):
         if b.get("error_occurred") or b.get("run_type") == "aggregate":
             continue
-        name = re.sub(r"(/iterations:\d+)?/(real_time|manual_time)$", "",
-                      b.get("run_name", b.get("name", "")))
+        name = base_name(b.get("run_name", b.get("name", "")))
         runs[name] = b
     return runs, data.get("context", {})
 

@@ -4,8 +4,9 @@
 Usage: python3 bench/plots.py build/bench.json [build/bench-single.json ...]
                               [--out docs/] [--data DIR]
 
-Reads the same files as bench/report.py (the median of the repetitions: the
-"median" aggregate when present, else the median of the repetition rows) and
+Reads the same files as bench/report.py, with the same reading
+(bench/benchjson.py: the median of the repetitions, the "median" aggregate
+when present, else the median of the repetition rows) and
 writes, for each file (the first file's plots have no suffix, the others get
 "_<precision>", e.g. search_cost_single.png):
 
@@ -50,27 +51,21 @@ Standard library only.
 """
 import argparse
 import json
-import math
 import os
 import re
 import shutil
-import statistics
 import subprocess
 import sys
 import tempfile
 
-TIME_NS = {"ns": 1.0, "us": 1e3, "ms": 1e6, "s": 1e9}
-ALGOS = ["direct", "topological", "bucket", "bsp"]
+from benchjson import ALGOS, PEER_RE, SEARCH_RE, collect, precision_of, split_named
+from report_search import direct_ns_per_work
+
 ALGO_COLOUR = {"direct": "#d62728", "topological": "#9467bd", "bucket": "#1f77b4",
                "bsp": "#2ca02c"}
 PEER_COLOURS = ["#ff7f0e", "#8c564b", "#e377c2", "#17becf", "#bcbd22", "#7f7f7f"]
 KNOB_COLOURS = ["#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b",
                 "#e377c2", "#17becf", "#bcbd22", "#7f7f7f"]
-# Fields of a Google Benchmark row that are not user counters.
-STD_KEYS = {"name", "family_index", "per_family_instance_index", "run_name", "run_type",
-            "repetitions", "repetition_index", "aggregate_name", "aggregate_unit",
-            "iterations", "real_time", "cpu_time", "time_unit", "items_per_second",
-            "bytes_per_second", "label", "error_occurred", "error_message", "threads"}
 # Counter names taken as the error of a trade record, by the first hint they
 # contain (lower case), in this order of preference.
 ERROR_HINTS = ["accuracy", "error", "err", "miss", "penetration", "diff", "drift"]
@@ -82,12 +77,9 @@ def peer_title(peer):
     library (bench/peers/grid_peer.cc)."""
     return "reference: textbook grid" if peer == "grid" else "peer " + peer
 
-SEARCH_RE = re.compile(
-    r"^search/(?P<family>[^/]+)/(?P<algo>[^/]+)/(?P<numbering>[^/]+)/t(?P<threads>\d+)/"
-    r"(?P<n>\d+)$")
-PEER_RE = re.compile(
-    r"^peer/(?P<family>[^/]+)/(?P<peer>[^/@]+)(?:@(?P<setting>[^/]+))?/t(?P<threads>\d+)/"
-    r"(?P<n>\d+)$")
+
+# The runs only the plots read; those of the searches and the peers are in
+# bench/benchjson.py.
 FLOOR_RE = re.compile(r"^floor/bucket/(?P<family>[^/]+)/t(?P<threads>\d+)/(?P<n>\d+)$")
 REAL_RE = re.compile(r"^real/(?P<deck>[^/]+)/(?P<algo>[^/]+)/t(?P<threads>\d+)$")
 
@@ -98,90 +90,16 @@ def log(msg):
 
 # ---- Reading -----------------------------------------------------------------
 
-def base_name(run_name):
-    return re.sub(r"(/iterations:\d+)?/(real_time|manual_time)$", "", run_name)
-
-
-def numeric(v):
-    return isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
-
-
-def collect(benchmarks):
-    """One record per run: name, median time (ns), every counter, label, error."""
-    runs, order = {}, []
-    for b in benchmarks:
-        key = b.get("run_name", b.get("name", ""))
-        if key not in runs:
-            runs[key] = {"median": None, "reps": [], "error": None}
-            order.append(key)
-        r = runs[key]
-        if b.get("error_occurred"):
-            r["error"] = b.get("error_message", "error")
-        elif b.get("run_type") == "aggregate":
-            if b.get("aggregate_name") == "median":
-                r["median"] = b
-        else:
-            r["reps"].append(b)
-    out = []
-    for key in order:
-        r = runs[key]
-        rec = {"name": base_name(key), "error": None, "label": "", "time_ns": None,
-               "counters": {}}
-        if r["median"] is not None:
-            src = r["median"]
-            rec["time_ns"] = src["real_time"] * TIME_NS[src.get("time_unit", "ns")]
-            rec["label"] = src.get("label", "")
-            rec["counters"] = {k: float(v) for k, v in src.items()
-                               if k not in STD_KEYS and numeric(v)}
-        elif r["reps"]:
-            reps = r["reps"]
-            rec["time_ns"] = statistics.median(
-                x["real_time"] * TIME_NS[x.get("time_unit", "ns")] for x in reps)
-            rec["label"] = reps[-1].get("label", "")
-            keys = []
-            for x in reps:
-                keys += [k for k, v in x.items()
-                         if k not in STD_KEYS and numeric(v) and k not in keys]
-            for k in keys:
-                vals = [float(x[k]) for x in reps if numeric(x.get(k))]
-                rec["counters"][k] = statistics.median(vals)
-        else:
-            rec["error"] = r["error"] or "no result"
-        out.append(rec)
-    return out
-
-
-def precision_of(data):
-    ctx = data.get("context", {})
-    if ctx.get("ct_precision"):
-        return ctx["ct_precision"]
-    m = re.search(r"precision=(\w+)", ctx.get("ct_build", ""))
-    if m:
-        return m.group(1)
-    for b in data.get("benchmarks", []):
-        m = re.match(r"prec=(\w+)", b.get("label", ""))
-        if m:
-            return m.group(1)
-    return "?"
-
-
 def parse(records):
-    """Split the records by kind; the name's fields are added to each."""
-    kinds = {"search": [], "peer": [], "floor": [], "real": [], "knob": []}
-    for r in records:
-        for kind, rx in (("search", SEARCH_RE), ("peer", PEER_RE), ("floor", FLOOR_RE),
-                         ("real", REAL_RE)):
-            m = rx.match(r["name"])
-            if m:
-                r.update(m.groupdict())
-                r["threads"] = int(r["threads"])
-                if "n" in r:
-                    r["n"] = int(r["n"])
-                kinds[kind].append(r)
-                break
-        else:
-            if (r["label"] or "").startswith("knob=") and not r["error"]:
-                kinds["knob"].append(r)
+    """Split the records by kind, the first pattern a name matches; the name's
+    fields are added to each. Of the others, those whose label starts with
+    "knob=" and that have no error are the trade records."""
+    kinds = {}
+    rest = records
+    for kind, rx in (("search", SEARCH_RE), ("peer", PEER_RE), ("floor", FLOOR_RE),
+                     ("real", REAL_RE)):
+        kinds[kind], rest = split_named(rest, rx)
+    kinds["knob"] = [r for r in rest if (r["label"] or "").startswith("knob=") and not r["error"]]
     return kinds
 
 
@@ -247,25 +165,17 @@ def log_axes(xlabel, ylabel, title):
 # ---- Plot 1: search cost against N ---------------------------------------------
 
 def extrapolate(rec, search):
-    """A skipped direct run's time from the largest measured direct run of the
-    same family, numbering and threads (cost proportional to nsec * nseg)."""
+    """A skipped direct run's (nsec, time) from the largest measured direct run
+    of the same family, numbering and threads (cost proportional to nsec *
+    nseg, the sizes read from the skip message)."""
     m = re.search(r"nsec=(\d+) nseg=(\d+)", rec["error"] or "")
     if not m:
         return None
     nsec, nseg = float(m.group(1)), float(m.group(2))
-    best = None
-    for o in search:
-        if o["algo"] != "direct" or o["error"] or o["time_ns"] is None:
-            continue
-        if (o["family"], o["numbering"], o["threads"]) != \
-                (rec["family"], rec["numbering"], rec["threads"]):
-            continue
-        w = o["counters"].get("nsec", 0) * o["counters"].get("nseg", 0)
-        if w > 0 and (best is None or w > best[0]):
-            best = (w, o["time_ns"])
-    if best is None:
+    per_work = direct_ns_per_work(rec, search)
+    if per_work is None:
         return None
-    return nsec, best[1] / best[0] * nsec * nseg
+    return nsec, per_work * nsec * nseg
 
 
 def plot_cost(f, out, folder, suffix):
