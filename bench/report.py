@@ -40,6 +40,7 @@ from report_kernels import (EFF_RE, print_eff, print_floor, print_interleaved,
                             print_kernel_floor, print_kernels, split_records)
 from report_search import PAIRED_RE, parse_peers, print_paired, print_peers, report_search
 from report_trade import parse_trade, print_trade
+from report_targets import print_targets
 
 
 def print_context(ctx, out):
@@ -106,6 +107,11 @@ def report(datas, names=None, compare=None, inter=None):
         if multi:
             out.append("# %s precision (%s)\n" % (f["tag"], f["name"]))
         print_context(f["data"].get("context", {}), out)
+    main = next((f for f in files if f["tag"] == "double"), files[0])
+    print_targets(main["search"], [r for f in files for r in f["flo"]], main["paired"],
+                  main["peers"], [r for f in files for r in f["kern"]],
+                  [r for f in files for r in f["eff"]], [r for f in files for r in f["cycle"]],
+                  inter, out)
     for f in files:
         if multi and f["search"]:
             out.append("# Search benchmarks, %s precision\n" % f["tag"])
