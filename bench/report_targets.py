@@ -13,7 +13,7 @@ Standard library only.
 """
 from report_driver import CYCLE_TARGET_NS
 from report_fmt import fmt_ns
-from report_kernels import EFF_TARGET, SINGLE_TARGET, triad_gbps
+from report_kernels import EFF_TARGET, SINGLE_TARGET, moved_gbps
 from report_search import PAIRED_TARGETS, ns_per_node, our_best
 
 NMAX = 1000000
@@ -40,12 +40,13 @@ def verdict(ok):
     return "-" if ok is None else ("yes" if ok else "**no**")
 
 
-def kernel_bound(rec, bw):
-    """The bound of a kernel record: its per-pair bytes at the triad's real
-    traffic (4/3 of its GB/s, the write-allocate read counted), or None."""
+def kernel_bound(rec, moved):
+    """The bound of a kernel record: its per-pair bytes at the most GB/s any
+    loop of the run moved with its threads (report_kernels.moved_gbps), or
+    None."""
     sb = rec["counters"].get("stream_bytes_per_pair")
-    g = bw.get(rec["threads"])
-    return sb / (g * 4.0 / 3.0) if sb and g else None
+    g = moved.get(rec["threads"])
+    return sb / g if sb and g else None
 
 
 def search_rows(search, flo, paired):
@@ -104,7 +105,7 @@ def peer_row(search, peers):
 
 def kernel_rows(kern, flo):
     """Issue 3's kernel figures at 10^6 pairs, double, 1 thread."""
-    bw = triad_gbps(flo)
+    moved = moved_gbps(kern, flo)
     at = {}
     for r in kern:
         if not r["error"] and r["n"] == NMAX and r["prec"] == "double":
@@ -113,7 +114,7 @@ def kernel_rows(kern, flo):
     for (g, k), tgt, text in KERNEL_TARGETS:
         rec = at.get((g, k, 1))
         v = rec["counters"].get("ns_per_pair") if rec else None
-        b = kernel_bound(rec, bw) if rec else None
+        b = kernel_bound(rec, moved) if rec else None
         bound = "-"
         if b is not None:
             bound = "%.2f%s" % (b, ": out of reach" if b > tgt else "")
@@ -195,7 +196,8 @@ def print_targets(search, flo, paired, peers, kern, eff, cyc, inter, out):
                "nodes, plates, natural numbering; kernels at 10^6 pairs, double precision, 1 "
                "thread; ratios from the interleaved rounds). bound: what this machine allows "
                "where the run measured it: the search's floor (bench/floor.h), a kernel's "
-               "per-pair arrays at the triad's real traffic (the kernels' floor table); "
+               "per-pair arrays at the most any loop of the run moved (the kernels' floor "
+               "table); "
                "\"out of reach\": the bound is above the target, so no call with the same "
                "arrays meets it here. For the efficiency, the machine's own 2-thread "
                "efficiency on a loop that only streams memory and on one that only "
