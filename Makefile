@@ -224,6 +224,7 @@ bench: deps
 	python3 bench/report.py $(BENCH_OUT).json $(BENCH_OUT)-single.json $(BENCH_OUT)-precision.json \
 	  $(BENCH_OUT)-interleaved.json > $(BENCH_OUT).md
 	python3 bench/plots.py $(BENCH_OUT).json $(BENCH_OUT)-single.json --out docs/
+	@awk '/^## Speed targets/ { p = 1 } p && /^# / { exit } p' $(BENCH_OUT).md
 	@echo "bench: tables in $(BENCH_OUT).md, plots in docs/, raw results in $(BENCH_OUT)*.json"
 
 bench-full: deps
