@@ -479,6 +479,44 @@ Test(search_bucket, box_filter_matches_direct)
     }
 }
 
+/* A segment whose cell range is longer than the packed form holds (1024
+ * cells along an axis): a strip of 3000 unit quads along x makes about
+ * 2250 cells along x, and a long thin segment above it covers them all.
+ * Its range is recomputed from its box; the nodes near its far end pair
+ * with it as in the direct search. */
+Test(search_bucket, segment_wider_than_the_packed_range)
+{
+    enum { L = 3000 };
+    scene s;
+    sc_init(&s, 2 * (L + 1) + 4 + 4 * L, L + 1, 4 * L);
+    sc_plate(&s, L + 1, 2, 0, 0, 0, 1, 1, 0);
+    ct_idx a = sc_node(&s, 0, 0.25, 0.2), b = sc_node(&s, L, 0.25, 0.2);
+    ct_idx c = sc_node(&s, L, 0.75, 0.2), d = sc_node(&s, 0, 0.75, 0.2);
+    const ct_idx wide = s.ns;
+    sc_seg(&s, a, b, c, d);
+    for (int i = 0; i < 2 * L; i++) {
+        s.sec[s.nsec++] = sc_node(&s, 0.5 * i + 0.25, 0.5, 0.1);
+        s.sec[s.nsec++] = sc_node(&s, 0.5 * i + 0.25, 0.5, 0.45);
+    }
+    ct_search_input in = sc_input(&s, 0.2, 0.1, 0);
+    cr_assert_gt(check_same(&in), 0);
+    /* Independently of direct: every node at z = 0.1 or 0.45 lies within
+     * 0.3 of the long segment, those at the far end included. */
+    ct_pairs p;
+    ct_pairs_init(&p, 0);
+    cr_assert_eq(run(CT_SEARCH_BUCKET, &in, &p, 2, 0), CT_OK);
+    ct_idx with_wide = 0, far_end = 0;
+    for (ct_idx k = 0; k < p.n; k++)
+        if (p.seg[k] == wide) {
+            with_wide++;
+            far_end += s.x[p.node[k]] > L - 10;
+        }
+    cr_assert_eq(with_wide, s.nsec);
+    cr_assert_eq(far_end, 2 * 20);
+    ct_pairs_destroy(&p);
+    sc_free(&s);
+}
+
 /* Huge segments on a grid asked to be very fine: the entries (segments x
  * covered cells) would pass 10^8; the search coarsens the grid instead,
  * keeps its memory linear, and still returns direct's pairs. */
