@@ -16,9 +16,10 @@
  *  2. the grid over the main box inflated by d: cells per unit length from
  *     the Radioss sizing times cell_factor, total capped (nodes outside it
  *     can pair with nothing);
- *  3. count: per block of consecutive segments, per cell, the segments
- *     covering it (counters of its own per block; the packed cell range of
- *     each segment is kept for pass 5);
+ *  3. ranges and count: every segment's cell range, packed, in one vector
+ *     loop that also sums the entries (conservative: see below); then per
+ *     block of consecutive segments, per cell, the segments covering it
+ *     (counters of its own per block), from the packed ranges;
  *  4. offsets: one two-pass parallel scan over the cells;
  *  5. scatter the segment numbers into the cells;
  *  6. query (search_bucket_query.c), in one of two orders chosen per
@@ -164,72 +165,99 @@ int cti_bucket_out_grow(bk_out *o, size_t need)
     return 0;
 }
 
-/* The cells c0 .. c1 (per axis) that segment j's float box f covers; 0
- * when it misses the grid. The float box contains the predicate's inflated
- * box and the cell is monotone: conservative. */
-static inline int bk_range(const float *restrict f, const bk_grid *g, ct_idx c0[3],
-                           ct_idx c1[3])
-{
-    int in = 1;
-    for (int k = 0; k < 3; k++) {
-        ct_real lod = (ct_real)f[k], hid = -(ct_real)f[4 + k];
-        in &= !(hid < g->lo[k]) & !(lod > g->hi[k]);
-        c0[k] = bk_cell1(lod, g->lo[k], g->inv[k], g->n[k] - 1);
-        c1[k] = bk_cell1(hid, g->lo[k], g->inv[k], g->n[k] - 1);
-    }
-    return in;
-}
-
 /* A segment's cell range packed in 64 bits: first cell (bits 0-31), spans
  * minus one along x, y, z (10 bits each, from bit 32); BK_SKIP: misses the
  * grid; BK_WIDE: a span too long to pack (the range is recomputed). */
 #define BK_SKIP (UINT64_C(1) << 63)
 #define BK_WIDE (UINT64_C(1) << 62)
 
-/* Pass 3: count. Returns the number of entries, or -1 when it would exceed
- * `limit` (the counts are then unusable). */
-static int64_t bk_count(bk_state *st, const ct_search_input *in, const bk_grid *g, int nb,
-                        size_t stride, int64_t limit)
+/* Pass 3a: every segment's packed cell range, in one vector loop (the same
+ * bk_cell1 as the nodes', on the float box's ends widened to ct_real, which
+ * is exact); returns the number of entries the ranges make. */
+static int64_t bk_ranges(bk_state *st, const ct_search_input *in, const bk_grid *g)
+{
+    const ct_idx nseg = in->nseg, nx = g->n[0], ny = g->n[1], nz = g->n[2];
+    const ct_real lo0 = g->lo[0], lo1 = g->lo[1], lo2 = g->lo[2];
+    const ct_real hi0 = g->hi[0], hi1 = g->hi[1], hi2 = g->hi[2];
+    const ct_real iv0 = g->inv[0], iv1 = g->inv[1], iv2 = g->inv[2];
+    const float *restrict fbox = st->fbox;
+    uint64_t *restrict rng = st->rng;
+    int64_t total = 0;
+#pragma omp parallel for simd schedule(static) reduction(+ : total)
+    for (ct_idx j = 0; j < nseg; j++) {
+        const float *restrict f = fbox + (size_t)8 * j;
+        const ct_real l0 = f[0], l1 = f[1], l2 = f[2];
+        const ct_real h0 = -(ct_real)f[4], h1 = -(ct_real)f[5], h2 = -(ct_real)f[6];
+        const int inside = !(h0 < lo0) & !(l0 > hi0) & !(h1 < lo1) & !(l1 > hi1) &
+                           !(h2 < lo2) & !(l2 > hi2);
+        const ct_idx a0 = bk_cell1(l0, lo0, iv0, nx - 1), b0 = bk_cell1(h0, lo0, iv0, nx - 1);
+        const ct_idx a1 = bk_cell1(l1, lo1, iv1, ny - 1), b1 = bk_cell1(h1, lo1, iv1, ny - 1);
+        const ct_idx a2 = bk_cell1(l2, lo2, iv2, nz - 1), b2 = bk_cell1(h2, lo2, iv2, nz - 1);
+        const ct_idx sx = b0 - a0, sy = b1 - a1, sz = b2 - a2;
+        const int narrow = (sx < 1024) & (sy < 1024) & (sz < 1024);
+        const uint64_t packed =
+            (uint64_t)(((int64_t)a2 * ny + a1) * nx + a0) | ((uint64_t)sx << 32) |
+            ((uint64_t)sy << 42) | ((uint64_t)sz << 52);
+        rng[j] = !inside ? BK_SKIP : (narrow ? packed : BK_WIDE);
+        /* At most ncell, which fits a ct_idx. */
+        total += inside ? (int64_t)((sx + 1) * (sy + 1) * (sz + 1)) : 0;
+    }
+    return total;
+}
+
+/* Segment j's range from its packed form r: the first cell (c) and the
+ * spans minus one (s); 0 when it misses the grid. */
+static inline int bk_unpack(uint64_t r, const float *restrict f, const bk_grid *g,
+                            size_t *c, ct_idx s[3])
+{
+    if (r & BK_SKIP)
+        return 0;
+    if (!(r & BK_WIDE)) {
+        *c = (size_t)(r & 0xffffffffu);
+        s[0] = (ct_idx)((r >> 32) & 1023);
+        s[1] = (ct_idx)((r >> 42) & 1023);
+        s[2] = (ct_idx)((r >> 52) & 1023);
+        return 1;
+    }
+    ct_idx c0[3], c1[3];
+    for (int k = 0; k < 3; k++) {
+        c0[k] = bk_cell1((ct_real)f[k], g->lo[k], g->inv[k], g->n[k] - 1);
+        c1[k] = bk_cell1(-(ct_real)f[4 + k], g->lo[k], g->inv[k], g->n[k] - 1);
+        s[k] = c1[k] - c0[k];
+    }
+    *c = ((size_t)c0[2] * (size_t)g->n[1] + (size_t)c0[1]) * (size_t)g->n[0] + (size_t)c0[0];
+    return 1;
+}
+
+/* Pass 3b: count, per block of consecutive segments, per cell, the
+ * segments covering it (counters of its own per block). */
+static void bk_count(bk_state *st, const ct_search_input *in, const bk_grid *g, int nb,
+                     size_t stride)
 {
     const ct_idx nseg = in->nseg, nx = g->n[0], ny = g->n[1];
     const int64_t ncell = g->ncell;
     const float *restrict fbox = st->fbox;
-    uint64_t *restrict rng = st->rng;
+    const uint64_t *restrict rng = st->rng;
     ct_idx *restrict cnt = st->cnt;
-    int64_t total = 0;
-    /* Pass 3: count. */
-#pragma omp parallel for schedule(static) reduction(+ : total)
+#pragma omp parallel for schedule(static)
     for (int b = 0; b < nb; b++) {
         ct_idx *restrict cb = cnt + (size_t)b * stride;
         memset(cb, 0, (size_t)ncell * sizeof *cb);
         ct_idx lo = (ct_idx)((int64_t)nseg * b / nb);
         ct_idx hi = (ct_idx)((int64_t)nseg * (b + 1) / nb);
-        int64_t mine = 0;
         for (ct_idx j = lo; j < hi; j++) {
-            ct_idx c0[3], c1[3];
-            if (!bk_range(fbox + (size_t)8 * j, g, c0, c1)) {
-                rng[j] = BK_SKIP;
+            size_t c;
+            ct_idx s[3];
+            if (!bk_unpack(rng[j], fbox + (size_t)8 * j, g, &c, s))
                 continue;
-            }
-            ct_idx sx = c1[0] - c0[0], sy = c1[1] - c0[1], sz = c1[2] - c0[2];
-            rng[j] = (sx < 1024 && sy < 1024 && sz < 1024)
-                         ? (uint64_t)(((size_t)c0[2] * ny + c0[1]) * nx + c0[0]) |
-                               ((uint64_t)sx << 32) | ((uint64_t)sy << 42) |
-                               ((uint64_t)sz << 52)
-                         : BK_WIDE;
-            mine += (int64_t)(sx + 1) * (sy + 1) * (sz + 1);
-            if (mine > limit) /* counts are then unused */
-                break;
-            for (ct_idx iz = c0[2]; iz <= c1[2]; iz++)
-                for (ct_idx iy = c0[1]; iy <= c1[1]; iy++) {
-                    ct_idx *restrict row = cb + ((size_t)iz * ny + iy) * nx;
-                    for (ct_idx ix = c0[0]; ix <= c1[0]; ix++)
+            for (ct_idx iz = 0; iz <= s[2]; iz++)
+                for (ct_idx iy = 0; iy <= s[1]; iy++) {
+                    ct_idx *restrict row = cb + c + ((size_t)iz * ny + iy) * nx;
+                    for (ct_idx ix = 0; ix <= s[0]; ix++)
                         row[ix]++;
                 }
         }
-        total += mine;
     }
-    return total > limit ? -1 : total;
 }
 
 /* Passes 4 and 5: offsets and scatter. */
@@ -251,27 +279,14 @@ static void bk_place(bk_state *st, const ct_search_input *in, const bk_grid *g, 
         ct_idx lo = (ct_idx)((int64_t)nseg * b / nb);
         ct_idx hi = (ct_idx)((int64_t)nseg * (b + 1) / nb);
         for (ct_idx j = lo; j < hi; j++) {
-            uint64_t r = rng[j];
-            if (r & BK_SKIP)
+            size_t c;
+            ct_idx s[3];
+            if (!bk_unpack(rng[j], fbox + (size_t)8 * j, g, &c, s))
                 continue;
-            if (!(r & BK_WIDE)) {
-                const size_t c = (size_t)(r & 0xffffffffu);
-                const ct_idx sx = (ct_idx)((r >> 32) & 1023), sy = (ct_idx)((r >> 42) & 1023),
-                             sz = (ct_idx)((r >> 52) & 1023);
-                for (ct_idx iz = 0; iz <= sz; iz++)
-                    for (ct_idx iy = 0; iy <= sy; iy++) {
-                        ct_idx *restrict row = cb + c + ((size_t)iz * ny + iy) * nx;
-                        for (ct_idx ix = 0; ix <= sx; ix++)
-                            ent[row[ix]++] = j;
-                    }
-                continue;
-            }
-            ct_idx c0[3], c1[3];
-            bk_range(fbox + (size_t)8 * j, g, c0, c1);
-            for (ct_idx iz = c0[2]; iz <= c1[2]; iz++)
-                for (ct_idx iy = c0[1]; iy <= c1[1]; iy++) {
-                    ct_idx *restrict row = cb + ((size_t)iz * ny + iy) * nx;
-                    for (ct_idx ix = c0[0]; ix <= c1[0]; ix++)
+            for (ct_idx iz = 0; iz <= s[2]; iz++)
+                for (ct_idx iy = 0; iy <= s[1]; iy++) {
+                    ct_idx *restrict row = cb + c + ((size_t)iz * ny + iy) * nx;
+                    for (ct_idx ix = 0; ix <= s[0]; ix++)
                         ent[row[ix]++] = j;
                 }
         }
@@ -359,10 +374,11 @@ int cti_search_bucket(ct_search *s, const ct_search_input *in, ct_pairs *out)
         if (bk_grow(&st->cnt, &st->cnt_cap, stride * (size_t)nb, sizeof(ct_idx)) ||
             bk_grow(&st->start, &st->start_cap, (size_t)g.ncell + 1, sizeof(ct_idx)))
             return CT_ERR_NOMEM;
-        int64_t nent = bk_count(st, in, &g, nb, stride, limit);
-        if (nent >= 0) {
+        const int64_t nent = bk_ranges(st, in, &g);
+        if (nent <= limit) {
             if (bk_grow(&st->ent, &st->ent_cap, (size_t)nent + 1, sizeof(ct_idx)))
                 return CT_ERR_NOMEM;
+            bk_count(st, in, &g, nb, stride);
             bk_place(st, in, &g, nb, stride);
             break;
         }
