@@ -183,7 +183,7 @@ static int64_t bk_ranges(bk_state *st, const ct_search_input *in, const bk_grid 
     const float *restrict fbox = st->fbox;
     uint64_t *restrict rng = st->rng;
     int64_t total = 0;
-#pragma omp parallel for simd schedule(static) reduction(+ : total)
+    BK_PAR_FOR_SIMD((schedule(static) reduction(+ : total)))
     for (ct_idx j = 0; j < nseg; j++) {
         const float *restrict f = fbox + (size_t)8 * j;
         const ct_real l0 = f[0], l1 = f[1], l2 = f[2];

@@ -7,19 +7,102 @@
 
 #include "search_bucket_grid.h"
 
-/* v rounded to a float not above it (round_down) or not below it. */
+/* v rounded to a float not above it (round_down) or not below it, with
+ * selects, so that pass 1's loop vectorises. */
 static inline float bk_float_out(ct_real v, int round_down)
 {
     float f = (float)v;
 #ifndef CT_SINGLE
-    if (round_down && (ct_real)f > v)
-        f = cti_next_down_f(f);
-    if (!round_down && (ct_real)f < v)
-        f = cti_next_up_f(f);
+    if (round_down)
+        f = (ct_real)f > v ? cti_next_down_f(f) : f;
+    else
+        f = (ct_real)f < v ? cti_next_up_f(f) : f;
 #else
     (void)round_down;
 #endif
     return f;
+}
+
+/* What pass 1 reads and writes, for the body its loops share. */
+typedef struct bk_boxes_out {
+    const ct_real *x, *y, *z, *xyzw;
+    const ct_idx *n1, *n2, *n3, *n4;
+    ct_real *box, *srec;
+    float *fbox;
+    uint32_t nnode;
+    ct_real d;
+} bk_boxes_out;
+
+/* A segment's box for the reduction and its flags (bk_box_one). */
+typedef struct bk_box_res {
+    ct_real lx, ly, lz, hx, hy, hz;
+    int flags;
+} bk_box_res;
+
+/* Segment j: writes its records and returns its box for the reduction
+ * (empty when an index is out of range: its corners are then read at node
+ * 0, which exists, and ignored) with flags 1 (an index out of range) and 2
+ * (a corner not finite). No branch, so that the ordered loops vectorise;
+ * `scattered` (corners from xyzw, corner records) and `with_box` are
+ * constants at each call: a box store under a test of the pointer made gcc
+ * keep a scalar copy of the loop, which is the one that ran. */
+static inline __attribute__((always_inline)) bk_box_res
+bk_box_one(const bk_boxes_out ov, ct_idx j, const int scattered, const int with_box)
+{
+    const bk_boxes_out *o = &ov;
+    ct_idx a = o->n1[j], b = o->n2[j], c = o->n3[j], e = o->n4[j];
+    const uint32_t nn = o->nnode;
+    const int out = ((uint32_t)a >= nn) | ((uint32_t)b >= nn) | ((uint32_t)c >= nn) |
+                    ((uint32_t)e >= nn);
+    const ct_idx keep = -(ct_idx)!out; /* all ones, or 0: node 0 */
+    a &= keep, b &= keep, c &= keep, e &= keep;
+    ct_real xa, xb, xc, xe, ya, yb, yc, ye, za, zb, zc, ze;
+    if (scattered && o->xyzw) {
+        const ct_real *pa = o->xyzw + 4 * (size_t)a, *pb = o->xyzw + 4 * (size_t)b;
+        const ct_real *pc = o->xyzw + 4 * (size_t)c, *pe = o->xyzw + 4 * (size_t)e;
+        xa = pa[0], ya = pa[1], za = pa[2], xb = pb[0], yb = pb[1], zb = pb[2];
+        xc = pc[0], yc = pc[1], zc = pc[2], xe = pe[0], ye = pe[1], ze = pe[2];
+    } else {
+        const ct_real *restrict x = o->x, *restrict y = o->y, *restrict z = o->z;
+        xa = x[a], xb = x[b], xc = x[c], xe = x[e];
+        ya = y[a], yb = y[b], yc = y[c], ye = y[e];
+        za = z[a], zb = z[b], zc = z[c], ze = z[e];
+    }
+    /* Each v - v is 0, or NaN for NaN and infinities (min and max may
+     * drop a NaN, so the check is on the corners). */
+    ct_real fin = ((xa - xa) + (xb - xb) + (xc - xc) + (xe - xe)) +
+                  ((ya - ya) + (yb - yb) + (yc - yc) + (ye - ye)) +
+                  ((za - za) + (zb - zb) + (zc - zc) + (ze - ze));
+    /* The predicate's own expressions: the same minima and maxima. */
+    ct_real lx = CTI_MIN(CTI_MIN(xa, xb), CTI_MIN(xc, xe));
+    ct_real hx = CTI_MAX(CTI_MAX(xa, xb), CTI_MAX(xc, xe));
+    ct_real ly = CTI_MIN(CTI_MIN(ya, yb), CTI_MIN(yc, ye));
+    ct_real hy = CTI_MAX(CTI_MAX(ya, yb), CTI_MAX(yc, ye));
+    ct_real lz = CTI_MIN(CTI_MIN(za, zb), CTI_MIN(zc, ze));
+    ct_real hz = CTI_MAX(CTI_MAX(za, zb), CTI_MAX(zc, ze));
+    if (scattered && o->srec) {
+        ct_real *restrict q = o->srec + (size_t)12 * j;
+        q[0] = xa, q[1] = ya, q[2] = za, q[3] = xb, q[4] = yb, q[5] = zb;
+        q[6] = xc, q[7] = yc, q[8] = zc, q[9] = xe, q[10] = ye, q[11] = ze;
+    }
+    if (with_box) {
+        ct_real *restrict r = o->box + (size_t)6 * j;
+        r[0] = lx, r[1] = ly, r[2] = lz, r[3] = hx, r[4] = hy, r[5] = hz;
+    }
+    float *restrict f = o->fbox + (size_t)8 * j;
+    const ct_real d = o->d;
+    f[0] = bk_float_out(lx - d, 1);
+    f[1] = bk_float_out(ly - d, 1);
+    f[2] = bk_float_out(lz - d, 1);
+    f[3] = 0;
+    f[4] = -bk_float_out(hx + d, 0);
+    f[5] = -bk_float_out(hy + d, 0);
+    f[6] = -bk_float_out(hz + d, 0);
+    f[7] = 0;
+    const bk_box_res r = {out ? CTI_HUGE : lx,  out ? CTI_HUGE : ly,  out ? CTI_HUGE : lz,
+                          out ? -CTI_HUGE : hx, out ? -CTI_HUGE : hy, out ? -CTI_HUGE : hz,
+                          out | ((!(fin == 0) & !out) << 1)};
+    return r;
 }
 
 /*
@@ -34,6 +117,9 @@ static inline float bk_float_out(ct_real v, int round_down)
  * When xyzw is not NULL (scattered numberings), the node coordinates are
  * first packed into it, x y z 0 per node, in one streaming pass: a corner
  * is then one cache line, not three random ones (the x, y and z arrays).
+ * An ordered numbering runs a vector loop (one for each filter: see
+ * bk_box_one); a scattered one a loop that prefetches the corners a few
+ * segments ahead, with the same body.
  */
 int cti_bucket_boxes(const ct_search_input *in, ct_real *restrict xyzw, ct_real *restrict box,
                      float *restrict fbox, ct_real *restrict srec, ct_real mb[6])
@@ -48,6 +134,9 @@ int cti_bucket_boxes(const ct_search_input *in, ct_real *restrict xyzw, ct_real 
             xyzw[4 * (size_t)i + 3] = 0;
         }
     }
+    const ct_idx nseg = in->nseg;
+    if (nseg > 0 && in->nnode <= 0)
+        return CT_ERR_RANGE; /* every index is out of range */
     const ct_idx *restrict n1 = in->n1, *restrict n2 = in->n2, *restrict n3 = in->n3,
                  *restrict n4 = in->n4;
     const uint32_t nnode = (uint32_t)in->nnode;
@@ -55,84 +144,51 @@ int cti_bucket_boxes(const ct_search_input *in, ct_real *restrict xyzw, ct_real 
     ct_real u0 = CTI_HUGE, u1 = CTI_HUGE, u2 = CTI_HUGE;
     ct_real v0 = -CTI_HUGE, v1 = -CTI_HUGE, v2 = -CTI_HUGE;
     int bad = 0, range = 0;
-    const ct_idx nseg = in->nseg;
+#define BK_BOX_REDUCE(j, SCATTERED, WITH_BOX)                                           \
+    do {                                                                                \
+        const bk_boxes_out o = {x,   y,    z,    xyzw,  n1, n2, n3, n4,                  \
+                                box, srec, fbox, nnode, d};                             \
+        const bk_box_res r = bk_box_one(o, (j), (SCATTERED), (WITH_BOX));               \
+        range |= r.flags & 1, bad |= r.flags >> 1;                                      \
+        u0 = CTI_MIN(u0, r.lx), u1 = CTI_MIN(u1, r.ly), u2 = CTI_MIN(u2, r.lz);         \
+        v0 = CTI_MAX(v0, r.hx), v1 = CTI_MAX(v1, r.hy), v2 = CTI_MAX(v2, r.hz);         \
+    } while (0)
     const int pf = cti_bucket_scattered(in);
-    enum { AHEAD = 8 };
+    if (!pf && !xyzw && !srec && !box) {
+        BK_PAR_FOR_SIMD((schedule(static) reduction(min : u0, u1, u2)
+                             reduction(max : v0, v1, v2) reduction(| : bad, range)))
+        for (ct_idx j = 0; j < nseg; j++)
+            BK_BOX_REDUCE(j, 0, 0);
+    } else if (!pf && !xyzw && !srec) {
+        BK_PAR_FOR_SIMD((schedule(static) reduction(min : u0, u1, u2)
+                             reduction(max : v0, v1, v2) reduction(| : bad, range)))
+        for (ct_idx j = 0; j < nseg; j++)
+            BK_BOX_REDUCE(j, 0, 1);
+    } else {
+        enum { AHEAD = 8 };
 #pragma omp parallel for schedule(static) reduction(min : u0, u1, u2) \
     reduction(max : v0, v1, v2) reduction(| : bad, range)
-    for (ct_idx j = 0; j < nseg; j++) {
+        for (ct_idx j = 0; j < nseg; j++) {
 #if defined(__GNUC__)
-        if (pf && j + AHEAD < nseg) {
-            const ct_idx q[4] = {n1[j + AHEAD], n2[j + AHEAD], n3[j + AHEAD], n4[j + AHEAD]};
-            for (int k = 0; k < 4; k++)
-                if ((uint32_t)q[k] < nnode) {
-                    if (xyzw) {
-                        __builtin_prefetch(xyzw + 4 * (size_t)q[k]);
-                    } else {
-                        __builtin_prefetch(x + q[k]);
-                        __builtin_prefetch(y + q[k]);
-                        __builtin_prefetch(z + q[k]);
+            if (j + AHEAD < nseg) {
+                const ct_idx q[4] = {n1[j + AHEAD], n2[j + AHEAD], n3[j + AHEAD],
+                                     n4[j + AHEAD]};
+                for (int k = 0; k < 4; k++)
+                    if ((uint32_t)q[k] < nnode) {
+                        if (xyzw) {
+                            __builtin_prefetch(xyzw + 4 * (size_t)q[k]);
+                        } else {
+                            __builtin_prefetch(x + q[k]);
+                            __builtin_prefetch(y + q[k]);
+                            __builtin_prefetch(z + q[k]);
+                        }
                     }
-                }
-        }
+            }
 #endif
-        ct_idx a = n1[j], b = n2[j], c = n3[j], e = n4[j];
-        float *restrict f = fbox + (size_t)8 * j;
-        if (((uint32_t)a >= nnode) | ((uint32_t)b >= nnode) | ((uint32_t)c >= nnode) |
-            ((uint32_t)e >= nnode)) {
-            range = 1;
-            for (int q = 0; q < 8; q++)
-                f[q] = 0;
-            continue;
+            BK_BOX_REDUCE(j, 1, box != NULL);
         }
-        ct_real xa, xb, xc, xe, ya, yb, yc, ye, za, zb, zc, ze;
-        if (xyzw) {
-            const ct_real *pa = xyzw + 4 * (size_t)a, *pb = xyzw + 4 * (size_t)b;
-            const ct_real *pc = xyzw + 4 * (size_t)c, *pe = xyzw + 4 * (size_t)e;
-            xa = pa[0], ya = pa[1], za = pa[2], xb = pb[0], yb = pb[1], zb = pb[2];
-            xc = pc[0], yc = pc[1], zc = pc[2], xe = pe[0], ye = pe[1], ze = pe[2];
-        } else {
-            xa = x[a], xb = x[b], xc = x[c], xe = x[e];
-            ya = y[a], yb = y[b], yc = y[c], ye = y[e];
-            za = z[a], zb = z[b], zc = z[c], ze = z[e];
-        }
-        /* Each v - v is 0, or NaN for NaN and infinities (min and max may
-         * drop a NaN, so the check is on the corners). */
-        ct_real fin = ((xa - xa) + (xb - xb) + (xc - xc) + (xe - xe)) +
-                      ((ya - ya) + (yb - yb) + (yc - yc) + (ye - ye)) +
-                      ((za - za) + (zb - zb) + (zc - zc) + (ze - ze));
-        bad |= !(fin == 0);
-        /* The predicate's own expressions: the same minima and maxima. */
-        ct_real lx = CTI_MIN(CTI_MIN(xa, xb), CTI_MIN(xc, xe));
-        ct_real hx = CTI_MAX(CTI_MAX(xa, xb), CTI_MAX(xc, xe));
-        ct_real ly = CTI_MIN(CTI_MIN(ya, yb), CTI_MIN(yc, ye));
-        ct_real hy = CTI_MAX(CTI_MAX(ya, yb), CTI_MAX(yc, ye));
-        ct_real lz = CTI_MIN(CTI_MIN(za, zb), CTI_MIN(zc, ze));
-        ct_real hz = CTI_MAX(CTI_MAX(za, zb), CTI_MAX(zc, ze));
-        if (srec) {
-            ct_real *restrict q = srec + (size_t)12 * j;
-            q[0] = xa, q[1] = ya, q[2] = za, q[3] = xb, q[4] = yb, q[5] = zb;
-            q[6] = xc, q[7] = yc, q[8] = zc, q[9] = xe, q[10] = ye, q[11] = ze;
-        }
-        if (box) {
-            ct_real *restrict r = box + (size_t)6 * j;
-            r[0] = lx, r[1] = ly, r[2] = lz, r[3] = hx, r[4] = hy, r[5] = hz;
-        }
-        f[0] = bk_float_out(lx - d, 1);
-        f[1] = bk_float_out(ly - d, 1);
-        f[2] = bk_float_out(lz - d, 1);
-        f[3] = 0;
-        f[4] = -bk_float_out(hx + d, 0);
-        f[5] = -bk_float_out(hy + d, 0);
-        f[6] = -bk_float_out(hz + d, 0);
-        f[7] = 0;
-        u0 = CTI_MIN(u0, lx);
-        u1 = CTI_MIN(u1, ly);
-        u2 = CTI_MIN(u2, lz);
-        v0 = CTI_MAX(v0, hx);
-        v1 = CTI_MAX(v1, hy);
-        v2 = CTI_MAX(v2, hz);
     }
+#undef BK_BOX_REDUCE
     mb[0] = u0, mb[1] = u1, mb[2] = u2, mb[3] = v0, mb[4] = v1, mb[5] = v2;
     if (range)
         return CT_ERR_RANGE;
