@@ -11,9 +11,13 @@
 
 /* The bucket passes' parallel loops that gcc vectorises (clauses in
  * parentheses). clang 14 gets the plain loop: it cannot vectorise pass 1's
- * gathers (and warns, an error under -Werror), and vectorised the range
- * pass with a wrong sum of entries (7783 for 60516 on a 10^4 plate), which
- * overran the entry array. */
+ * gathers (and warns, an error under -Werror), and it vectorised the range
+ * pass with a wrong sum of entries, one vector lane's share of it (7783 for
+ * 60516 on a 10^4 plate with 8 lanes; 1/2 and 1/4 with SSE2 and AVX2),
+ * which overran the entry array. The same loop sums right as `omp simd`
+ * alone or with a 64-bit loop index: a fault of clang 14.0.6's combined
+ * `parallel for simd` with a reduction, found here (reproduced apart from
+ * this code, not reduced to a few lines). */
 #ifdef __clang__
 #define BK_PAR_FOR_SIMD(clauses) CTI_PRAGMA(omp parallel for CTI_UNPAREN clauses)
 #else
