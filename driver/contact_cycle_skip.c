@@ -35,8 +35,14 @@ static double list_keep(ct_idx n, const ct_idx *restrict list, const ct_real *re
         xp[k] = x[k];
         yp[k] = y[k];
         zp[k] = z[k];
-        double a = fmax(fabs((double)x[k]), fmax(fabs((double)y[k]), fabs((double)z[k])));
-        L = (a > L || a != a) ? (a != a ? INFINITY : a) : L;
+        /* Selects, not fmax: a libm call per coordinate (gcc does not
+         * inline fmax, whose NaN rule differs from a select's), and fmax
+         * would drop a NaN coordinate where the bound must be infinite. */
+        const double ax = fabs((double)x[k]), ay = fabs((double)y[k]), az = fabs((double)z[k]);
+        double a = ax > ay ? ax : ay;
+        a = az > a ? az : a;
+        a = (ax != ax) | (ay != ay) | (az != az) ? INFINITY : a;
+        L = a > L ? a : L;
     }
     return L;
 }
@@ -55,8 +61,10 @@ void cti_skip_motion(ctd_cycle *cy, const ct_real *x, const ct_real *y, const ct
         cy->motion += b == b ? (double)b : INFINITY;
     }
     double L = list_keep(cy->nsec, cy->sec, x, y, z, cy->xp, cy->yp, cy->zp);
-    if (!cy->self)
-        L = fmax(L, list_keep(cy->nmain, cy->mainn, x, y, z, cy->xp, cy->yp, cy->zp));
+    if (!cy->self) {
+        const double Lm = list_keep(cy->nmain, cy->mainn, x, y, z, cy->xp, cy->yp, cy->zp);
+        L = Lm > L ? Lm : L; /* neither is NaN */
+    }
     cy->have_prev = 1;
     cy->slack = 1024 * CY_EPS * (L + (double)cy->p.gap);
 }
