@@ -411,7 +411,8 @@ int ctd_brick_forces(ctd_brick *b, const ct_real *CT_RESTRICT x, const ct_real *
                         d2z = p[i3][2][l] - p[i1][2][l];
                 ct_real cx = d1y * d2z - d1z * d2y, cy = d1z * d2x - d1x * d2z,
                         cz = d1x * d2y - d1y * d2x;
-                amax = CTI_FMAX(amax, CTI_SQRT(cx * cx + cy * cy + cz * cz) / 2);
+                const ct_real a = CTI_SQRT(cx * cx + cy * cy + cz * cz) / 2;
+                amax = a > amax ? a : amax; /* fmax's answer: amax is never NaN */
             }
             ct_real dt = (V[l] > 0 && amax > 0) ? V[l] / amax / cw : 0;
             dte[e] = dt;
@@ -489,7 +490,8 @@ ct_real ctd_brick_dt(const ctd_brick *b, const ct_real *x, const ct_real *y, con
             ct_real d2[3] = {p3[0] - p1[0], p3[1] - p1[1], p3[2] - p1[2]};
             ct_real cx = d1[1] * d2[2] - d1[2] * d2[1], cy = d1[2] * d2[0] - d1[0] * d2[2],
                     cz = d1[0] * d2[1] - d1[1] * d2[0];
-            amax = CTI_FMAX(amax, CTI_SQRT(cx * cx + cy * cy + cz * cz) / 2);
+            const ct_real a = CTI_SQRT(cx * cx + cy * cy + cz * cz) / 2;
+            amax = a > amax ? a : amax; /* fmax's answer: amax is never NaN */
         }
         ct_real v = volume_of(P, dN);
         /* An inverted or collapsed element gives 0 (the solver stops). */
