@@ -140,8 +140,11 @@ static int edge_search(ctd_iface *it, ctdi_epass *e, const ct_real *x, const ct_
         double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300}, ext = 0;
         for (ct_idx b = b0; b < b1; b++)
             for (int ax = 0; ax < 3; ax++) {
-                lo[ax] = fmin(lo[ax], (double)box[6 * b + ax]);
-                hi[ax] = fmax(hi[ax], (double)box[6 * b + 3 + ax]);
+                /* Selects, as fmin and fmax answer here (lo and hi are never
+                 * NaN) without their libm calls. */
+                const double l = (double)box[6 * b + ax], h = (double)box[6 * b + 3 + ax];
+                lo[ax] = l < lo[ax] ? l : lo[ax];
+                hi[ax] = h > hi[ax] ? h : hi[ax];
                 ext += (double)box[6 * b + 3 + ax] - (double)box[6 * b + ax];
             }
         int64_t nbox = b1 - b0;
