@@ -41,7 +41,7 @@ static double list_keep(ct_idx n, const ct_idx *restrict list, const ct_real *re
         const double ax = fabs((double)x[k]), ay = fabs((double)y[k]), az = fabs((double)z[k]);
         double a = ax > ay ? ax : ay;
         a = az > a ? az : a;
-        a = (ax != ax) | (ay != ay) | (az != az) ? INFINITY : a;
+        a = ((ax != ax) | (ay != ay) | (az != az)) ? INFINITY : a;
         L = a > L ? a : L;
     }
     return L;
