@@ -82,6 +82,17 @@ static inline double ctb_gbps(double bytes, double seconds)
     return seconds > 0 ? bytes / seconds / 1e9 : -1;
 }
 
+/* Mark index v in seen[0..n-1], counting it in *count the first time;
+ * 1 when v is out of range (nothing marked). */
+static inline int ctb_floor_mark(unsigned char *seen, int64_t n, ct_idx v, int64_t *count)
+{
+    if (v < 0 || v >= n)
+        return 1;
+    *count += !seen[v];
+    seen[v] = 1;
+    return 0;
+}
+
 /*
  * The nodes a search over this input touches: the union of the secondary
  * nodes sec[0..nsec-1] and the corners n1..n4 of the nseg main segments
@@ -100,26 +111,12 @@ static inline int64_t ctb_floor_touched_nodes(int64_t nnode_all, int64_t nsec,
         return -1;
     int64_t count = 0;
     int bad = 0;
-    for (int64_t i = 0; i < nsec && !bad; i++) {
-        ct_idx v = sec[i];
-        if (v < 0 || v >= nnode_all) {
-            bad = 1;
-            break;
-        }
-        count += !seen[v];
-        seen[v] = 1;
-    }
+    for (int64_t i = 0; i < nsec && !bad; i++)
+        bad = ctb_floor_mark(seen, nnode_all, sec[i], &count);
     const ct_idx *corner[4] = {n1, n2, n3, n4};
     for (int c = 0; c < 4 && !bad; c++)
-        for (int64_t s = 0; s < nseg; s++) {
-            ct_idx v = corner[c][s];
-            if (v < 0 || v >= nnode_all) {
-                bad = 1;
-                break;
-            }
-            count += !seen[v];
-            seen[v] = 1;
-        }
+        for (int64_t s = 0; s < nseg && !bad; s++)
+            bad = ctb_floor_mark(seen, nnode_all, corner[c][s], &count);
     free(seen);
     return bad ? -1 : count;
 }
@@ -180,26 +177,17 @@ static inline int ctb_floor_pairs_touched(int64_t nnode_all, int64_t nseg_all, i
     int64_t nn = 0, ns = 0;
     const ct_idx *corner[4] = {n1, n2, n3, n4};
     for (int64_t k = 0; k < npair && !bad; k++) {
-        ct_idx v = node[k], e = seg[k];
-        if (v < 0 || v >= nnode_all || e < 0 || e >= nseg_all) {
+        const ct_idx e = seg[k];
+        if (e < 0 || e >= nseg_all || ctb_floor_mark(seen, nnode_all, node[k], &nn)) {
             bad = 1;
             break;
         }
-        nn += !seen[v];
-        seen[v] = 1;
         if (sseen[e])
             continue;
         sseen[e] = 1;
         ns++;
-        for (int c = 0; c < 4; c++) {
-            ct_idx w = corner[c][e];
-            if (w < 0 || w >= nnode_all) {
-                bad = 1;
-                break;
-            }
-            nn += !seen[w];
-            seen[w] = 1;
-        }
+        for (int c = 0; c < 4 && !bad; c++)
+            bad = ctb_floor_mark(seen, nnode_all, corner[c][e], &nn);
     }
     free(seen);
     free(sseen);
