@@ -8,49 +8,13 @@
 
 #include "test_search_scene.h"
 
-/* Grid of nodes x = xs[i], y = ys[j] at height z; segments (quads, or two
- * triangles per cell) when segs. Returns the first node. */
-static ct_idx bs_grid(ctt_scene *s, int nx, int ny, const double *xs, const double *ys, double z,
-                      int segs, int tri)
-{
-    ct_idx base = s->nn;
-    for (int j = 0; j < ny; j++)
-        for (int i = 0; i < nx; i++)
-            ctt_scene_node(s, xs[i], ys[j], z);
-    for (int j = 0; segs && j + 1 < ny; j++)
-        for (int i = 0; i + 1 < nx; i++) {
-            ct_idx a = base + j * nx + i, b = a + 1, c = a + nx + 1, d = a + nx;
-            if (tri) {
-                ctt_scene_seg(s, a, b, c, c);
-                ctt_scene_seg(s, a, c, d, d);
-            } else {
-                ctt_scene_seg(s, a, b, c, d);
-            }
-        }
-    return base;
-}
-
-static ct_idx bs_plate(ctt_scene *s, int nx, int ny, double ox, double oy, double z, double h,
-                       int segs, int tri)
-{
-    double *xs = malloc(sizeof(double) * (size_t)nx), *ys = malloc(sizeof(double) * (size_t)ny);
-    for (int i = 0; i < nx; i++)
-        xs[i] = ox + h * i;
-    for (int j = 0; j < ny; j++)
-        ys[j] = oy + h * j;
-    ct_idx b = bs_grid(s, nx, ny, xs, ys, z, segs, tri);
-    free(xs);
-    free(ys);
-    return b;
-}
-
 /* The classic two plates: main quads (or triangles) at z = 0, a node plate
  * at z = dz shifted in-plane by (0.25, 0.35) element. */
 static void bs_two_plates(ctt_scene *s, int n, double dz, int tri)
 {
     ctt_scene_init(s, 2 * n * n, 2 * n * n);
-    bs_plate(s, n, n, 0, 0, 0, 1.0, 1, tri);
-    ct_idx b = bs_plate(s, n, n, 0.25, 0.35, dz, 1.0, 0, 0);
+    ctt_scene_plate(s, n, n, 0, 0, 0, 1.0, 1, tri);
+    ct_idx b = ctt_scene_plate(s, n, n, 0.25, 0.35, dz, 1.0, 0, 0);
     for (ct_idx i = 0; i < n * n; i++)
         ctt_scene_sec(s, b + i);
 }
@@ -159,7 +123,7 @@ Test(search_bsp, all_nodes_in_one_tiny_box)
 {
     ctt_scene s;
     ctt_scene_init(&s, 2000, 400);
-    bs_plate(&s, 12, 12, -5, -5, 0, 1.0, 1, 0);
+    ctt_scene_plate(&s, 12, 12, -5, -5, 0, 1.0, 1, 0);
     rng_state = 7;
     for (int i = 0; i < 500; i++)
         ctt_scene_sec(&s, ctt_scene_node(&s, 0.3 + 1e-9 * rnd(), 0.2 + 1e-9 * rnd(),
@@ -180,7 +144,7 @@ Test(search_bsp, coplanar_and_collinear)
 {
     ctt_scene s;
     ctt_scene_init(&s, 2000, 400);
-    bs_plate(&s, 15, 15, 0, 0, 0, 1.0, 1, 0);
+    ctt_scene_plate(&s, 15, 15, 0, 0, 0, 1.0, 1, 0);
     rng_state = 11;
     for (int i = 0; i < 300; i++)
         /* coplanar */
@@ -211,10 +175,10 @@ Test(search_bsp, duplicate_coordinates)
 {
     ctt_scene s;
     ctt_scene_init(&s, 3000, 600);
-    bs_plate(&s, 10, 10, 0, 0, 0, 1.0, 1, 0);
-    bs_plate(&s, 10, 10, 0, 0, 0, 1.0, 1, 1); /* the same plate again, as triangles */
+    ctt_scene_plate(&s, 10, 10, 0, 0, 0, 1.0, 1, 0);
+    ctt_scene_plate(&s, 10, 10, 0, 0, 0, 1.0, 1, 1); /* the same plate again, as triangles */
     for (int k = 0; k < 3; k++) {
-        ct_idx b = bs_plate(&s, 10, 10, 0.5, 0.5, 0.2, 1.0, 0, 0);
+        ct_idx b = ctt_scene_plate(&s, 10, 10, 0.5, 0.5, 0.2, 1.0, 0, 0);
         for (ct_idx i = 0; i < 100; i++)
             ctt_scene_sec(&s, b + i);
     }
@@ -228,11 +192,11 @@ Test(search_bsp, one_huge_segment)
 {
     ctt_scene s;
     ctt_scene_init(&s, 3000, 1000);
-    bs_plate(&s, 20, 20, 0, 0, 0, 0.1, 1, 0);
+    ctt_scene_plate(&s, 20, 20, 0, 0, 0, 0.1, 1, 0);
     ct_idx a = ctt_scene_node(&s, -50, -50, 0.5), b = ctt_scene_node(&s, 50, -50, 0.5);
     ct_idx c = ctt_scene_node(&s, 50, 50, 0.5), d = ctt_scene_node(&s, -50, 50, 0.5);
     ctt_scene_seg(&s, a, b, c, d);
-    ct_idx p = bs_plate(&s, 30, 30, -0.5, -0.5, 0.3, 0.1, 0, 0);
+    ct_idx p = ctt_scene_plate(&s, 30, 30, -0.5, -0.5, 0.3, 0.1, 0, 0);
     for (ct_idx i = 0; i < 900; i++)
         ctt_scene_sec(&s, p + i);
     ct_search_input in = ctt_scene_input(&s, 0.2, 0.05, 0);
@@ -256,7 +220,7 @@ Test(search_bsp, offset_and_scaled_coordinates)
         double *xs = malloc(sizeof(double) * n);
         for (int i = 0; i < n; i++)
             xs[i] = off[v] + sc[v] * i;
-        bs_grid(&s, n, n, xs, xs, off[v], 1, 0);
+        ctt_scene_grid(&s, n, n, xs, xs, off[v], 1, 0);
         for (int i = 0; i < 600; i++)
             ctt_scene_sec(&s, ctt_scene_node(&s, off[v] + sc[v] * (n * rnd() - 0.5),
                                              off[v] + sc[v] * (n * rnd() - 0.5),
@@ -308,11 +272,11 @@ Test(search_bsp, strongly_graded_mesh)
     xs[0] = 0;
     for (int i = 1; i < n; i++, h *= r)
         xs[i] = xs[i - 1] + h;
-    bs_grid(&s, n, n, xs, xs, 0, 1, 0);
+    ctt_scene_grid(&s, n, n, xs, xs, 0, 1, 0);
     double *ys = malloc(sizeof(double) * n);
     for (int i = 0; i < n; i++)
         ys[i] = xs[i] * 0.97 + 0.003;
-    ct_idx b = bs_grid(&s, n, n, ys, ys, 0.02, 0, 0);
+    ct_idx b = ctt_scene_grid(&s, n, n, ys, ys, 0.02, 0, 0);
     for (ct_idx i = 0; i < n * n; i++)
         ctt_scene_sec(&s, b + i);
     ct_search_input in = ctt_scene_input(&s, 0.02, 0.01, 0);

@@ -94,7 +94,7 @@ Test(search_bucket, coplanar_collinear_duplicates)
 {
     ctt_scene s;
     sc_init(&s, 600, 200, 400);
-    sc_plate(&s, 8, 8, 0, 0, 0, 1, 1, 0);
+    ctt_scene_plate(&s, 8, 8, 0, 0, 0, 1, 1, 0);
     for (int i = 0; i < 60; i++) /* collinear, in the plane */
         s.sec[s.nsec++] = ctt_scene_node(&s, -1 + 0.15 * i, 3.5, 0);
     for (int i = 0; i < 60; i++) /* duplicates of the main nodes */
@@ -308,7 +308,7 @@ Test(search_bucket, segment_wider_than_the_packed_range)
     enum { L = 3000 };
     ctt_scene s;
     sc_init(&s, 2 * (L + 1) + 4 + 4 * L, L + 1, 4 * L);
-    sc_plate(&s, L + 1, 2, 0, 0, 0, 1, 1, 0);
+    ctt_scene_plate(&s, L + 1, 2, 0, 0, 0, 1, 1, 0);
     ct_idx a = ctt_scene_node(&s, 0, 0.25, 0.2), b = ctt_scene_node(&s, L, 0.25, 0.2);
     ct_idx c = ctt_scene_node(&s, L, 0.75, 0.2), d = ctt_scene_node(&s, 0, 0.75, 0.2);
     const ct_idx wide = s.ns;

@@ -19,28 +19,6 @@ static inline void sc_init(ctt_scene *s, ct_idx nn, ct_idx ns, ct_idx nsec)
     ctt_scene_init(s, nn > nsec ? nn : nsec, ns);
 }
 
-/* An nx by ny grid of nodes at height z with spacing h, origin (ox, oy);
- * returns the first node. With quads (or 2 triangles per cell) when segs. */
-static inline ct_idx sc_plate(ctt_scene *s, int nx, int ny, double ox, double oy, double z,
-                              double h, int segs, int tri)
-{
-    ct_idx base = s->nn;
-    for (int j = 0; j < ny; j++)
-        for (int i = 0; i < nx; i++)
-            ctt_scene_node(s, ox + h * i, oy + h * j, z);
-    for (int j = 0; segs && j + 1 < ny; j++)
-        for (int i = 0; i + 1 < nx; i++) {
-            ct_idx a = base + j * nx + i, b = a + 1, c = a + nx + 1, d = a + nx;
-            if (tri) {
-                ctt_scene_seg(s, a, b, c, c);
-                ctt_scene_seg(s, a, c, d, d);
-            } else {
-                ctt_scene_seg(s, a, b, c, d);
-            }
-        }
-    return base;
-}
-
 static inline double rnd(uint64_t *r)
 {
     *r = *r * 6364136223846793005ull + 1442695040888963407ull;
@@ -94,9 +72,9 @@ static inline ct_idx check_same(const ct_search_input *in)
 static inline void two_plates(ctt_scene *s, int n, double h, double off, double scale, int tri)
 {
     sc_init(s, 2 * (n + 1) * (n + 1), 2 * n * n, (n + 1) * (n + 1));
-    sc_plate(s, n + 1, n + 1, off, off, off, scale, 1, tri);
-    ct_idx a = sc_plate(s, n, n, off + 0.25 * scale, off + 0.35 * scale, off + h * scale, scale,
-                        0, 0);
+    ctt_scene_plate(s, n + 1, n + 1, off, off, off, scale, 1, tri);
+    ct_idx a = ctt_scene_plate(s, n, n, off + 0.25 * scale, off + 0.35 * scale,
+                               off + h * scale, scale, 0, 0);
     for (ct_idx i = 0; i < n * n; i++)
         s->sec[i] = a + i;
     s->nsec = n * n;

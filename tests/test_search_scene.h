@@ -1,8 +1,9 @@
 /*
  * test_search_scene.h -- a hand-built search scene for the search tests
- * (test_search_bsp.c, test_search_topo.c, test_search_families.c): nodes,
- * main segments and secondary nodes added one by one into fixed-capacity
- * arrays, the search input over them, and running and comparing searches.
+ * (test_search_bsp.c, test_search_bucket*.c, test_search_topo.c,
+ * test_search_families.c): nodes, main segments and secondary nodes added
+ * one by one into fixed-capacity arrays, grids and plates of them, the
+ * search input over them, and running and comparing searches.
  */
 #ifndef TEST_SCENE_H
 #define TEST_SCENE_H
@@ -58,6 +59,43 @@ static inline void ctt_scene_seg(ctt_scene *s, ct_idx a, ct_idx b, ct_idx c, ct_
 
 /* Node `node` becomes the next secondary node. */
 static inline void ctt_scene_sec(ctt_scene *s, ct_idx node) { s->sec[s->nsec++] = node; }
+
+/* Grid of nodes x = xs[i], y = ys[j] at height z; segments (quads, or two
+ * triangles per cell) when segs. Returns the first node. */
+static inline ct_idx ctt_scene_grid(ctt_scene *s, int nx, int ny, const double *xs,
+                                    const double *ys, double z, int segs, int tri)
+{
+    ct_idx base = s->nn;
+    for (int j = 0; j < ny; j++)
+        for (int i = 0; i < nx; i++)
+            ctt_scene_node(s, xs[i], ys[j], z);
+    for (int j = 0; segs && j + 1 < ny; j++)
+        for (int i = 0; i + 1 < nx; i++) {
+            ct_idx a = base + j * nx + i, b = a + 1, c = a + nx + 1, d = a + nx;
+            if (tri) {
+                ctt_scene_seg(s, a, b, c, c);
+                ctt_scene_seg(s, a, c, d, d);
+            } else {
+                ctt_scene_seg(s, a, b, c, d);
+            }
+        }
+    return base;
+}
+
+/* A plate: the grid at spacing h from (ox, oy). */
+static inline ct_idx ctt_scene_plate(ctt_scene *s, int nx, int ny, double ox, double oy,
+                                     double z, double h, int segs, int tri)
+{
+    double *xs = malloc(sizeof(double) * (size_t)nx), *ys = malloc(sizeof(double) * (size_t)ny);
+    for (int i = 0; i < nx; i++)
+        xs[i] = ox + h * i;
+    for (int j = 0; j < ny; j++)
+        ys[j] = oy + h * j;
+    ct_idx b = ctt_scene_grid(s, nx, ny, xs, ys, z, segs, tri);
+    free(xs);
+    free(ys);
+    return b;
+}
 
 /* The search input over the scene (hull filter). */
 static inline ct_search_input ctt_scene_input(const ctt_scene *s, double gap, double margin,
