@@ -69,6 +69,7 @@ static void bsp_free(void *p)
         ct_free(st->stk[t].lc);
         ct_free(st->stk[t].lcn);
         ct_free(st->stk[t].lr);
+        ct_free(st->stk[t].part);
     }
     free(st->stk);
     free(st);
@@ -83,7 +84,7 @@ static size_t bsp_memory(const void *p)
         b += st->stk[t].cap * sizeof(ct_idx) + st->stk[t].rcap * BSP_REC * sizeof(bsp_f) +
              st->stk[t].lbcap * (6 * sizeof(bsp_f) + sizeof(ct_idx)) +
              st->stk[t].lccap * (BSP_LC * sizeof(ct_real) + 4 * sizeof(ct_idx)) +
-             st->stk[t].lrcap;
+             st->stk[t].lrcap + st->stk[t].partcap * sizeof(bsp_f);
     return b;
 }
 
@@ -160,26 +161,34 @@ static int bsp_prepare(ct_search *s, const ct_search_input *in, bsp_state **out)
     return CT_OK;
 }
 
-/* Partition nodes [n0, n1) in place about `mid` on axis `ax` (below: left),
- * and return the split index with the children's tight boxes. */
+/* Partition nodes [n0, n1) about `mid` on axis `ax` (below: left), and
+ * return the split index with the children's tight boxes. With a scratch
+ * (part, see cti_bsp_partition) the partition is stable; without one (a
+ * box above BSP_PART_MAX nodes), Hoare's, in place. */
 static ct_idx bsp_split_nodes(bsp_state *st, ct_idx n0, ct_idx n1, int ax, bsp_f mid,
-                              bsp_box *bl, bsp_box *br)
+                              bsp_f *part, bsp_box *bl, bsp_box *br)
 {
     bsp_f *restrict nx = st->nx, *restrict ny = st->ny, *restrict nz = st->nz;
     ct_idx *restrict nid = st->nid;
-    const bsp_f *a = ax == 0 ? nx : (ax == 1 ? ny : nz);
-    ct_idx i = n0, j = n1 - 1;
-    for (;;) {
-        while (i <= j && a[i] < mid)
-            i++;
-        while (i <= j && !(a[j] < mid))
-            j--;
-        if (i >= j)
-            break;
-        bsp_f tx = nx[i], ty = ny[i], tz = nz[i];
-        ct_idx ti = nid[i];
-        nx[i] = nx[j]; ny[i] = ny[j]; nz[i] = nz[j]; nid[i] = nid[j];
-        nx[j] = tx; ny[j] = ty; nz[j] = tz; nid[j] = ti;
+    ct_idx i;
+    if (part) {
+        i = cti_bsp_partition(nx, ny, nz, nid, n0, n1, ax, mid, part);
+    } else {
+        const bsp_f *a = ax == 0 ? nx : (ax == 1 ? ny : nz);
+        ct_idx j = n1 - 1;
+        i = n0;
+        for (;;) {
+            while (i <= j && a[i] < mid)
+                i++;
+            while (i <= j && !(a[j] < mid))
+                j--;
+            if (i >= j)
+                break;
+            bsp_f tx = nx[i], ty = ny[i], tz = nz[i];
+            ct_idx ti = nid[i];
+            nx[i] = nx[j]; ny[i] = ny[j]; nz[i] = nz[j]; nid[i] = nid[j];
+            nx[j] = tx; ny[j] = ty; nz[j] = tz; nid[j] = ti;
+        }
     }
     /* The children's tight boxes in loops of their own, which vectorise
      * (the partition's loops above cannot). */
@@ -301,10 +310,11 @@ static bsp_f bsp_sample_median(const bsp_f *a, ct_idx n0, ct_idx n1, bsp_f lo, b
  * are tried from the longest until one reduces the segment count (the
  * nodes are partitioned in place, the two lists written). With `median`,
  * the pivot is the nodes' sampled median (bsp_sample_median), else the
- * middle of the box. Returns 1 with the split in *k, or 0 when the box
- * must be a leaf. */
+ * middle of the box. part: the partition's scratch, NULL above
+ * BSP_PART_MAX nodes (bsp_part_of). Returns 1 with the split in *k, or 0
+ * when the box must be a leaf. */
 static int bsp_split(const bsp_ctx *c, ct_idx n0, ct_idx n1, const bsp_box *box,
-                     const bsp_list *li, ct_idx ns, int median, bsp_cut *k)
+                     const bsp_list *li, ct_idx ns, int median, bsp_f *part, bsp_cut *k)
 {
     int tried = 0;
     for (;;) {
@@ -317,7 +327,7 @@ static int bsp_split(const bsp_ctx *c, ct_idx n0, ct_idx n1, const bsp_box *box,
             const bsp_f *a = ax == 0 ? c->st->nx : (ax == 1 ? c->st->ny : c->st->nz);
             mid = bsp_sample_median(a, n0, n1, box->lo[ax], box->hi[ax], mid);
         }
-        k->m = bsp_split_nodes(c->st, n0, n1, ax, mid, &k->bl, &k->br);
+        k->m = bsp_split_nodes(c->st, n0, n1, ax, mid, part, &k->bl, &k->br);
         if (li->recs)
             bsp_split_recs(li->recs, ns, &k->bl, &k->br, li->lr, li->rr, &k->nl, &k->nr);
         else
@@ -360,6 +370,21 @@ static int bsp_rec_room(bsp_ctx *c, bsp_stack *sk, size_t n, size_t keep)
     return ok;
 }
 
+/* The partition's scratch for a box of nodes [n0, n1) in this thread's
+ * stack, or NULL when the box is above BSP_PART_MAX (Hoare's partition in
+ * place); *ok = 0 (and the error flag) when it cannot grow. */
+static bsp_f *bsp_part_of(bsp_ctx *c, bsp_stack *sk, ct_idx n0, ct_idx n1, int *ok)
+{
+    *ok = 1;
+    const size_t n = (size_t)(n1 - n0);
+    if (n > BSP_PART_MAX)
+        return NULL;
+    void *p = sk->part;
+    *ok = bsp_room(c, &p, &sk->partcap, 4 * (n + BSP_PART_PAD), sizeof(bsp_f), 0);
+    sk->part = p;
+    return *ok ? sk->part : NULL;
+}
+
 /* Subtree below the task cutoff, on this thread: the segment list is ns
  * records at offset `off` of this thread's record stack and `base` is the
  * stack's first free record (lists of the enclosing boxes live below it).
@@ -378,8 +403,12 @@ static void bsp_serial(bsp_ctx *c, bsp_stack *sk, ct_idx n0, ct_idx n1, const bs
         return;
     bsp_f *l = sk->rec + BSP_REC * base;
     bsp_list li = {NULL, NULL, NULL, sk->rec + BSP_REC * off, l, l + BSP_REC * (size_t)ns};
+    int ok;
+    bsp_f *part = bsp_part_of(c, sk, n0, n1, &ok);
+    if (!ok)
+        return;
     bsp_cut k;
-    if (!bsp_split(c, n0, n1, box, &li, ns, 0, &k)) {
+    if (!bsp_split(c, n0, n1, box, &li, ns, 0, part, &k)) {
         cti_bsp_leaf_rec(c, n0, n1, sk->rec + BSP_REC * off, ns);
         return;
     }
@@ -434,8 +463,12 @@ static void bsp_task(bsp_ctx *c, ct_idx n0, ct_idx n1, bsp_box box, const ct_idx
     if (!bsp_stack_room(c, sk, 2 * (size_t)ns))
         return;
     bsp_list li = {segs, sk->a, sk->a + ns, NULL, NULL, NULL};
+    int ok;
+    bsp_f *part = bsp_part_of(c, sk, n0, n1, &ok);
+    if (!ok)
+        return;
     bsp_cut k;
-    if (!bsp_split(c, n0, n1, &box, &li, ns, 1, &k)) {
+    if (!bsp_split(c, n0, n1, &box, &li, ns, 1, part, &k)) {
         cti_bsp_leaf(c, n0, n1, segs, ns);
         return;
     }

@@ -64,7 +64,9 @@ typedef struct bsp_box {
  *  - lc, lcn: a dense leaf's segments' corners and box bounds (BSP_LC
  *    arrays of lccap, search_bsp_dense.c) and their node numbers (4 arrays
  *    of lccap);
- *  - lr, lrcap: a dense leaf's answers, a byte per node and 8 segments. */
+ *  - lr, lrcap: a dense leaf's answers, a byte per node and 8 segments;
+ *  - part, partcap: the partition's scratch (search_bsp_partition.c), the
+ *    four arrays of a box's right part, in floats. */
 typedef struct bsp_stack {
     ct_idx *a;
     size_t cap;
@@ -78,7 +80,9 @@ typedef struct bsp_stack {
     size_t lccap;
     uint8_t *lr;
     size_t lrcap;
-    char pad[128 - 5 * sizeof(size_t) - 7 * sizeof(void *)];
+    bsp_f *part;
+    size_t partcap;
+    char pad[128 - 6 * sizeof(size_t) - 8 * sizeof(void *)];
 } bsp_stack;
 _Static_assert(sizeof(bsp_stack) % 64 == 0, "a thread's scratch fills whole cache lines");
 
@@ -257,6 +261,24 @@ static inline unsigned bsp_leaf_mask8(const bsp_f *restrict l0, const bsp_f *res
     return m;
 }
 #endif
+
+/* Boxes of at most this many nodes are partitioned stably, through the
+ * thread's scratch (cti_bsp_partition); larger ones, the few splits at the
+ * top of the tree, in place by Hoare's partition, so the scratch stays
+ * within 1 MiB a thread. Which one runs depends on the box alone, never on
+ * the thread count. */
+#define BSP_PART_MAX 65536
+/* Entries past a box's node count in each scratch array (a vector store
+ * of the right part writes up to 16 lanes past its end). */
+#define BSP_PART_PAD 16
+
+/* Partition the tree order [n0, n1) about `mid` on axis ax (0: nx, 1: ny,
+ * 2: nz): the nodes with coordinate < mid first, then the others, each
+ * part in its previous order (search_bsp_partition.c); returns the split
+ * index. scratch holds 4 * (n1 - n0 + BSP_PART_PAD) floats. */
+ct_idx cti_bsp_partition(bsp_f *restrict nx, bsp_f *restrict ny, bsp_f *restrict nz,
+                         ct_idx *restrict nid, ct_idx n0, ct_idx n1, int ax, bsp_f mid,
+                         bsp_f *restrict scratch);
 
 /* The tree coordinates of a search (search_bsp_leaf.c): the origin c->o,
  * the inflated segment boxes st->sb, and the nodes inside the union of the

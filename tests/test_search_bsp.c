@@ -3,9 +3,11 @@
  * returns exactly the pairs of the direct (all pairs) search, byte for byte,
  * on hard geometry, for any leaf size, box threshold and thread count.
  */
+#include <math.h>
 #include <stdint.h>
 #include <string.h>
 
+#include "search_bsp_internal.h"
 #include "test_search_scene.h"
 
 /* The classic two plates: main quads (or triangles) at z = 0, a node plate
@@ -416,4 +418,95 @@ Test(search_bsp, dense_leaf_large)
         cr_assert_eq(np, (ct_idx)nseg * nsec, "%d segments: %d pairs", nseg, np);
         ctt_scene_free(&s);
     }
+}
+
+/* The partition of a box's nodes (search_bsp_partition.c) against the
+ * stable partition written out plainly: nodes below the pivot first, then
+ * the others, each part in its order, a NaN coordinate on the right; on
+ * every axis, over counts that end inside and on a 16-lane vector, with
+ * ties at the pivot, from an offset into the arrays (the nodes before n0
+ * and from n1 on are left alone). */
+Test(search_bsp, node_partition_is_stable)
+{
+    enum { MAXN = 300, OFF = 5 };
+    const int counts[] = {0, 1, 15, 16, 17, 31, 32, 33, 100, 257, MAXN};
+    static float x[3][MAXN + 2 * OFF], ref[3][MAXN + 2 * OFF];
+    static ct_idx id[MAXN + 2 * OFF], refid[MAXN + 2 * OFF];
+    static float scratch[4 * (MAXN + BSP_PART_PAD)];
+    rng_state = 7;
+    for (int c = 0; c < (int)(sizeof counts / sizeof counts[0]); c++)
+        for (int ax = 0; ax < 3; ax++) {
+            const int n = counts[c], tot = n + 2 * OFF;
+            for (int i = 0; i < tot; i++) {
+                for (int a = 0; a < 3; a++) {
+                    /* Quarters: ties at the pivot 0.5 are common. */
+                    x[a][i] = (float)((int)(4 * rnd())) * 0.25f;
+                    if (rnd() < 0.02)
+                        x[a][i] = NAN;
+                }
+                id[i] = 1000 + i;
+            }
+            /* The reference: a plain stable partition into copies. */
+            int m = OFF;
+            for (int pass = 0; pass < 2; pass++)
+                for (int i = OFF; i < OFF + n; i++) {
+                    const int left = x[ax][i] < 0.5f;
+                    if (left != (pass == 0))
+                        continue;
+                    for (int a = 0; a < 3; a++)
+                        ref[a][m] = x[a][i];
+                    refid[m++] = id[i];
+                }
+            int nleft = 0;
+            for (int i = OFF; i < OFF + n; i++)
+                nleft += x[ax][i] < 0.5f;
+            for (int i = 0; i < OFF; i++) {
+                for (int a = 0; a < 3; a++) {
+                    ref[a][i] = x[a][i];
+                    ref[a][OFF + n + i] = x[a][OFF + n + i];
+                }
+                refid[i] = id[i];
+                refid[OFF + n + i] = id[OFF + n + i];
+            }
+            const ct_idx got = cti_bsp_partition(x[0], x[1], x[2], id, OFF, OFF + n, ax, 0.5f,
+                                                 scratch);
+            cr_assert_eq(got, OFF + nleft, "n %d axis %d: split at %d, want %d", n, ax, got,
+                         OFF + nleft);
+            for (int i = 0; i < tot; i++) {
+                cr_assert_eq(id[i], refid[i], "n %d axis %d: position %d holds node %d, want %d",
+                             n, ax, i, id[i], refid[i]);
+                for (int a = 0; a < 3; a++)
+                    cr_assert(memcmp(&x[a][i], &ref[a][i], sizeof(float)) == 0,
+                              "n %d axis %d: coordinate %d of position %d moved apart from its "
+                              "node", n, ax, a, i);
+            }
+        }
+}
+
+/* Boxes above BSP_PART_MAX nodes are split by Hoare's partition in place,
+ * the others stably: plates with more nodes than that (so the first splits
+ * take the first path, the rest the second) give the bucket search's pairs
+ * (the bucket search is checked against direct in test_search_bucket.c;
+ * direct itself would test 10^10 couples here), on 1 and 2 threads. */
+Test(search_bsp, boxes_above_the_stable_partition_size, .timeout = 120)
+{
+    ctt_scene s;
+    const int n = 300; /* 90000 nodes > BSP_PART_MAX */
+    cr_assert_gt(n * n, BSP_PART_MAX);
+    bs_two_plates(&s, n, 0.3, 0);
+    ct_search_input in = ctt_scene_input(&s, 0.3, 0.2, 0);
+    ct_pairs ref, got;
+    ct_pairs_init(&ref, 0);
+    ct_pairs_init(&got, 0);
+    ctt_search_tuned(CT_SEARCH_BUCKET, 0, 0, &in, &ref);
+    cr_assert_gt(ref.n, 2 * n * n);
+    for (int t = 1; t <= 2; t++) {
+        ctt_threads(t);
+        ctt_search_tuned(CT_SEARCH_BSP, 0, 0, &in, &got);
+        cr_assert(ctt_same_pairs(&ref, &got), "%d threads: bsp %d pairs, bucket %d", t, got.n,
+                  ref.n);
+    }
+    ct_pairs_destroy(&ref);
+    ct_pairs_destroy(&got);
+    ctt_scene_free(&s);
 }
