@@ -58,8 +58,28 @@ typedef int64_t cti_nr_int;
 /* `#pragma omp simd` on the pair loops. Neither compiler vectorises sqrt
  * while it may set errno: the loops vectorise only in a build with
  * -fno-math-errno (same, correctly rounded results). gcc 12 and clang 14
- * both vectorise every pair loop (see `make vecreport`). */
+ * both vectorise every pair loop (see `make vecreport`).
+ *
+ * With AVX-512 the node-segment loops take two vectors of pairs per
+ * iteration (simdlen: 16 doubles, 32 floats). Their time is set by one
+ * pair's chain of dependent operations (a division, a square root and
+ * another division, 13-20 cycles each, one after the other), not by the
+ * count of operations: perf puts the node-triangle loop's samples on the
+ * instructions waiting for them, and an iteration of one vector is too
+ * long for the processor to start the next one early. Two independent
+ * vectors in one iteration overlap their chains. Measured on a Zen 5
+ * class processor (interleaved rounds, 10^4 and 10^6 pairs, 1 thread):
+ * node-triangle 1.07x, closed form 1.03-1.06x, 4 triangles 1.02-1.09x,
+ * Newton 1.01-1.05x; edge-edge 0.98x, which keeps one vector
+ * (CTI_EE_SIMD). Each pair's arithmetic is the same in either width. */
+#define CTI_EE_SIMD _Pragma("omp simd")
+#if defined(__AVX512F__) && defined(CT_SINGLE)
+#define CTI_NR_SIMD _Pragma("omp simd simdlen(32)")
+#elif defined(__AVX512F__)
+#define CTI_NR_SIMD _Pragma("omp simd simdlen(16)")
+#else
 #define CTI_NR_SIMD _Pragma("omp simd")
+#endif
 
 /* Newton: iterations done for every pair in the vector loop (from the
  * linear start, see project_newton.c), then the cap for the pairs that have
@@ -321,8 +341,8 @@ CTI_NR_INLINE void cti_nr_tri(ct_real abx, ct_real aby, ct_real abz, ct_real acx
  * The sidedness rule and the outputs common to every node-segment method
  * (see ct_narrow.h): p and the contact point c, the segment normal at c
  * (Nx, Ny, Nz), unnormalised, of squared length nn, the squared segment
- * size l2, in the footprint test, g the pair's gap. One square root and
- * one division normalise whichever vector becomes the normal; one square
+ * size l2, in the footprint test, g the pair's gap. A square root and a
+ * division normalise whichever vector becomes the normal; one square
  * root gives the distance.
  */
 CTI_NR_INLINE void cti_nr_finish(ct_real px, ct_real py, ct_real pz, ct_real cx, ct_real cy,
@@ -340,8 +360,17 @@ CTI_NR_INLINE void cti_nr_finish(ct_real px, ct_real py, ct_real pz, ct_real cx,
     cti_nr_int behind = (!two_sided) & (!on) & (side < 0);
     cti_nr_int usen = behind | on;
     ct_real vx = usen ? Nx : rx, vy = usen ? Ny : ry, vz = usen ? Nz : rz;
-    ct_real v2 = usen ? nn : r2;
-    ct_real inv = 1 / CTI_SQRT(v2 > 0 ? v2 : 1);
+    /* 1 / sqrt of the chosen squared length (1 when it is not positive),
+     * formed per candidate and then selected: the segment normal's, from
+     * nn, which is known long before r, starts early, and the residual's
+     * reuses r, so only one division follows the square root of r2 on the
+     * pair's longest chain of dependent operations (which bounds this
+     * loop: a division or square root takes 13-20 cycles to deliver). The
+     * same values as selecting the length first: r > 0 exactly when
+     * r2 > 0. */
+    ct_real inn = 1 / CTI_SQRT(nn > 0 ? nn : 1);
+    ct_real inr = 1 / (r > 0 ? r : 1);
+    ct_real inv = usen ? inn : inr;
     ct_real gr = g - r;
     *dist = behind ? -r : r;
     *pen = behind ? (in ? g + r : 0) : (gr > 0 ? gr : 0);
