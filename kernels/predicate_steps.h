@@ -22,6 +22,20 @@
 #define CTI_STEP static inline
 #endif
 
+/* a * b + c with one rounding where the processor fuses them (FMA): the
+ * steps are mostly dot and cross products, which the fused form runs in
+ * fewer operations. Written out (the build does not contract on its own,
+ * -ffp-contract=off), so the one-pair predicate and the vector lanes
+ * compute the same roundings; a build without FMA rounds twice, the same
+ * way in both. */
+#if defined(__FMA__) && defined(CT_SINGLE)
+#define CTI_FMA(a, b, c) fmaf(a, b, c)
+#elif defined(__FMA__)
+#define CTI_FMA(a, b, c) fma(a, b, c)
+#else
+#define CTI_FMA(a, b, c) ((a) * (b) + (c))
+#endif
+
 /* A point or vector, passed by value (the compiler splits it into
  * scalars, in a vector loop into lanes). */
 typedef struct cti_pv {
@@ -34,13 +48,23 @@ CTI_STEP cti_pv cti_pv_sub(cti_pv a, cti_pv b)
     return r;
 }
 
-CTI_STEP ct_real cti_pv_dot(cti_pv a, cti_pv b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+CTI_STEP ct_real cti_pv_dot(cti_pv a, cti_pv b)
+{
+    return CTI_FMA(a.x, b.x, CTI_FMA(a.y, b.y, a.z * b.z));
+}
+
+/* u x v */
+CTI_STEP cti_pv cti_pv_cross(cti_pv u, cti_pv v)
+{
+    cti_pv r = {CTI_FMA(u.y, v.z, -(u.z * v.y)), CTI_FMA(u.z, v.x, -(u.x * v.z)),
+                CTI_FMA(u.x, v.y, -(u.y * v.x))};
+    return r;
+}
 
 /* (u x v) . w */
 CTI_STEP ct_real cti_pv_triple(cti_pv u, cti_pv v, cti_pv w)
 {
-    return w.x * (u.y * v.z - u.z * v.y) + w.y * (u.z * v.x - u.x * v.z) +
-           w.z * (u.x * v.y - u.y * v.x);
+    return cti_pv_dot(cti_pv_cross(u, v), w);
 }
 
 /* Squared distance from p to the segment a b. */
@@ -51,7 +75,7 @@ CTI_STEP ct_real cti_step_edge2(cti_pv p, cti_pv a, cti_pv b)
     ct_real t = cti_pv_dot(ap, ab) / l2;
     t = t < 0 ? 0 : (t > 1 ? 1 : t);
     t = l2 > 0 ? t : 0;
-    cti_pv r = {ap.x - t * ab.x, ap.y - t * ab.y, ap.z - t * ab.z};
+    cti_pv r = {CTI_FMA(-t, ab.x, ap.x), CTI_FMA(-t, ab.y, ap.y), CTI_FMA(-t, ab.z, ap.z)};
     return cti_pv_dot(r, r);
 }
 
@@ -138,7 +162,7 @@ CTI_STEP cti_prism cti_step_prism(cti_pv p, cti_pv a, cti_pv b, cti_pv c, cti_pv
 {
     cti_prism q;
     cti_pv ac = cti_pv_sub(c, a), be = cti_pv_sub(e, b);
-    cti_pv n = {ac.y * be.z - ac.z * be.y, ac.z * be.x - ac.x * be.z, ac.x * be.y - ac.y * be.x};
+    cti_pv n = cti_pv_cross(ac, be);
     ct_real nn = cti_pv_dot(n, n);
     cti_lane ok = nn > (ct_real)1e-2 * cti_pv_dot(ac, ac) * cti_pv_dot(be, be);
     cti_pv pa = cti_pv_sub(p, a), pb = cti_pv_sub(p, b), pc = cti_pv_sub(p, c),
@@ -185,7 +209,7 @@ CTI_STEP ct_real cti_step_far_edge(cti_pv n, cti_pv P, cti_pv R, cti_pv U, cti_p
                                    ct_real lat)
 {
     const cti_pv ek = cti_pv_sub(R, P);
-    const cti_pv m = {n.y * ek.z - n.z * ek.y, n.z * ek.x - n.x * ek.z, n.x * ek.y - n.y * ek.x};
+    const cti_pv m = cti_pv_cross(n, ek);
     const ct_real mm = cti_pv_dot(m, m);
     const cti_pv u = cti_pv_sub(U, P), v = cti_pv_sub(V, P);
     const ct_real mu = cti_pv_dot(m, u), mv = cti_pv_dot(m, v);
