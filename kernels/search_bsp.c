@@ -191,7 +191,7 @@ static ct_idx bsp_split_nodes(bsp_state *st, ct_idx n0, ct_idx n1, int ax, bsp_f
         }
     }
     /* The children's tight boxes in loops of their own, which vectorise
-     * (the partition's loops above cannot). */
+     * (Hoare's loops above cannot). */
     bsp_box_of(nx, ny, nz, n0, i, bl);
     bsp_box_of(nx, ny, nz, i, n1, br);
     return i;
@@ -380,7 +380,7 @@ static bsp_f *bsp_part_of(bsp_ctx *c, bsp_stack *sk, ct_idx n0, ct_idx n1, int *
     if (n > BSP_PART_MAX)
         return NULL;
     void *p = sk->part;
-    *ok = bsp_room(c, &p, &sk->partcap, 4 * (n + BSP_PART_PAD), sizeof(bsp_f), 0);
+    *ok = bsp_room(c, &p, &sk->partcap, 4 * n, sizeof(bsp_f), 0);
     sk->part = p;
     return *ok ? sk->part : NULL;
 }

@@ -268,14 +268,12 @@ static inline unsigned bsp_leaf_mask8(const bsp_f *restrict l0, const bsp_f *res
  * within 1 MiB a thread. Which one runs depends on the box alone, never on
  * the thread count. */
 #define BSP_PART_MAX 65536
-/* Entries past a box's node count in each scratch array (a vector store
- * of the right part writes up to 16 lanes past its end). */
-#define BSP_PART_PAD 16
 
 /* Partition the tree order [n0, n1) about `mid` on axis ax (0: nx, 1: ny,
  * 2: nz): the nodes with coordinate < mid first, then the others, each
  * part in its previous order (search_bsp_partition.c); returns the split
- * index. scratch holds 4 * (n1 - n0 + BSP_PART_PAD) floats. */
+ * index. scratch holds 4 * (n1 - n0) floats: the two parts' vector stores
+ * never reach past the nodes read so far. */
 ct_idx cti_bsp_partition(bsp_f *restrict nx, bsp_f *restrict ny, bsp_f *restrict nz,
                          ct_idx *restrict nid, ct_idx n0, ct_idx n1, int ax, bsp_f mid,
                          bsp_f *restrict scratch);

@@ -36,7 +36,7 @@ ct_idx cti_bsp_partition(bsp_f *restrict nx, bsp_f *restrict ny, bsp_f *restrict
                          bsp_f *restrict scratch)
 {
     /* The scratch holds the right part's four arrays, w apart. */
-    const size_t w = (size_t)(n1 - n0) + BSP_PART_PAD;
+    const size_t w = (size_t)(n1 - n0);
     bsp_f *restrict sx = scratch, *restrict sy = scratch + w, *restrict sz = scratch + 2 * w;
     ct_idx *restrict sid = (ct_idx *)(void *)(scratch + 3 * w);
     ct_idx i = n0, l = n0;
