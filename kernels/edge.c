@@ -112,7 +112,7 @@ int ct_narrow_edge_edge(ct_idx npair, const ct_idx *restrict ea, const ct_idx *r
             }
             G[j] = ga + gb;
         }
-        CTI_EE_SIMD
+        CTI_NR_SIMD
         for (ct_idx j = 0; j < nb; j++) {
             ct_idx k = k0 + j;
             /* Relative to A1 (accuracy far from the origin). */
@@ -247,7 +247,7 @@ int ct_edge_edge_forces(ct_idx npair, const ct_real *restrict fmag,
     CTI_PAR_FOR(nblock > 1, (schedule(static)),
     for (ct_idx bi = 0; bi < nblock; bi++) {
         ct_idx k0 = bi * CTI_EE_BLOCK, k1 = CTI_MIN(npair, k0 + CTI_EE_BLOCK);
-        CTI_EE_SIMD
+        CTI_NR_SIMD
         for (ct_idx k = k0; k < k1; k++) {
             ct_real F = fmag[k];
             ct_real wa2 = sa[k], wa1 = 1 - wa2, wb2 = sb[k], wb1 = 1 - wb2;

@@ -60,26 +60,17 @@ typedef int64_t cti_nr_int;
  * -fno-math-errno (same, correctly rounded results). gcc 12 and clang 14
  * both vectorise every pair loop (see `make vecreport`).
  *
- * With AVX-512 the node-segment loops take two vectors of pairs per
- * iteration (simdlen: 16 doubles, 32 floats). Their time is set by one
+ * One vector of pairs per iteration. Their time is set in good part by one
  * pair's chain of dependent operations (a division, a square root and
- * another division, 13-20 cycles each, one after the other), not by the
- * count of operations: perf puts the node-triangle loop's samples on the
- * instructions waiting for them, and an iteration of one vector is too
- * long for the processor to start the next one early. Two independent
- * vectors in one iteration overlap their chains. Measured on a Zen 5
- * class processor (interleaved rounds, 10^4 and 10^6 pairs, 1 thread):
- * node-triangle 1.07x, closed form 1.03-1.06x, 4 triangles 1.02-1.09x,
- * Newton 1.01-1.05x; edge-edge 0.98x, which keeps one vector
- * (CTI_EE_SIMD). Each pair's arithmetic is the same in either width. */
-#define CTI_EE_SIMD _Pragma("omp simd")
-#if defined(__AVX512F__) && defined(CT_SINGLE)
-#define CTI_NR_SIMD _Pragma("omp simd simdlen(32)")
-#elif defined(__AVX512F__)
-#define CTI_NR_SIMD _Pragma("omp simd simdlen(16)")
-#else
+ * another division, 13-20 cycles each; perf puts the node-triangle loop's
+ * samples on the instructions waiting for them). Two vectors per
+ * iteration do not help: `simdlen(16)` (77a392c to this change) left gcc
+ * 12's vector loop at one vector of 8 doubles (only its remainder became
+ * scalar; plain `omp simd` measured 0.95-1.01x against it), and the loop
+ * written by hand as two independent halves per iteration, which gcc does
+ * vectorise as two chains, ran node-triangle 0.70-0.84x (it needs twice the
+ * 32 vector registers). */
 #define CTI_NR_SIMD _Pragma("omp simd")
-#endif
 
 /* Newton: iterations done for every pair in the vector loop (from the
  * linear start, see project_newton.c), then the cap for the pairs that have
