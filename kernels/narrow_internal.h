@@ -102,14 +102,20 @@ typedef struct cti_nr_args {
  * with the optional per-node and per-segment gaps), the coordinates of the
  * pairs (cti_nr_fetch: the node p and the corners X1..X4, as stored in
  * x, y, z) and the integer flags of the block before they are narrowed to
- * bytes. */
+ * bytes.
+ *
+ * The coordinates are stored two to an entry, pair j's at [2 j] and
+ * [2 j + 1]: (x, y) of p and of each corner, then (pz, z1), (z2, z3); z4
+ * alone. The copy then stores two values at a time (6 stores a triangle
+ * pair instead of 12, 8 a quadrangle pair instead of 15), and the vector
+ * loops separate them with two permutes per vector. */
 typedef struct cti_nr_blk {
     _Alignas(64) ct_real g[CTI_NR_BLOCK];
-    _Alignas(64) ct_real px[CTI_NR_BLOCK], py[CTI_NR_BLOCK], pz[CTI_NR_BLOCK];
-    _Alignas(64) ct_real x1[CTI_NR_BLOCK], y1[CTI_NR_BLOCK], z1[CTI_NR_BLOCK];
-    _Alignas(64) ct_real x2[CTI_NR_BLOCK], y2[CTI_NR_BLOCK], z2[CTI_NR_BLOCK];
-    _Alignas(64) ct_real x3[CTI_NR_BLOCK], y3[CTI_NR_BLOCK], z3[CTI_NR_BLOCK];
-    _Alignas(64) ct_real x4[CTI_NR_BLOCK], y4[CTI_NR_BLOCK], z4[CTI_NR_BLOCK];
+    _Alignas(64) ct_real pxy[2 * CTI_NR_BLOCK];
+    _Alignas(64) ct_real xy1[2 * CTI_NR_BLOCK], xy2[2 * CTI_NR_BLOCK];
+    _Alignas(64) ct_real xy3[2 * CTI_NR_BLOCK], xy4[2 * CTI_NR_BLOCK];
+    _Alignas(64) ct_real z01[2 * CTI_NR_BLOCK], z23[2 * CTI_NR_BLOCK];
+    _Alignas(64) ct_real z4[CTI_NR_BLOCK];
     _Alignas(64) cti_nr_int flag[CTI_NR_BLOCK];
 } cti_nr_blk;
 
@@ -170,11 +176,10 @@ static inline void cti_nr_flags_out(const cti_nr_int *restrict f, uint8_t *restr
 /* The block's coordinates and gaps (fetched, see cti_nr_fetch) as restrict
  * locals i_*. */
 #define CTI_NR_INPTRS(a, k0)                                                              \
-    const ct_real *restrict i_px = b->px, *restrict i_py = b->py, *restrict i_pz = b->pz;  \
-    const ct_real *restrict i_x1 = b->x1, *restrict i_y1 = b->y1, *restrict i_z1 = b->z1;  \
-    const ct_real *restrict i_x2 = b->x2, *restrict i_y2 = b->y2, *restrict i_z2 = b->z2;  \
-    const ct_real *restrict i_x3 = b->x3, *restrict i_y3 = b->y3, *restrict i_z3 = b->z3;  \
-    const ct_real *restrict i_x4 = b->x4, *restrict i_y4 = b->y4, *restrict i_z4 = b->z4;  \
+    const ct_real *restrict i_pxy = b->pxy, *restrict i_xy1 = b->xy1;                     \
+    const ct_real *restrict i_xy2 = b->xy2, *restrict i_xy3 = b->xy3;                     \
+    const ct_real *restrict i_xy4 = b->xy4, *restrict i_z01 = b->z01;                     \
+    const ct_real *restrict i_z23 = b->z23, *restrict i_z4 = b->z4;                       \
     const ct_real *restrict i_g = b->g;                                                   \
     (void)(a), (void)(k0)
 
@@ -186,11 +191,15 @@ static inline void cti_nr_flags_out(const cti_nr_int *restrict f, uint8_t *restr
  * differences of nearby coordinates accurate far from the origin, which
  * single precision needs. */
 #define CTI_NR_LOAD(j)                                                                     \
-    const ct_real ox = i_x1[j], oy = i_y1[j], oz = i_z1[j];                                \
-    const ct_real px = i_px[j] - ox, py = i_py[j] - oy, pz = i_pz[j] - oz;                 \
-    const ct_real x2 = i_x2[j] - ox, y2 = i_y2[j] - oy, z2 = i_z2[j] - oz;                 \
-    const ct_real x3 = i_x3[j] - ox, y3 = i_y3[j] - oy, z3 = i_z3[j] - oz;                 \
-    const ct_real x4 = i_x4[j] - ox, y4 = i_y4[j] - oy, z4 = i_z4[j] - oz;                 \
+    const ct_real ox = i_xy1[2 * (j)], oy = i_xy1[2 * (j) + 1], oz = i_z01[2 * (j) + 1];   \
+    const ct_real px = i_pxy[2 * (j)] - ox, py = i_pxy[2 * (j) + 1] - oy;                  \
+    const ct_real pz = i_z01[2 * (j)] - oz;                                                \
+    const ct_real x2 = i_xy2[2 * (j)] - ox, y2 = i_xy2[2 * (j) + 1] - oy;                  \
+    const ct_real z2 = i_z23[2 * (j)] - oz;                                                \
+    const ct_real x3 = i_xy3[2 * (j)] - ox, y3 = i_xy3[2 * (j) + 1] - oy;                  \
+    const ct_real z3 = i_z23[2 * (j) + 1] - oz;                                            \
+    const ct_real x4 = i_xy4[2 * (j)] - ox, y4 = i_xy4[2 * (j) + 1] - oy;                  \
+    const ct_real z4 = i_z4[j] - oz;                                                       \
     const ct_real g = i_g[j];                                                              \
     const ct_real zsum_ = (((px + py) + (pz + x2)) + ((y2 + z2) + (x3 + y3))) +            \
                           (((z3 + x4) + (y4 + z4)) + g);                                   \

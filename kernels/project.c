@@ -53,9 +53,14 @@ void cti_nr_gather(const cti_nr_args *a, ct_idx k0, ct_idx n, cti_nr_blk *b)
     }
 }
 
-/* The coordinates of a block's pairs, one scalar load and store each. The
- * loops are kept scalar: vectorised, they would be the vector gathers this
- * copy exists to avoid. */
+/* Two values stored together (see cti_nr_blk): a GNU vector of two reals,
+ * which gcc and clang store at once from two scalar loads. */
+typedef ct_real cti_nr_two __attribute__((vector_size(2 * sizeof(ct_real))));
+#define CTI_NR_PUT2(arr, j, u, v) (*(cti_nr_two *)(void *)&(arr)[2 * (j)] = (cti_nr_two){(u), (v)})
+
+/* The coordinates of a block's pairs, loaded one by one and stored two at
+ * a time. The loops are kept scalar: vectorised, they would be the vector
+ * gathers this copy exists to avoid. */
 CTI_NOVEC void cti_nr_fetch(const cti_nr_args *a, ct_idx k0, ct_idx n, int quad,
                                cti_nr_blk *b)
 {
@@ -68,10 +73,12 @@ CTI_NOVEC void cti_nr_fetch(const cti_nr_args *a, ct_idx k0, ct_idx n, int quad,
         for (ct_idx j = 0; j < n; j++) {
             ct_idx i = node[j], s = seg[j];
             ct_idx i1 = n1[s], i2 = n2[s], i3 = n3[s];
-            b->px[j] = X[i], b->py[j] = Y[i], b->pz[j] = Z[i];
-            b->x1[j] = X[i1], b->y1[j] = Y[i1], b->z1[j] = Z[i1];
-            b->x2[j] = X[i2], b->y2[j] = Y[i2], b->z2[j] = Z[i2];
-            b->x3[j] = X[i3], b->y3[j] = Y[i3], b->z3[j] = Z[i3];
+            CTI_NR_PUT2(b->pxy, j, X[i], Y[i]);
+            CTI_NR_PUT2(b->xy1, j, X[i1], Y[i1]);
+            CTI_NR_PUT2(b->xy2, j, X[i2], Y[i2]);
+            CTI_NR_PUT2(b->xy3, j, X[i3], Y[i3]);
+            CTI_NR_PUT2(b->z01, j, Z[i], Z[i1]);
+            CTI_NR_PUT2(b->z23, j, Z[i2], Z[i3]);
         }
         return;
     }
@@ -79,11 +86,14 @@ CTI_NOVEC void cti_nr_fetch(const cti_nr_args *a, ct_idx k0, ct_idx n, int quad,
     for (ct_idx j = 0; j < n; j++) {
         ct_idx i = node[j], s = seg[j];
         ct_idx i1 = n1[s], i2 = n2[s], i3 = n3[s], i4 = n4[s];
-        b->px[j] = X[i], b->py[j] = Y[i], b->pz[j] = Z[i];
-        b->x1[j] = X[i1], b->y1[j] = Y[i1], b->z1[j] = Z[i1];
-        b->x2[j] = X[i2], b->y2[j] = Y[i2], b->z2[j] = Z[i2];
-        b->x3[j] = X[i3], b->y3[j] = Y[i3], b->z3[j] = Z[i3];
-        b->x4[j] = X[i4], b->y4[j] = Y[i4], b->z4[j] = Z[i4];
+        CTI_NR_PUT2(b->pxy, j, X[i], Y[i]);
+        CTI_NR_PUT2(b->xy1, j, X[i1], Y[i1]);
+        CTI_NR_PUT2(b->xy2, j, X[i2], Y[i2]);
+        CTI_NR_PUT2(b->xy3, j, X[i3], Y[i3]);
+        CTI_NR_PUT2(b->xy4, j, X[i4], Y[i4]);
+        CTI_NR_PUT2(b->z01, j, Z[i], Z[i1]);
+        CTI_NR_PUT2(b->z23, j, Z[i2], Z[i3]);
+        b->z4[j] = Z[i4];
     }
 }
 
@@ -93,17 +103,16 @@ void cti_nr_block_tri(const cti_nr_args *a, ct_idx k0, ct_idx n, cti_nr_blk *b)
 {
     CTI_NR_OUTPTRS(a, k0);
     int two = a->two_sided;
-    const ct_real *restrict PX = b->px, *restrict PY = b->py, *restrict PZ = b->pz;
-    const ct_real *restrict X1 = b->x1, *restrict Y1 = b->y1, *restrict Z1 = b->z1;
-    const ct_real *restrict X2 = b->x2, *restrict Y2 = b->y2, *restrict Z2 = b->z2;
-    const ct_real *restrict X3 = b->x3, *restrict Y3 = b->y3, *restrict Z3 = b->z3;
+    const ct_real *restrict P = b->pxy, *restrict A1 = b->xy1;
+    const ct_real *restrict A2 = b->xy2, *restrict A3 = b->xy3;
+    const ct_real *restrict Z01 = b->z01, *restrict Z23 = b->z23;
     const ct_real *restrict G = b->g;
     CTI_NR_SIMD
     for (ct_idx j = 0; j < n; j++) {
-        const ct_real ox = X1[j], oy = Y1[j], oz = Z1[j];
-        const ct_real px = PX[j] - ox, py = PY[j] - oy, pz = PZ[j] - oz;
-        const ct_real x2 = X2[j] - ox, y2 = Y2[j] - oy, z2 = Z2[j] - oz;
-        const ct_real x3 = X3[j] - ox, y3 = Y3[j] - oy, z3 = Z3[j] - oz;
+        const ct_real ox = A1[2 * j], oy = A1[2 * j + 1], oz = Z01[2 * j + 1];
+        const ct_real px = P[2 * j] - ox, py = P[2 * j + 1] - oy, pz = Z01[2 * j] - oz;
+        const ct_real x2 = A2[2 * j] - ox, y2 = A2[2 * j + 1] - oy, z2 = Z23[2 * j] - oz;
+        const ct_real x3 = A3[2 * j] - ox, y3 = A3[2 * j + 1] - oy, z3 = Z23[2 * j + 1] - oz;
         const ct_real g = G[j];
         const ct_real zsum_ = (((px + py) + (pz + x2)) + ((y2 + z2) + (x3 + y3))) + (z3 + g);
         const cti_nr_int nonfin = !(zsum_ - zsum_ == 0);

@@ -77,11 +77,16 @@ static void newton_pick(const cti_nr_blk *b, const ct_idx *idx, ct_idx m, cti_nr
 {
     for (ct_idx q = 0; q < m; q++) {
         const ct_idx j = idx[q];
-        c->px[q] = b->px[j], c->py[q] = b->py[j], c->pz[q] = b->pz[j];
-        c->x1[q] = b->x1[j], c->y1[q] = b->y1[j], c->z1[q] = b->z1[j];
-        c->x2[q] = b->x2[j], c->y2[q] = b->y2[j], c->z2[q] = b->z2[j];
-        c->x3[q] = b->x3[j], c->y3[q] = b->y3[j], c->z3[q] = b->z3[j];
-        c->x4[q] = b->x4[j], c->y4[q] = b->y4[j], c->z4[q] = b->z4[j];
+        for (int e = 0; e < 2; e++) {
+            c->pxy[2 * q + e] = b->pxy[2 * j + e];
+            c->xy1[2 * q + e] = b->xy1[2 * j + e];
+            c->xy2[2 * q + e] = b->xy2[2 * j + e];
+            c->xy3[2 * q + e] = b->xy3[2 * j + e];
+            c->xy4[2 * q + e] = b->xy4[2 * j + e];
+            c->z01[2 * q + e] = b->z01[2 * j + e];
+            c->z23[2 * q + e] = b->z23[2 * j + e];
+        }
+        c->z4[q] = b->z4[j];
         c->g[q] = b->g[j];
     }
 }
