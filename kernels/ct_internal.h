@@ -204,22 +204,46 @@ typedef int64_t cti_lane;
 #define CTI_PAIR_BATCH 128
 #endif
 
+/* Two reals stored together: a GNU vector of two, which gcc and clang
+ * store at once from two scalar loads (a load, a load-and-insert, one
+ * store). The block copies of the batch predicate and the narrow phase
+ * store their coordinates this way, two to an entry, arr[2 k] and
+ * arr[2 k + 1] for lane k, which halves their stores; the vector loops
+ * that read them separate the two with permutes. */
+typedef ct_real cti_two __attribute__((vector_size(2 * sizeof(ct_real))));
+#define CTI_PUT2(arr, k, u, v) (*(cti_two *)(void *)&(arr)[2 * (k)] = (cti_two){(u), (v)})
+
 /* A batch of candidate pairs and, once loaded, their coordinates. A caller
  * fills node[], seg[] and n, loads, tests, and reads ok[] (0 or 1). Lives on
- * the caller's stack or in its workspace: no allocation. */
+ * the caller's stack or in its workspace: no allocation. The coordinates
+ * are two to an entry (CTI_PUT2): (x, y) of the node P and of the corners
+ * A, B, C, E, then (Pz, Az), (Bz, Cz); Ez alone. */
 typedef struct cti_pair_batch {
-    _Alignas(64) ct_real px[CTI_PAIR_BATCH];
-    ct_real py[CTI_PAIR_BATCH], pz[CTI_PAIR_BATCH];
-    ct_real ax[CTI_PAIR_BATCH], ay[CTI_PAIR_BATCH], az[CTI_PAIR_BATCH];
-    ct_real bx[CTI_PAIR_BATCH], by[CTI_PAIR_BATCH], bz[CTI_PAIR_BATCH];
-    ct_real cx[CTI_PAIR_BATCH], cy[CTI_PAIR_BATCH], cz[CTI_PAIR_BATCH];
-    ct_real ex[CTI_PAIR_BATCH], ey[CTI_PAIR_BATCH], ez[CTI_PAIR_BATCH];
+    _Alignas(64) ct_real pxy[2 * CTI_PAIR_BATCH];
+    ct_real axy[2 * CTI_PAIR_BATCH], bxy[2 * CTI_PAIR_BATCH];
+    ct_real cxy[2 * CTI_PAIR_BATCH], exy[2 * CTI_PAIR_BATCH];
+    ct_real paz[2 * CTI_PAIR_BATCH], bcz[2 * CTI_PAIR_BATCH], ez[CTI_PAIR_BATCH];
     ct_idx node[CTI_PAIR_BATCH], seg[CTI_PAIR_BATCH];
     cti_lane ok[CTI_PAIR_BATCH];
     int n;
     int skip;        /* batches still to run without the corner step */
     int64_t nscalar; /* pairs left to the one-pair predicate, summed */
 } cti_pair_batch;
+
+/* Lane k's coordinates: the node p and the corners a, b, c, e. */
+static inline void cti_pair_batch_set(cti_pair_batch *restrict pb, int k, const ct_real p[3],
+                                      const ct_real a[3], const ct_real b[3],
+                                      const ct_real c[3], const ct_real e[3])
+{
+    CTI_PUT2(pb->pxy, k, p[0], p[1]);
+    CTI_PUT2(pb->axy, k, a[0], a[1]);
+    CTI_PUT2(pb->bxy, k, b[0], b[1]);
+    CTI_PUT2(pb->cxy, k, c[0], c[1]);
+    CTI_PUT2(pb->exy, k, e[0], e[1]);
+    CTI_PUT2(pb->paz, k, p[2], a[2]);
+    CTI_PUT2(pb->bcz, k, b[2], c[2]);
+    pb->ez[k] = e[2];
+}
 
 /* An empty batch (its coordinates are loaded later). */
 static inline void cti_pair_batch_init(cti_pair_batch *pb)

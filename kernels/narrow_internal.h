@@ -104,11 +104,11 @@ typedef struct cti_nr_args {
  * x, y, z) and the integer flags of the block before they are narrowed to
  * bytes.
  *
- * The coordinates are stored two to an entry, pair j's at [2 j] and
- * [2 j + 1]: (x, y) of p and of each corner, then (pz, z1), (z2, z3); z4
- * alone. The copy then stores two values at a time (6 stores a triangle
- * pair instead of 12, 8 a quadrangle pair instead of 15), and the vector
- * loops separate them with two permutes per vector. */
+ * The coordinates are stored two to an entry (CTI_PUT2), pair j's at
+ * [2 j] and [2 j + 1]: (x, y) of p and of each corner, then (pz, z1),
+ * (z2, z3); z4 alone. The copy stores two values at a time (6 stores a
+ * triangle pair instead of 12, 8 a quadrangle pair instead of 15), and
+ * the vector loops separate them with permutes. */
 typedef struct cti_nr_blk {
     _Alignas(64) ct_real g[CTI_NR_BLOCK];
     _Alignas(64) ct_real pxy[2 * CTI_NR_BLOCK];

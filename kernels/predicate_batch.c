@@ -61,11 +61,14 @@ CTI_NOVEC void cti_pair_batch_load(cti_pair_batch *restrict b, const ct_real *re
     for (int k = 0; k < n; k++) {
         const ct_idx i = b->node[k], j = b->seg[k];
         const ct_idx a = n1[j], c = n2[j], e = n3[j], f = n4[j];
-        b->px[k] = x[i], b->py[k] = y[i], b->pz[k] = z[i];
-        b->ax[k] = x[a], b->ay[k] = y[a], b->az[k] = z[a];
-        b->bx[k] = x[c], b->by[k] = y[c], b->bz[k] = z[c];
-        b->cx[k] = x[e], b->cy[k] = y[e], b->cz[k] = z[e];
-        b->ex[k] = x[f], b->ey[k] = y[f], b->ez[k] = z[f];
+        CTI_PUT2(b->pxy, k, x[i], y[i]);
+        CTI_PUT2(b->axy, k, x[a], y[a]);
+        CTI_PUT2(b->bxy, k, x[c], y[c]);
+        CTI_PUT2(b->cxy, k, x[e], y[e]);
+        CTI_PUT2(b->exy, k, x[f], y[f]);
+        CTI_PUT2(b->paz, k, z[i], z[a]);
+        CTI_PUT2(b->bcz, k, z[c], z[e]);
+        b->ez[k] = z[f];
     }
 }
 
@@ -78,11 +81,14 @@ CTI_NOVEC void cti_pair_batch_load_rec(cti_pair_batch *restrict b, const ct_real
     for (int k = 0; k < n; k++) {
         const ct_idx i = b->node[k];
         const ct_real *restrict r = rec + (size_t)12 * (size_t)b->seg[k];
-        b->px[k] = x[i], b->py[k] = y[i], b->pz[k] = z[i];
-        b->ax[k] = r[0], b->ay[k] = r[1], b->az[k] = r[2];
-        b->bx[k] = r[3], b->by[k] = r[4], b->bz[k] = r[5];
-        b->cx[k] = r[6], b->cy[k] = r[7], b->cz[k] = r[8];
-        b->ex[k] = r[9], b->ey[k] = r[10], b->ez[k] = r[11];
+        CTI_PUT2(b->pxy, k, x[i], y[i]);
+        CTI_PUT2(b->axy, k, r[0], r[1]);
+        CTI_PUT2(b->bxy, k, r[3], r[4]);
+        CTI_PUT2(b->cxy, k, r[6], r[7]);
+        CTI_PUT2(b->exy, k, r[9], r[10]);
+        CTI_PUT2(b->paz, k, z[i], r[2]);
+        CTI_PUT2(b->bcz, k, r[5], r[8]);
+        b->ez[k] = r[11];
     }
 }
 
@@ -97,22 +103,34 @@ CTI_NOVEC static int pb_compact(cti_pair_batch *restrict b, int *restrict idx)
         if (b->ok[k] < PB_UNDECIDED)
             continue;
         idx[m] = k;
-        b->px[m] = b->px[k], b->py[m] = b->py[k], b->pz[m] = b->pz[k];
-        b->ax[m] = b->ax[k], b->ay[m] = b->ay[k], b->az[m] = b->az[k];
-        b->bx[m] = b->bx[k], b->by[m] = b->by[k], b->bz[m] = b->bz[k];
-        b->cx[m] = b->cx[k], b->cy[m] = b->cy[k], b->cz[m] = b->cz[k];
-        b->ex[m] = b->ex[k], b->ey[m] = b->ey[k], b->ez[m] = b->ez[k];
+        for (int h = 0; h < 2; h++) {
+            b->pxy[2 * m + h] = b->pxy[2 * k + h], b->axy[2 * m + h] = b->axy[2 * k + h];
+            b->bxy[2 * m + h] = b->bxy[2 * k + h], b->cxy[2 * m + h] = b->cxy[2 * k + h];
+            b->exy[2 * m + h] = b->exy[2 * k + h], b->paz[2 * m + h] = b->paz[2 * k + h];
+            b->bcz[2 * m + h] = b->bcz[2 * k + h];
+        }
+        b->ez[m] = b->ez[k];
         m++;
     }
     return m;
 }
 
-/* Lane k's node P and corners A, B, C, E, from the batch's arrays (px ..
- * ez, in scope as restrict pointers). */
+/* The batch's coordinate arrays, read-only, for the loops over its lanes
+ * (in place, or on the lanes packed to the front). */
+#define PB_ARRAYS(b)                                                                    \
+    const ct_real *restrict pxy = (b)->pxy, *restrict axy = (b)->axy;                   \
+    const ct_real *restrict bxy = (b)->bxy, *restrict cxy = (b)->cxy;                   \
+    const ct_real *restrict exy = (b)->exy, *restrict paz = (b)->paz;                   \
+    const ct_real *restrict bcz = (b)->bcz, *restrict ez = (b)->ez
+
+/* Lane k's node P and corners A, B, C, E, from the batch's arrays (in
+ * scope through PB_ARRAYS). */
 #define PB_LANE(k)                                                                      \
-    const cti_pv P = {px[k], py[k], pz[k]}, A = {ax[k], ay[k], az[k]},                 \
-                 B = {bx[k], by[k], bz[k]}, C = {cx[k], cy[k], cz[k]},                 \
-                 E = {ex[k], ey[k], ez[k]}
+    const cti_pv P = {pxy[2 * (k)], pxy[2 * (k) + 1], paz[2 * (k)]},                   \
+                 A = {axy[2 * (k)], axy[2 * (k) + 1], paz[2 * (k) + 1]},               \
+                 B = {bxy[2 * (k)], bxy[2 * (k) + 1], bcz[2 * (k)]},                   \
+                 C = {cxy[2 * (k)], cxy[2 * (k) + 1], bcz[2 * (k) + 1]},               \
+                 E = {exy[2 * (k)], exy[2 * (k) + 1], ez[k]}
 
 /* Steps 1 and 2 reject, on every lane; what accepts is step 2b (`one` =
  * 0: stage 1 of two) or steps 3 and 4 (`one` = 1: the one-stage test).
@@ -123,11 +141,7 @@ CTI_STEP cti_lane pb_open(cti_pair_batch *restrict b, ct_real d, ct_real d2, con
 {
     const int n = b->n;
     cti_lane *restrict ok = b->ok;
-    const ct_real *restrict px = b->px, *restrict py = b->py, *restrict pz = b->pz;
-    const ct_real *restrict ax = b->ax, *restrict ay = b->ay, *restrict az = b->az;
-    const ct_real *restrict bx = b->bx, *restrict by = b->by, *restrict bz = b->bz;
-    const ct_real *restrict cx = b->cx, *restrict cy = b->cy, *restrict cz = b->cz;
-    const ct_real *restrict ex = b->ex, *restrict ey = b->ey, *restrict ez = b->ez;
+    PB_ARRAYS(b);
     cti_lane nund = 0;
 #pragma omp simd reduction(+ : nund)
     for (int k = 0; k < n; k++) {
@@ -170,11 +184,11 @@ static void pb_one_pair(cti_pair_batch *restrict b, const cti_lane *o, const int
         if (o[k] < PB_UNDECIDED)
             continue;
         b->nscalar++;
-        const ct_real p[3] = {b->px[k], b->py[k], b->pz[k]},
-                      a[3] = {b->ax[k], b->ay[k], b->az[k]},
-                      bb[3] = {b->bx[k], b->by[k], b->bz[k]},
-                      c[3] = {b->cx[k], b->cy[k], b->cz[k]},
-                      e[3] = {b->ex[k], b->ey[k], b->ez[k]};
+        const ct_real p[3] = {b->pxy[2 * k], b->pxy[2 * k + 1], b->paz[2 * k]},
+                      a[3] = {b->axy[2 * k], b->axy[2 * k + 1], b->paz[2 * k + 1]},
+                      bb[3] = {b->bxy[2 * k], b->bxy[2 * k + 1], b->bcz[2 * k]},
+                      c[3] = {b->cxy[2 * k], b->cxy[2 * k + 1], b->bcz[2 * k + 1]},
+                      e[3] = {b->exy[2 * k], b->exy[2 * k + 1], b->ez[k]};
         b->ok[idx ? idx[k] : k] = ct_pair_may_touch(p, a, bb, c, e, d);
     }
 }
@@ -185,15 +199,6 @@ __attribute__((noinline)) static cti_lane pb_stage1(cti_pair_batch *restrict b, 
 {
     return pb_open(b, d, d2, 0);
 }
-
-/* The batch's coordinate arrays, read-only, for the loops over its lanes
- * (in place, or on the lanes packed to the front). */
-#define PB_ARRAYS(b)                                                                    \
-    const ct_real *restrict px = (b)->px, *restrict py = (b)->py, *restrict pz = (b)->pz; \
-    const ct_real *restrict ax = (b)->ax, *restrict ay = (b)->ay, *restrict az = (b)->az; \
-    const ct_real *restrict bx = (b)->bx, *restrict by = (b)->by, *restrict bz = (b)->bz; \
-    const ct_real *restrict cx = (b)->cx, *restrict cy = (b)->cy, *restrict cz = (b)->cz; \
-    const ct_real *restrict ex = (b)->ex, *restrict ey = (b)->ey, *restrict ez = (b)->ez
 
 /* Steps 3 and 4 accept, on the undecided lanes (2) of o[0..m-1]; returns
  * whether any lane is left undecided or not finite. */

@@ -53,11 +53,6 @@ void cti_nr_gather(const cti_nr_args *a, ct_idx k0, ct_idx n, cti_nr_blk *b)
     }
 }
 
-/* Two values stored together (see cti_nr_blk): a GNU vector of two reals,
- * which gcc and clang store at once from two scalar loads. */
-typedef ct_real cti_nr_two __attribute__((vector_size(2 * sizeof(ct_real))));
-#define CTI_NR_PUT2(arr, j, u, v) (*(cti_nr_two *)(void *)&(arr)[2 * (j)] = (cti_nr_two){(u), (v)})
-
 /* The coordinates of a block's pairs, loaded one by one and stored two at
  * a time. The loops are kept scalar: vectorised, they would be the vector
  * gathers this copy exists to avoid. */
@@ -73,12 +68,12 @@ CTI_NOVEC void cti_nr_fetch(const cti_nr_args *a, ct_idx k0, ct_idx n, int quad,
         for (ct_idx j = 0; j < n; j++) {
             ct_idx i = node[j], s = seg[j];
             ct_idx i1 = n1[s], i2 = n2[s], i3 = n3[s];
-            CTI_NR_PUT2(b->pxy, j, X[i], Y[i]);
-            CTI_NR_PUT2(b->xy1, j, X[i1], Y[i1]);
-            CTI_NR_PUT2(b->xy2, j, X[i2], Y[i2]);
-            CTI_NR_PUT2(b->xy3, j, X[i3], Y[i3]);
-            CTI_NR_PUT2(b->z01, j, Z[i], Z[i1]);
-            CTI_NR_PUT2(b->z23, j, Z[i2], Z[i3]);
+            CTI_PUT2(b->pxy, j, X[i], Y[i]);
+            CTI_PUT2(b->xy1, j, X[i1], Y[i1]);
+            CTI_PUT2(b->xy2, j, X[i2], Y[i2]);
+            CTI_PUT2(b->xy3, j, X[i3], Y[i3]);
+            CTI_PUT2(b->z01, j, Z[i], Z[i1]);
+            CTI_PUT2(b->z23, j, Z[i2], Z[i3]);
         }
         return;
     }
@@ -86,13 +81,13 @@ CTI_NOVEC void cti_nr_fetch(const cti_nr_args *a, ct_idx k0, ct_idx n, int quad,
     for (ct_idx j = 0; j < n; j++) {
         ct_idx i = node[j], s = seg[j];
         ct_idx i1 = n1[s], i2 = n2[s], i3 = n3[s], i4 = n4[s];
-        CTI_NR_PUT2(b->pxy, j, X[i], Y[i]);
-        CTI_NR_PUT2(b->xy1, j, X[i1], Y[i1]);
-        CTI_NR_PUT2(b->xy2, j, X[i2], Y[i2]);
-        CTI_NR_PUT2(b->xy3, j, X[i3], Y[i3]);
-        CTI_NR_PUT2(b->xy4, j, X[i4], Y[i4]);
-        CTI_NR_PUT2(b->z01, j, Z[i], Z[i1]);
-        CTI_NR_PUT2(b->z23, j, Z[i2], Z[i3]);
+        CTI_PUT2(b->pxy, j, X[i], Y[i]);
+        CTI_PUT2(b->xy1, j, X[i1], Y[i1]);
+        CTI_PUT2(b->xy2, j, X[i2], Y[i2]);
+        CTI_PUT2(b->xy3, j, X[i3], Y[i3]);
+        CTI_PUT2(b->xy4, j, X[i4], Y[i4]);
+        CTI_PUT2(b->z01, j, Z[i], Z[i1]);
+        CTI_PUT2(b->z23, j, Z[i2], Z[i3]);
         b->z4[j] = Z[i4];
     }
 }

@@ -284,15 +284,12 @@ static int dense_nodes(bsp_ctx *c, bsp_stack *sk, ct_idx n0, ct_idx n1,
                 const int e = __builtin_ctz(und);
                 const size_t q = (size_t)(q0 + e);
                 const int i = pb.n;
-                pb.px[i] = P.x, pb.py[i] = P.y, pb.pz[i] = P.z;
-                pb.ax[i] = lc[LC_CORNER(0, 0) * w + q], pb.ay[i] = lc[LC_CORNER(0, 1) * w + q];
-                pb.az[i] = lc[LC_CORNER(0, 2) * w + q];
-                pb.bx[i] = lc[LC_CORNER(1, 0) * w + q], pb.by[i] = lc[LC_CORNER(1, 1) * w + q];
-                pb.bz[i] = lc[LC_CORNER(1, 2) * w + q];
-                pb.cx[i] = lc[LC_CORNER(2, 0) * w + q], pb.cy[i] = lc[LC_CORNER(2, 1) * w + q];
-                pb.cz[i] = lc[LC_CORNER(2, 2) * w + q];
-                pb.ex[i] = lc[LC_CORNER(3, 0) * w + q], pb.ey[i] = lc[LC_CORNER(3, 1) * w + q];
-                pb.ez[i] = lc[LC_CORNER(3, 2) * w + q];
+                ct_real cn[4][3];
+                for (int v = 0; v < 4; v++)
+                    for (int a = 0; a < 3; a++)
+                        cn[v][a] = lc[LC_CORNER(v, a) * w + q];
+                const ct_real pp[3] = {P.x, P.y, P.z};
+                cti_pair_batch_set(&pb, i, pp, cn[0], cn[1], cn[2], cn[3]);
                 at[i] = ((int64_t)(k - n0) * ng + g) * 8 + e;
                 if (++pb.n == CTI_PAIR_BATCH)
                     dense_flush(&pb, at, lr, d);
