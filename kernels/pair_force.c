@@ -121,25 +121,30 @@ int ct_pair_force_linear_coulomb(
  * narrow_internal.h, measured the same). */
 #define CTI_RELVEL_SUB 192
 
-/* The velocities of pairs [i0, i1) (i1 - i0 <= CTI_RELVEL_SUB) into w:
- * w[3 c + a][k - i0] is component a (x, y, z) of node c of pair k (c = 0:
- * the secondary node, 1..4 the segment's corners). Scalar on purpose. */
+/* The velocities of pairs [i0, i1) (i1 - i0 <= CTI_RELVEL_SUB) into w,
+ * two to an entry (CTI_PUT2), j = k - i0: w[c][2 j], w[c][2 j + 1] the x
+ * and y components of node c of pair k (c = 0: the secondary node, 1..4
+ * the segment's corners), w[5] the z components of nodes 0 and 1, w[6]
+ * of nodes 2 and 3, w[7][j] of node 4. Loads scalar on purpose. */
 CTI_NOVEC static void cti_relvel_fetch(int64_t i0, int64_t i1, const ct_idx *restrict node,
                                        const ct_idx *restrict s1, const ct_idx *restrict s2,
                                        const ct_idx *restrict s3, const ct_idx *restrict s4,
                                        const ct_real *restrict vx, const ct_real *restrict vy,
                                        const ct_real *restrict vz,
-                                       ct_real (*restrict w)[CTI_RELVEL_SUB])
+                                       ct_real (*restrict w)[2 * CTI_RELVEL_SUB])
 {
     CTI_NOVEC_LOOP
     for (int64_t k = i0; k < i1; k++) {
         const int64_t j = k - i0;
-        const ct_idx q[5] = {node[k], s1[k], s2[k], s3[k], s4[k]};
-        for (int c = 0; c < 5; c++) {
-            w[3 * c][j] = vx[q[c]];
-            w[3 * c + 1][j] = vy[q[c]];
-            w[3 * c + 2][j] = vz[q[c]];
-        }
+        const ct_idx p = node[k], a = s1[k], b = s2[k], c = s3[k], e = s4[k];
+        CTI_PUT2(w[0], j, vx[p], vy[p]);
+        CTI_PUT2(w[1], j, vx[a], vy[a]);
+        CTI_PUT2(w[2], j, vx[b], vy[b]);
+        CTI_PUT2(w[3], j, vx[c], vy[c]);
+        CTI_PUT2(w[4], j, vx[e], vy[e]);
+        CTI_PUT2(w[5], j, vz[p], vz[a]);
+        CTI_PUT2(w[6], j, vz[b], vz[c]);
+        w[7][j] = vz[e];
     }
 }
 
@@ -158,21 +163,23 @@ cti_relvel_block(int64_t i0, int64_t i1, const ct_idx *restrict node,
                  ct_real *restrict rz, ct_real *restrict vn, ct_real *restrict mm,
                  const int has_m)
 {
-    _Alignas(64) ct_real w[15][CTI_RELVEL_SUB];
+    /* The velocities two to an entry (CTI_PUT2): (x, y) of the node and
+     * of the four corners, (z of the node, z of corner 1), (z2, z3); z4
+     * alone in w[7]. */
+    _Alignas(64) ct_real w[8][2 * CTI_RELVEL_SUB];
     for (int64_t b0 = i0; b0 < i1; b0 += CTI_RELVEL_SUB) {
         const int64_t b1 = i1 - b0 < CTI_RELVEL_SUB ? i1 : b0 + CTI_RELVEL_SUB;
         cti_relvel_fetch(b0, b1, node, s1, s2, s3, s4, vx, vy, vz, w);
-        const ct_real *restrict px = w[0], *restrict py = w[1], *restrict pz = w[2];
-        const ct_real *restrict ax = w[3], *restrict ay = w[4], *restrict az = w[5];
-        const ct_real *restrict bx = w[6], *restrict by = w[7], *restrict bz = w[8];
-        const ct_real *restrict cx = w[9], *restrict cy = w[10], *restrict cz = w[11];
-        const ct_real *restrict ex = w[12], *restrict ey = w[13], *restrict ez = w[14];
+        const ct_real *restrict p2 = w[0], *restrict a2 = w[1], *restrict b2 = w[2];
+        const ct_real *restrict c2 = w[3], *restrict e2 = w[4], *restrict z01 = w[5];
+        const ct_real *restrict z23 = w[6], *restrict ez = w[7];
 #pragma omp simd
         for (int64_t k = b0; k < b1; k++) {
-            const int64_t j = k - b0;
-            ct_real ux = px[j] - (h1[k] * ax[j] + h2[k] * bx[j] + h3[k] * cx[j] + h4[k] * ex[j]);
-            ct_real uy = py[j] - (h1[k] * ay[j] + h2[k] * by[j] + h3[k] * cy[j] + h4[k] * ey[j]);
-            ct_real uz = pz[j] - (h1[k] * az[j] + h2[k] * bz[j] + h3[k] * cz[j] + h4[k] * ez[j]);
+            const int64_t j = k - b0, x = 2 * j, y = 2 * j + 1;
+            ct_real ux = p2[x] - (h1[k] * a2[x] + h2[k] * b2[x] + h3[k] * c2[x] + h4[k] * e2[x]);
+            ct_real uy = p2[y] - (h1[k] * a2[y] + h2[k] * b2[y] + h3[k] * c2[y] + h4[k] * e2[y]);
+            ct_real uz = z01[x] -
+                         (h1[k] * z01[y] + h2[k] * z23[x] + h3[k] * z23[y] + h4[k] * ez[j]);
             rx[k] = ux;
             ry[k] = uy;
             rz[k] = uz;
