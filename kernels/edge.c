@@ -43,22 +43,25 @@ static inline ct_real cti_ee_q(ct_real ux, ct_real uy, ct_real uz, ct_real vx, c
         bq = take_ ? q_ : bq;                                                             \
     } while (0)
 
-/* The end points A1, A2, B1, B2 of n pairs into C (x, y, z of each in
- * turn), one scalar load and store each (kept scalar: see cti_nr_fetch). */
+/* The end points A1, A2, B1, B2 of n pairs into C, two values to an entry
+ * (CTI_PUT2): (x, y) of each in turn, then (z of A1, z of A2), (z of B1,
+ * z of B2); loads scalar (see cti_nr_fetch). */
 CTI_NOVEC static void cti_ee_fetch(const ct_idx *restrict ea, const ct_idx *restrict eb,
                                       const ct_idx *restrict e1, const ct_idx *restrict e2,
                                       const ct_real *restrict x, const ct_real *restrict y,
                                       const ct_real *restrict z, ct_idx n,
-                                      ct_real (*restrict C)[CTI_EE_BLOCK])
+                                      ct_real (*restrict C)[2 * CTI_EE_BLOCK])
 {
     CTI_NOVEC_LOOP
     for (ct_idx j = 0; j < n; j++) {
         ct_idx ia = ea[j], ib = eb[j];
         ct_idx v0 = e1[ia], v1 = e2[ia], v2 = e1[ib], v3 = e2[ib];
-        C[0][j] = x[v0], C[1][j] = y[v0], C[2][j] = z[v0];
-        C[3][j] = x[v1], C[4][j] = y[v1], C[5][j] = z[v1];
-        C[6][j] = x[v2], C[7][j] = y[v2], C[8][j] = z[v2];
-        C[9][j] = x[v3], C[10][j] = y[v3], C[11][j] = z[v3];
+        CTI_PUT2(C[0], j, x[v0], y[v0]);
+        CTI_PUT2(C[1], j, x[v1], y[v1]);
+        CTI_PUT2(C[2], j, x[v2], y[v2]);
+        CTI_PUT2(C[3], j, x[v3], y[v3]);
+        CTI_PUT2(C[4], j, z[v0], z[v1]);
+        CTI_PUT2(C[5], j, z[v2], z[v3]);
     }
 }
 
@@ -96,12 +99,10 @@ int ct_narrow_edge_edge(ct_idx npair, const ct_idx *restrict ea, const ct_idx *r
          * 32-bit indices out of the vector loop: see narrow_internal.h). */
         _Alignas(64) ct_real G[CTI_EE_BLOCK];
         _Alignas(64) cti_nr_int F[CTI_EE_BLOCK];
-        _Alignas(64) ct_real C[12][CTI_EE_BLOCK];
+        _Alignas(64) ct_real C[6][2 * CTI_EE_BLOCK];
         cti_ee_fetch(ea + k0, eb + k0, e1, e2, x, y, z, nb, C);
-        const ct_real *restrict Ax1 = C[0], *restrict Ay1 = C[1], *restrict Az1 = C[2];
-        const ct_real *restrict Ax2 = C[3], *restrict Ay2 = C[4], *restrict Az2 = C[5];
-        const ct_real *restrict Bx1 = C[6], *restrict By1 = C[7], *restrict Bz1 = C[8];
-        const ct_real *restrict Bx2 = C[9], *restrict By2 = C[10], *restrict Bz2 = C[11];
+        const ct_real *restrict A1 = C[0], *restrict A2 = C[1], *restrict B1 = C[2];
+        const ct_real *restrict B2 = C[3], *restrict ZA = C[4], *restrict ZB = C[5];
         for (ct_idx j = 0; j < nb; j++) {
             ct_real ga = gap, gb = gap;
             if (gap_edge) {
@@ -116,10 +117,11 @@ int ct_narrow_edge_edge(ct_idx npair, const ct_idx *restrict ea, const ct_idx *r
         for (ct_idx j = 0; j < nb; j++) {
             ct_idx k = k0 + j;
             /* Relative to A1 (accuracy far from the origin). */
-            const ct_real ox = Ax1[j], oy = Ay1[j], oz = Az1[j];
-            const ct_real ux = Ax2[j] - ox, uy = Ay2[j] - oy, uz = Az2[j] - oz;
-            const ct_real b1x = Bx1[j] - ox, b1y = By1[j] - oy, b1z = Bz1[j] - oz;
-            const ct_real b2x = Bx2[j] - ox, b2y = By2[j] - oy, b2z = Bz2[j] - oz;
+            const ct_real ox = A1[2 * j], oy = A1[2 * j + 1], oz = ZA[2 * j];
+            const ct_real ux = A2[2 * j] - ox, uy = A2[2 * j + 1] - oy, uz = ZA[2 * j + 1] - oz;
+            const ct_real b1x = B1[2 * j] - ox, b1y = B1[2 * j + 1] - oy, b1z = ZB[2 * j] - oz;
+            const ct_real b2x = B2[2 * j] - ox, b2y = B2[2 * j + 1] - oy;
+            const ct_real b2z = ZB[2 * j + 1] - oz;
             const ct_real g = G[j];
             /* NaN or Inf anywhere makes the sum NaN or Inf. */
             ct_real zs = ((ux + uy) + (uz + b1x)) + ((b1y + b1z) + (b2x + b2y)) + (b2z + g);
