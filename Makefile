@@ -192,9 +192,12 @@ run: deps
 	$(CONTACT) run $(SCENE) --out out/$(basename $(notdir $(SCENE)))
 
 # Criterion forks one process per test; tests set their own thread counts.
+# Build, then run: two make calls, so that `make -j test` never starts the
+# tests while their program is still being linked.
 TEST_ARGS ?= --jobs 1
 test: deps
-	@$(MAKE) --no-print-directory build-tests run-tests
+	@$(MAKE) --no-print-directory build-tests
+	@$(MAKE) --no-print-directory run-tests
 
 # MESH=path adds a Radioss deck of yours to the real-mesh benchmarks.
 # `make bench` runs the double-precision benchmarks, then the precision-
@@ -267,11 +270,12 @@ check: deps
 	@$(MAKE) --no-print-directory check-asan
 	@$(MAKE) --no-print-directory check-tsan
 
-check-asan:
-	@$(MAKE) --no-print-directory CC=gcc OPT=-O1 SAN_SUFFIX=-asan \
+ASAN_MAKE = $(MAKE) --no-print-directory CC=gcc OPT=-O1 SAN_SUFFIX=-asan \
 	  SAN_FLAGS="-g -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer" \
-	  TEST_ENV="ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 OMP_NUM_THREADS=2 CT_CHECK=1" \
-	  build-tests run-tests
+	  TEST_ENV="ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 OMP_NUM_THREADS=2 CT_CHECK=1"
+check-asan:
+	@$(ASAN_MAKE) build-tests
+	@$(ASAN_MAKE) run-tests
 
 # Criterion cannot run under ThreadSanitizer (its boxfort arena fails to map:
 # Snaipe/Criterion issue 274), so the race check is a program of its own,
