@@ -213,6 +213,37 @@ typedef int64_t cti_lane;
 typedef ct_real cti_two __attribute__((vector_size(2 * sizeof(ct_real))));
 #define CTI_PUT2(arr, k, u, v) (*(cti_two *)(void *)&(arr)[2 * (k)] = (cti_two){(u), (v)})
 
+/* The coordinates (x, y, z) of nodes i0..i3 as entry k of that layout: d[v]
+ * receives (x, y) of node v, d[4] (z of nodes 0 and 1), d[5] (z of nodes 2
+ * and 3). Loads scalar, 6 stores. */
+static inline __attribute__((always_inline)) void
+cti_put4(ct_real *const d[6], ct_idx k, const ct_real *restrict x, const ct_real *restrict y,
+         const ct_real *restrict z, ct_idx i0, ct_idx i1, ct_idx i2, ct_idx i3)
+{
+    CTI_PUT2(d[0], k, x[i0], y[i0]);
+    CTI_PUT2(d[1], k, x[i1], y[i1]);
+    CTI_PUT2(d[2], k, x[i2], y[i2]);
+    CTI_PUT2(d[3], k, x[i3], y[i3]);
+    CTI_PUT2(d[4], k, z[i0], z[i1]);
+    CTI_PUT2(d[5], k, z[i2], z[i3]);
+}
+
+/* The same for five nodes: d[v] (x, y) of node v for v < 5, d[5] and d[6]
+ * the z of nodes 0, 1 and 2, 3, d[7][k] the z of node 4. 8 stores. */
+static inline __attribute__((always_inline)) void
+cti_put5(ct_real *const d[8], ct_idx k, const ct_real *restrict x, const ct_real *restrict y,
+         const ct_real *restrict z, ct_idx i0, ct_idx i1, ct_idx i2, ct_idx i3, ct_idx i4)
+{
+    CTI_PUT2(d[0], k, x[i0], y[i0]);
+    CTI_PUT2(d[1], k, x[i1], y[i1]);
+    CTI_PUT2(d[2], k, x[i2], y[i2]);
+    CTI_PUT2(d[3], k, x[i3], y[i3]);
+    CTI_PUT2(d[4], k, x[i4], y[i4]);
+    CTI_PUT2(d[5], k, z[i0], z[i1]);
+    CTI_PUT2(d[6], k, z[i2], z[i3]);
+    d[7][k] = z[i4];
+}
+
 /* A batch of candidate pairs and, once loaded, their coordinates. A caller
  * fills node[], seg[] and n, loads, tests, and reads ok[] (0 or 1). Lives on
  * the caller's stack or in its workspace: no allocation. The coordinates
@@ -235,14 +266,11 @@ static inline void cti_pair_batch_set(cti_pair_batch *restrict pb, int k, const 
                                       const ct_real a[3], const ct_real b[3],
                                       const ct_real c[3], const ct_real e[3])
 {
-    CTI_PUT2(pb->pxy, k, p[0], p[1]);
-    CTI_PUT2(pb->axy, k, a[0], a[1]);
-    CTI_PUT2(pb->bxy, k, b[0], b[1]);
-    CTI_PUT2(pb->cxy, k, c[0], c[1]);
-    CTI_PUT2(pb->exy, k, e[0], e[1]);
-    CTI_PUT2(pb->paz, k, p[2], a[2]);
-    CTI_PUT2(pb->bcz, k, b[2], c[2]);
-    pb->ez[k] = e[2];
+    ct_real *const d[8] = {pb->pxy, pb->axy, pb->bxy, pb->cxy,
+                           pb->exy, pb->paz, pb->bcz, pb->ez};
+    const ct_real x[5] = {p[0], a[0], b[0], c[0], e[0]}, y[5] = {p[1], a[1], b[1], c[1], e[1]},
+                  z[5] = {p[2], a[2], b[2], c[2], e[2]};
+    cti_put5(d, k, x, y, z, 0, 1, 2, 3, 4);
 }
 
 /* An empty batch (its coordinates are loaded later). */

@@ -52,16 +52,11 @@ CTI_NOVEC static void cti_ee_fetch(const ct_idx *restrict ea, const ct_idx *rest
                                       const ct_real *restrict z, ct_idx n,
                                       ct_real (*restrict C)[2 * CTI_EE_BLOCK])
 {
+    ct_real *const d[6] = {C[0], C[1], C[2], C[3], C[4], C[5]};
     CTI_NOVEC_LOOP
     for (ct_idx j = 0; j < n; j++) {
         ct_idx ia = ea[j], ib = eb[j];
-        ct_idx v0 = e1[ia], v1 = e2[ia], v2 = e1[ib], v3 = e2[ib];
-        CTI_PUT2(C[0], j, x[v0], y[v0]);
-        CTI_PUT2(C[1], j, x[v1], y[v1]);
-        CTI_PUT2(C[2], j, x[v2], y[v2]);
-        CTI_PUT2(C[3], j, x[v3], y[v3]);
-        CTI_PUT2(C[4], j, z[v0], z[v1]);
-        CTI_PUT2(C[5], j, z[v2], z[v3]);
+        cti_put4(d, j, x, y, z, e1[ia], e2[ia], e1[ib], e2[ib]);
     }
 }
 

@@ -133,19 +133,10 @@ CTI_NOVEC static void cti_relvel_fetch(int64_t i0, int64_t i1, const ct_idx *res
                                        const ct_real *restrict vz,
                                        ct_real (*restrict w)[2 * CTI_RELVEL_SUB])
 {
+    ct_real *const d[8] = {w[0], w[1], w[2], w[3], w[4], w[5], w[6], w[7]};
     CTI_NOVEC_LOOP
-    for (int64_t k = i0; k < i1; k++) {
-        const int64_t j = k - i0;
-        const ct_idx p = node[k], a = s1[k], b = s2[k], c = s3[k], e = s4[k];
-        CTI_PUT2(w[0], j, vx[p], vy[p]);
-        CTI_PUT2(w[1], j, vx[a], vy[a]);
-        CTI_PUT2(w[2], j, vx[b], vy[b]);
-        CTI_PUT2(w[3], j, vx[c], vy[c]);
-        CTI_PUT2(w[4], j, vx[e], vy[e]);
-        CTI_PUT2(w[5], j, vz[p], vz[a]);
-        CTI_PUT2(w[6], j, vz[b], vz[c]);
-        w[7][j] = vz[e];
-    }
+    for (int64_t k = i0; k < i1; k++)
+        cti_put5(d, (ct_idx)(k - i0), vx, vy, vz, node[k], s1[k], s2[k], s3[k], s4[k]);
 }
 
 /* One block [i0, i1) of ct_relative_velocity, in sub-blocks; has_m

@@ -57,18 +57,11 @@ CTI_NOVEC void cti_pair_batch_load(cti_pair_batch *restrict b, const ct_real *re
                          const ct_idx *restrict n3, const ct_idx *restrict n4)
 {
     const int n = b->n;
+    ct_real *const dst[8] = {b->pxy, b->axy, b->bxy, b->cxy, b->exy, b->paz, b->bcz, b->ez};
     CTI_NOVEC_LOOP
     for (int k = 0; k < n; k++) {
-        const ct_idx i = b->node[k], j = b->seg[k];
-        const ct_idx a = n1[j], c = n2[j], e = n3[j], f = n4[j];
-        CTI_PUT2(b->pxy, k, x[i], y[i]);
-        CTI_PUT2(b->axy, k, x[a], y[a]);
-        CTI_PUT2(b->bxy, k, x[c], y[c]);
-        CTI_PUT2(b->cxy, k, x[e], y[e]);
-        CTI_PUT2(b->exy, k, x[f], y[f]);
-        CTI_PUT2(b->paz, k, z[i], z[a]);
-        CTI_PUT2(b->bcz, k, z[c], z[e]);
-        b->ez[k] = z[f];
+        const ct_idx j = b->seg[k];
+        cti_put5(dst, k, x, y, z, b->node[k], n1[j], n2[j], n3[j], n4[j]);
     }
 }
 

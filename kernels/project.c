@@ -64,31 +64,19 @@ CTI_NOVEC void cti_nr_fetch(const cti_nr_args *a, ct_idx k0, ct_idx n, int quad,
     const ct_idx *restrict n3 = a->n3, *restrict n4 = a->n4;
     const ct_real *restrict X = a->x, *restrict Y = a->y, *restrict Z = a->z;
     if (!quad) {
+        ct_real *const d[6] = {b->pxy, b->xy1, b->xy2, b->xy3, b->z01, b->z23};
         CTI_NOVEC_LOOP
         for (ct_idx j = 0; j < n; j++) {
-            ct_idx i = node[j], s = seg[j];
-            ct_idx i1 = n1[s], i2 = n2[s], i3 = n3[s];
-            CTI_PUT2(b->pxy, j, X[i], Y[i]);
-            CTI_PUT2(b->xy1, j, X[i1], Y[i1]);
-            CTI_PUT2(b->xy2, j, X[i2], Y[i2]);
-            CTI_PUT2(b->xy3, j, X[i3], Y[i3]);
-            CTI_PUT2(b->z01, j, Z[i], Z[i1]);
-            CTI_PUT2(b->z23, j, Z[i2], Z[i3]);
+            ct_idx s = seg[j];
+            cti_put4(d, j, X, Y, Z, node[j], n1[s], n2[s], n3[s]);
         }
         return;
     }
+    ct_real *const d[8] = {b->pxy, b->xy1, b->xy2, b->xy3, b->xy4, b->z01, b->z23, b->z4};
     CTI_NOVEC_LOOP
     for (ct_idx j = 0; j < n; j++) {
-        ct_idx i = node[j], s = seg[j];
-        ct_idx i1 = n1[s], i2 = n2[s], i3 = n3[s], i4 = n4[s];
-        CTI_PUT2(b->pxy, j, X[i], Y[i]);
-        CTI_PUT2(b->xy1, j, X[i1], Y[i1]);
-        CTI_PUT2(b->xy2, j, X[i2], Y[i2]);
-        CTI_PUT2(b->xy3, j, X[i3], Y[i3]);
-        CTI_PUT2(b->xy4, j, X[i4], Y[i4]);
-        CTI_PUT2(b->z01, j, Z[i], Z[i1]);
-        CTI_PUT2(b->z23, j, Z[i2], Z[i3]);
-        b->z4[j] = Z[i4];
+        ct_idx s = seg[j];
+        cti_put5(d, j, X, Y, Z, node[j], n1[s], n2[s], n3[s], n4[s]);
     }
 }
 
