@@ -234,13 +234,9 @@ static inline __attribute__((always_inline)) void
 cti_put5(ct_real *const d[8], ct_idx k, const ct_real *restrict x, const ct_real *restrict y,
          const ct_real *restrict z, ct_idx i0, ct_idx i1, ct_idx i2, ct_idx i3, ct_idx i4)
 {
-    CTI_PUT2(d[0], k, x[i0], y[i0]);
-    CTI_PUT2(d[1], k, x[i1], y[i1]);
-    CTI_PUT2(d[2], k, x[i2], y[i2]);
-    CTI_PUT2(d[3], k, x[i3], y[i3]);
+    ct_real *const d4[6] = {d[0], d[1], d[2], d[3], d[5], d[6]};
+    cti_put4(d4, k, x, y, z, i0, i1, i2, i3);
     CTI_PUT2(d[4], k, x[i4], y[i4]);
-    CTI_PUT2(d[5], k, z[i0], z[i1]);
-    CTI_PUT2(d[6], k, z[i2], z[i3]);
     d[7][k] = z[i4];
 }
 
