@@ -173,15 +173,14 @@ CTI_STEP cti_lane pb_open(cti_pair_batch *restrict b, ct_real d, ct_real d2, con
 static void pb_one_pair(cti_pair_batch *restrict b, const cti_lane *o, const int *idx, int m,
                         ct_real d)
 {
+    PB_ARRAYS(b);
     for (int k = 0; k < m; k++) {
         if (o[k] < PB_UNDECIDED)
             continue;
         b->nscalar++;
-        const ct_real p[3] = {b->pxy[2 * k], b->pxy[2 * k + 1], b->paz[2 * k]},
-                      a[3] = {b->axy[2 * k], b->axy[2 * k + 1], b->paz[2 * k + 1]},
-                      bb[3] = {b->bxy[2 * k], b->bxy[2 * k + 1], b->bcz[2 * k]},
-                      c[3] = {b->cxy[2 * k], b->cxy[2 * k + 1], b->bcz[2 * k + 1]},
-                      e[3] = {b->exy[2 * k], b->exy[2 * k + 1], b->ez[k]};
+        PB_LANE(k);
+        const ct_real p[3] = {P.x, P.y, P.z}, a[3] = {A.x, A.y, A.z}, bb[3] = {B.x, B.y, B.z},
+                      c[3] = {C.x, C.y, C.z}, e[3] = {E.x, E.y, E.z};
         b->ok[idx ? idx[k] : k] = ct_pair_may_touch(p, a, bb, c, e, d);
     }
 }
