@@ -36,6 +36,8 @@ static void free_pair_arrays(ctd_cycle *cy)
     ct_free(cy->evald);
     for (int i = 0; i < 3; i++)
         ct_free(cy->fp[i]);
+    for (int i = 0; i < 5; i++)
+        ct_free(cy->cn[i]);
     free(cy->blk);
     cy->blk = NULL;
     memset(cy->s, 0, sizeof cy->s);
@@ -44,6 +46,7 @@ static void free_pair_arrays(ctd_cycle *cy)
     cy->flag = NULL;
     cy->evald = NULL;
     memset(cy->fp, 0, sizeof cy->fp);
+    memset(cy->cn, 0, sizeof cy->cn);
     cy->cap = 0;
 }
 
@@ -65,6 +68,8 @@ static int grow_pair_arrays(ctd_cycle *cy, size_t n, int exact)
     ok &= (cy->evald = ct_calloc(c, 1)) != NULL;
     for (int i = 0; i < 3; i++)
         ok &= (cy->fp[i] = ct_calloc(c, sizeof(ct_real))) != NULL;
+    for (int i = 0; i < 5 && cti_cycle_fused(cy); i++)
+        ok &= (cy->cn[i] = ct_calloc(c, sizeof(ct_idx))) != NULL;
     ok &= (cy->blk = calloc((c + CY_BLOCK - 1) / CY_BLOCK, sizeof *cy->blk)) != NULL;
     if (!ok) {
         free_pair_arrays(cy);
@@ -75,10 +80,12 @@ static int grow_pair_arrays(ctd_cycle *cy, size_t n, int exact)
      * weights and the flag. */
     memset(&cy->geo, 0, sizeof cy->geo);
     cy->geo.pen = cy->g[0];
-    cy->geo.h1 = cy->g[1];
-    cy->geo.h2 = cy->g[2];
-    cy->geo.h3 = cy->g[3];
-    cy->geo.h4 = cy->g[4];
+    if (!cti_cycle_fused(cy)) { /* fused: g[1..4] hold the compact lists */
+        cy->geo.h1 = cy->g[1];
+        cy->geo.h2 = cy->g[2];
+        cy->geo.h3 = cy->g[3];
+        cy->geo.h4 = cy->g[4];
+    }
     cy->geo.flag = cy->flag;
     return CT_OK;
 }
@@ -248,7 +255,8 @@ const ct_real *ctd_cycle_friction(const ctd_cycle *cy, int axis)
 
 size_t ctd_cycle_memory(const ctd_cycle *cy)
 {
-    size_t per = 5 * sizeof(ct_idx) + CY_NGEO * sizeof(ct_real) + 2 + 3 * sizeof(ct_real);
+    size_t per = (cti_cycle_fused(cy) ? 10 : 5) * sizeof(ct_idx) + CY_NGEO * sizeof(ct_real) +
+                 2 + 3 * sizeof(ct_real);
     size_t b = cy->cap * per + (cy->capft[0] + cy->capft[1]) * 4 * sizeof(ct_real);
     b += (size_t)cy->nscr * CY_BLOCK *
          (CS_NREAL * sizeof(ct_real) + CS_NIDX * sizeof(ct_idx) + sizeof(int32_t));
@@ -305,7 +313,9 @@ static int phase_search(ctd_cycle *cy, const ct_real *x, const ct_real *y, const
     if (rc != CT_OK)
         return rc;
     ct_asm_map map = ct_asm_map_nodeseg(n, np->node, cy->s[0], cy->s[1], cy->s[2], cy->s[3]);
-    rc = ct_assemble_prepare(&cy->ws, cy->p.asm_variant, &map, cy->nnode);
+    /* Fused: the colouring's blocks are the pass's (cti_cycle_fused). */
+    rc = cti_cycle_fused(cy) ? ct_colour_pairs(&cy->ws, &map, cy->nnode, CY_BLOCK)
+                             : ct_assemble_prepare(&cy->ws, cy->p.asm_variant, &map, cy->nnode);
     if (rc != CT_OK)
         return rc;
     rc = ct_friction_remap(op->n, op->node, op->seg, cy->ft[old][0], cy->ft[old][1],
@@ -337,6 +347,8 @@ static int phase_search(ctd_cycle *cy, const ct_real *x, const ct_real *y, const
 
 static int phase_assemble(ctd_cycle *cy, ct_idx n, ct_real *fxn, ct_real *fyn, ct_real *fzn)
 {
+    if (cti_cycle_fused(cy))
+        return cti_cycle_assemble_fused(cy, fxn, fyn, fzn);
     const ct_idx nn = cy->nnode;
     ct_real *restrict a = fxn, *restrict b = fyn, *restrict c = fzn;
 #pragma omp parallel for simd schedule(static)

@@ -17,8 +17,11 @@
  *     (TYPE7, ct_penalty_type7, or linear), damping and the normal force
  *     vector (ct_normal_finish / ct_normal_force), Coulomb friction
  *     (ct_friction_step), and the total pair force;
- *  4. assembly into the nodal force arrays (ct_assemble, colouring by
- *     default);
+ *  4. assembly into the nodal force arrays: by default the colouring, of
+ *     blocks of the pass itself, each block adding its own pairs in contact
+ *     from a compact list the pass leaves (a fraction of the candidates:
+ *     the others' zero forces are never stored nor read); the other
+ *     variants with ct_assemble on every candidate's pair force;
  *  5. time step, for the pairs in contact: TYPE7 kinematic
  *     (ct_dt_type7_kinematic) and nodal (ct_dt_nodal with the contact
  *     tangent stiffness).
@@ -162,10 +165,12 @@ const ct_pairs *ctd_cycle_pairs(const ctd_cycle *cy);
 
 /* The narrow-phase results the cycle keeps, one element per candidate:
  * pen (0 out of contact), the flag of every candidate evaluated in the
- * last cycle, and the weights h1..h4 of the candidates in contact (the
- * others hold left-over values). The other fields are NULL: the force pass
- * takes them from its block scratch, and storing them for every pair cost
- * more than the narrow phase the skip saves. */
+ * last cycle, and, with an assembly variant other than the colouring, the
+ * weights h1..h4 of the candidates in contact (the others hold left-over
+ * values; with the colouring, the weights go to the compact lists the
+ * assembly reads, and h1..h4 are NULL). The other fields are NULL: the
+ * force pass takes them from its block scratch, and storing them for
+ * every pair cost more than the narrow phase the skip saves. */
 const ct_contact_geo *ctd_cycle_geo(const ctd_cycle *cy);
 /* 1 for each candidate whose narrow phase ran in the last cycle, 0 for one
  * the skip left alone; NULL when the skip is off. */
