@@ -86,24 +86,16 @@ static int block_narrow(ctd_cycle *cy, ct_idx k0, ct_idx k1, cy_scratch *s, cons
     *neval = ne;
     if (ne == 0)
         return CT_OK;
-    const ct_idx *en = pp->node + k0, *es = pp->seg + k0;
-    if (ne < nb) {
-        ct_idx *restrict pn = s->i[CS_NODE], *restrict ps = s->i[CS_S1];
-        for (ct_idx j = 0; j < ne; j++) {
-            pn[j] = en[act[j]];
-            ps[j] = es[act[j]];
-        }
-        en = pn;
-        es = ps;
-    }
+    /* The selected pairs through the per-pair slots (s1..s4, one index per
+     * pair, no copy) rather than n1..n4 through the segment numbers. */
     ct_real *const *v = s->v;
     uint8_t *fl = (uint8_t *)(void *)s->flag7;
     const ct_contact_geo out = {v[CS_VRX], v[CS_PEN], v[CS_NX], v[CS_NY], v[CS_NZ],
                                 v[CS_VRY], v[CS_VRZ], v[CS_VN], v[CS_H1], v[CS_H2],
                                 v[CS_H3],  v[CS_H4],  v[CS_GAP], fl};
-    int rc = ct_narrow_node_segment(ne, en, es, cy->n1, cy->n2, cy->n3, cy->n4, x, y, z, NULL,
-                                    NULL, cy->p.gap, 0, 0, cy->p.quad, cy->p.two_sided, &out,
-                                    NULL);
+    int rc = ct_narrow_node_slots(ne, act, pp->node + k0, cy->s[0] + k0, cy->s[1] + k0,
+                                  cy->s[2] + k0, cy->s[3] + k0, x, y, z, cy->p.gap,
+                                  cy->p.quad, cy->p.two_sided, &out, NULL);
     if (rc == CT_OK && cy->skip_on)
         cti_skip_expiry(cy, k0, ne, act, out.dist, out.gap, fl);
     return rc;

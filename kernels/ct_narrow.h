@@ -126,6 +126,22 @@ int ct_narrow_node_segment(ct_idx npair, const ct_idx *node,
                            ct_quad_method method, int two_sided, const ct_contact_geo *out,
                            ct_narrow_stats *stats);
 
+/*
+ * The same narrow phase over a selection of a pair list whose segment
+ * nodes are given per pair (s1..s4[k] = n1..n4[seg[k]], as ct_asm_seg_slots
+ * makes them once per list): pair j of the call is pair sel[j] of the list
+ * (node node[sel[j]], corners s1..s4[sel[j]]) and its results go to element
+ * j of out; one gap for every pair. For a contact cycle that evaluates part
+ * of its candidates: the corners are read through one index instead of the
+ * segment number, and the selected pairs need no copy. Returns as
+ * ct_narrow_node_segment (sel must be given when npair > 0).
+ */
+int ct_narrow_node_slots(ct_idx npair, const ct_idx *sel, const ct_idx *node, const ct_idx *s1,
+                         const ct_idx *s2, const ct_idx *s3, const ct_idx *s4,
+                         const ct_real *x, const ct_real *y, const ct_real *z, ct_real gap,
+                         ct_quad_method method, int two_sided, const ct_contact_geo *out,
+                         ct_narrow_stats *stats);
+
 /* Edge-edge results, one element per pair, caller-allocated. */
 typedef struct ct_edge_geo {
     ct_real *dist, *pen;     /* |Pa - Pb|, max(0, gap - dist) */

@@ -91,6 +91,9 @@ typedef int64_t cti_nr_int;
  * takes the arrays one by one). */
 typedef struct cti_nr_args {
     const ct_idx *node, *seg, *n1, *n2, *n3, *n4;
+    /* ct_narrow_node_slots: seg is the selection and the node of pair j is
+     * node_sel[seg[j]] (node is then NULL); NULL otherwise. */
+    const ct_idx *node_sel;
     const ct_real *x, *y, *z;
     const ct_real *gap_node, *gap_seg;
     ct_real gap, gap_max_s, gap_max_m;
