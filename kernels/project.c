@@ -63,32 +63,16 @@ CTI_NOVEC void cti_nr_fetch(const cti_nr_args *a, ct_idx k0, ct_idx n, int quad,
     const ct_idx *restrict n1 = a->n1, *restrict n2 = a->n2;
     const ct_idx *restrict n3 = a->n3, *restrict n4 = a->n4;
     const ct_real *restrict X = a->x, *restrict Y = a->y, *restrict Z = a->z;
-    if (a->node_sel) { /* ct_narrow_node_slots: the node through the selection too */
-        const ct_idx *restrict nd = a->node_sel;
-        if (!quad) {
-            ct_real *const d[6] = {b->pxy, b->xy1, b->xy2, b->xy3, b->z01, b->z23};
-            CTI_NOVEC_LOOP
-            for (ct_idx j = 0; j < n; j++) {
-                ct_idx s = seg[j];
-                cti_put4(d, j, X, Y, Z, nd[s], n1[s], n2[s], n3[s]);
-            }
-            return;
-        }
-        ct_real *const d[8] = {b->pxy, b->xy1, b->xy2, b->xy3, b->xy4, b->z01, b->z23, b->z4};
-        CTI_NOVEC_LOOP
-        for (ct_idx j = 0; j < n; j++) {
-            ct_idx s = seg[j];
-            cti_put5(d, j, X, Y, Z, nd[s], n1[s], n2[s], n3[s], n4[s]);
-        }
-        return;
-    }
-    const ct_idx *restrict node = a->node + k0;
+    /* The node of pair j: node[j], or with ct_narrow_node_slots node_sel[s]
+     * (through the selection, as the corners). */
+    const int by_sel = a->node_sel != NULL;
+    const ct_idx *restrict node = by_sel ? a->node_sel : a->node + k0;
     if (!quad) {
         ct_real *const d[6] = {b->pxy, b->xy1, b->xy2, b->xy3, b->z01, b->z23};
         CTI_NOVEC_LOOP
         for (ct_idx j = 0; j < n; j++) {
             ct_idx s = seg[j];
-            cti_put4(d, j, X, Y, Z, node[j], n1[s], n2[s], n3[s]);
+            cti_put4(d, j, X, Y, Z, node[by_sel ? s : j], n1[s], n2[s], n3[s]);
         }
         return;
     }
@@ -96,7 +80,7 @@ CTI_NOVEC void cti_nr_fetch(const cti_nr_args *a, ct_idx k0, ct_idx n, int quad,
     CTI_NOVEC_LOOP
     for (ct_idx j = 0; j < n; j++) {
         ct_idx s = seg[j];
-        cti_put5(d, j, X, Y, Z, node[j], n1[s], n2[s], n3[s], n4[s]);
+        cti_put5(d, j, X, Y, Z, node[by_sel ? s : j], n1[s], n2[s], n3[s], n4[s]);
     }
 }
 
@@ -161,12 +145,24 @@ static void cti_nr_one_block(const cti_nr_args *a, cti_nr_kernel quad, ct_idx np
     }
 }
 
-/* The narrow phase of npair pairs described by a (checked by the caller). */
+/* The narrow phase of npair pairs described by a, after the checks every
+ * entry point makes. */
 static int cti_narrow_run(const cti_nr_args *ap, ct_idx npair, ct_quad_method method,
                           ct_narrow_stats *stats)
 {
     const cti_nr_args a = *ap;
     const ct_contact_geo *out = a.out;
+    if (npair < 0 || (int)method < 0 || method >= CT_QUAD_NMETHOD || !out)
+        return CT_ERR_ARG;
+    if (stats)
+        memset(stats, 0, sizeof *stats);
+    if (npair == 0)
+        return CT_OK;
+    if (!(a.node || a.node_sel) || !a.seg || !a.n1 || !a.n2 || !a.n3 || !a.n4 || !a.x ||
+        !a.y || !a.z || !out->dist || !out->pen || !out->nx || !out->ny || !out->nz ||
+        !out->cx || !out->cy || !out->cz || !out->h1 || !out->h2 || !out->h3 || !out->h4 ||
+        !out->gap || !out->flag)
+        return CT_ERR_ARG;
     cti_nr_kernel quad = method == CT_QUAD_4TRI     ? cti_nr_block_4tri
                          : method == CT_QUAD_NEWTON ? cti_nr_block_newton
                                                     : cti_nr_block_closed;
@@ -213,19 +209,6 @@ static int cti_narrow_run(const cti_nr_args *ap, ct_idx npair, ct_quad_method me
     return CT_OK;
 }
 
-/* The arguments every entry point checks. */
-static int cti_narrow_bad(ct_idx npair, ct_quad_method method, const ct_contact_geo *out)
-{
-    return npair < 0 || (int)method < 0 || method >= CT_QUAD_NMETHOD || !out;
-}
-
-static int cti_narrow_out_missing(const ct_contact_geo *out)
-{
-    return !out->dist || !out->pen || !out->nx || !out->ny || !out->nz || !out->cx ||
-           !out->cy || !out->cz || !out->h1 || !out->h2 || !out->h3 || !out->h4 || !out->gap ||
-           !out->flag;
-}
-
 int ct_narrow_node_segment(ct_idx npair, const ct_idx *restrict node,
                            const ct_idx *restrict seg, const ct_idx *restrict n1,
                            const ct_idx *restrict n2, const ct_idx *restrict n3,
@@ -236,15 +219,6 @@ int ct_narrow_node_segment(ct_idx npair, const ct_idx *restrict node,
                            ct_quad_method method, int two_sided, const ct_contact_geo *out,
                            ct_narrow_stats *stats)
 {
-    if (cti_narrow_bad(npair, method, out))
-        return CT_ERR_ARG;
-    if (stats)
-        memset(stats, 0, sizeof *stats);
-    if (npair == 0)
-        return CT_OK;
-    if (!node || !seg || !n1 || !n2 || !n3 || !n4 || !x || !y || !z ||
-        cti_narrow_out_missing(out))
-        return CT_ERR_ARG;
     const cti_nr_args a = {node, seg, n1, n2, n3, n4, NULL, x, y, z, gap_node, gap_seg,
                            gap, gap_max_s, gap_max_m, two_sided, out};
     return cti_narrow_run(&a, npair, method, stats);
@@ -257,15 +231,6 @@ int ct_narrow_node_slots(ct_idx npair, const ct_idx *restrict sel, const ct_idx 
                          const ct_real *restrict z, ct_real gap, ct_quad_method method,
                          int two_sided, const ct_contact_geo *out, ct_narrow_stats *stats)
 {
-    if (cti_narrow_bad(npair, method, out))
-        return CT_ERR_ARG;
-    if (stats)
-        memset(stats, 0, sizeof *stats);
-    if (npair == 0)
-        return CT_OK;
-    if (!sel || !node || !s1 || !s2 || !s3 || !s4 || !x || !y || !z ||
-        cti_narrow_out_missing(out))
-        return CT_ERR_ARG;
     /* The selection stands for the segment numbers, the slots for n1..n4. */
     const cti_nr_args a = {NULL, sel, s1, s2, s3, s4, node, x, y, z, NULL, NULL,
                            gap, 0, 0, two_sided, out};
