@@ -18,8 +18,10 @@
  * packed (a compact list: force, weights, nodes of its pairs in contact, at
  * the block's first positions), and the assembly reads those lists alone:
  * before, the pass scattered weights and forces into arrays over every
- * candidate (zero out of contact) and the assembly read them all, 1.05-1.16
- * times the cycle's time on the folded and crumpled sheets. Every kernel computes
+ * candidate (zero out of contact) and the assembly read them all, and the
+ * cycle took 1.05-1.16 times its time now on the folded and crumpled
+ * sheets. The narrow phase reads the selected pairs in place, their corners
+ * through the per-pair slots (ct_narrow_node_slots). Every kernel computes
  * each pair alone, so the packing changes no pair's result, and the blocks
  * are fixed by the pair count: the results are those of whole-list calls,
  * bit for bit, for any thread count (tests/test_cycle.c checks both).
