@@ -40,6 +40,8 @@ static void free_pair_arrays(ctd_cycle *cy)
         ct_free(cy->cn[i]);
     free(cy->blk);
     cy->blk = NULL;
+    free(cy->nact);
+    cy->nact = NULL;
     memset(cy->s, 0, sizeof cy->s);
     cy->old_of_new = NULL;
     memset(cy->g, 0, sizeof cy->g);
@@ -71,6 +73,7 @@ static int grow_pair_arrays(ctd_cycle *cy, size_t n, int exact)
     for (int i = 0; i < 5 && cti_cycle_fused(cy); i++)
         ok &= (cy->cn[i] = ct_calloc(c, sizeof(ct_idx))) != NULL;
     ok &= (cy->blk = calloc((c + CY_BLOCK - 1) / CY_BLOCK, sizeof *cy->blk)) != NULL;
+    ok &= (cy->nact = calloc((c + CY_BLOCK - 1) / CY_BLOCK, sizeof *cy->nact)) != NULL;
     if (!ok) {
         free_pair_arrays(cy);
         return CT_ERR_NOMEM;
@@ -260,7 +263,7 @@ size_t ctd_cycle_memory(const ctd_cycle *cy)
     size_t b = cy->cap * per + (cy->capft[0] + cy->capft[1]) * 4 * sizeof(ct_real);
     b += (size_t)cy->nscr * CY_BLOCK *
          (CS_NREAL * sizeof(ct_real) + CS_NIDX * sizeof(ct_idx) + sizeof(int32_t));
-    b += (cy->cap + CY_BLOCK - 1) / CY_BLOCK * sizeof(cy_block);
+    b += (cy->cap + CY_BLOCK - 1) / CY_BLOCK * (sizeof(cy_block) + sizeof(ct_idx));
     b += ((size_t)cy->pairs[0].cap + (size_t)cy->pairs[1].cap) * 2 * sizeof(ct_idx);
     b += (cy->skip_on ? 6 : 3) * (size_t)cy->nnode * sizeof(ct_real);
     b += ct_search_memory(cy->search) + ct_assemble_ws_memory(&cy->ws);
@@ -345,10 +348,11 @@ static int phase_search(ctd_cycle *cy, const ct_real *x, const ct_real *y, const
     return CT_OK;
 }
 
+/* The assembly: the nodal forces zeroed, then, with the colouring, the
+ * compact lists the pass left (cti_cycle_fused), otherwise every
+ * candidate's pair force with the chosen variant. */
 static int phase_assemble(ctd_cycle *cy, ct_idx n, ct_real *fxn, ct_real *fyn, ct_real *fzn)
 {
-    if (cti_cycle_fused(cy))
-        return cti_cycle_assemble_fused(cy, fxn, fyn, fzn);
     const ct_idx nn = cy->nnode;
     ct_real *restrict a = fxn, *restrict b = fyn, *restrict c = fzn;
 #pragma omp parallel for simd schedule(static)
@@ -357,9 +361,17 @@ static int phase_assemble(ctd_cycle *cy, ct_idx n, ct_real *fxn, ct_real *fyn, c
         b[i] = 0;
         c[i] = 0;
     }
+    const ct_real *const *g = (const ct_real *const *)cy->g;
+    if (cti_cycle_fused(cy)) {
+        ct_asm_map map = ct_asm_map_nodeseg(n, cy->cn[0], cy->cn[1], cy->cn[2], cy->cn[3],
+                                            cy->cn[4]);
+        const ct_real *const w[5] = {NULL, g[1], g[2], g[3], g[4]};
+        return ct_assemble_coloured_prefix(&cy->ws, &map, cy->nact, w, cy->fp[0], cy->fp[1],
+                                           cy->fp[2], nn, fxn, fyn, fzn);
+    }
     const ct_pairs *pp = &cy->pairs[cy->cur];
     ct_asm_map map = ct_asm_map_nodeseg(n, pp->node, cy->s[0], cy->s[1], cy->s[2], cy->s[3]);
-    const ct_real *const w[5] = {NULL, cy->geo.h1, cy->geo.h2, cy->geo.h3, cy->geo.h4};
+    const ct_real *const w[5] = {NULL, g[1], g[2], g[3], g[4]};
     return ct_assemble(&cy->ws, cy->p.asm_variant, &map, w, cy->fp[0], cy->fp[1],
                        cy->fp[2], nn, fxn, fyn, fzn);
 }

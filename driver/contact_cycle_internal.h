@@ -96,6 +96,7 @@ struct ctd_cycle {
     uint8_t *evald; /* 1: the pair's narrow phase ran this cycle */
     ct_real *fp[3]; /* the pair force on the secondary node (assembled) */
     ct_idx *cn[5];  /* fused assembly: the compact lists' nodes (node, s1..s4) */
+    ct_idx *nact;   /* fused assembly: each block's list length (pairs in contact) */
     ct_contact_geo geo;
     cy_block *blk; /* (cap + CY_BLOCK - 1) / CY_BLOCK records */
     cy_scratch *scr; /* per thread (nscr) */
@@ -122,8 +123,9 @@ int cti_cycle_pairs(ctd_cycle *cy, ct_idx n, const ct_real *x, const ct_real *y,
 /* 1 when the assembly is fused with the pass (the colouring variant): the
  * pass leaves each block's pairs in contact in a compact list (forces in
  * fp, weights in g[1..4], nodes in cn, at the block's first positions, in
- * order), and cti_cycle_assemble_fused assembles those lists alone, colour
- * by colour, with the colouring made at the search on the pass's blocks.
+ * order; nact[b] of them), and ct_assemble_coloured_prefix assembles those
+ * lists alone, colour by colour, with the colouring made at the search on
+ * the pass's blocks.
  * The per-pair weights are then not kept (ctd_cycle_geo gives no h1..h4).
  * The other variants assemble the per-pair forces fp, zero out of
  * contact, with ct_assemble. */
@@ -131,9 +133,6 @@ static inline int cti_cycle_fused(const ctd_cycle *cy)
 {
     return cy->p.asm_variant == CT_ASM_COLOUR;
 }
-
-/* The fused assembly (contact_cycle_pairs.c), after cti_cycle_pairs. */
-int cti_cycle_assemble_fused(const ctd_cycle *cy, ct_real *fxn, ct_real *fyn, ct_real *fzn);
 
 /* The skip (contact_cycle_skip.c). cti_skip_motion adds this cycle's
  * motion bound to the sum and keeps the positions; cti_skip_remap carries

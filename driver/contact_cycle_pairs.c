@@ -2,8 +2,8 @@
  * contact_cycle_pairs.c -- the fused pass of the contact cycle over the
  * candidate pairs (see contact_cycle.h): the narrow phase of every
  * candidate (with the skip, of those whose expiry has passed), then the
- * force and the time step of the pairs in contact; and the fused assembly
- * of their forces (the default colouring, cti_cycle_assemble_fused).
+ * force and the time step of the pairs in contact, leaving, with the
+ * default colouring, compact lists of their forces for the assembly.
  *
  * The pass runs in blocks of CY_BLOCK pairs so that a block's per-pair
  * arrays stay in cache from one kernel to the next (separate whole-list
@@ -274,48 +274,6 @@ static void block_unpack(const ctd_cycle *cy, ct_idx k0, ct_idx k1, ct_idx na,
         memcpy(cy->cn[a] + k0, s->i[CS_NODE + a], sizeof(ct_idx) * (size_t)na);
 }
 
-/* The fused assembly (cti_cycle_fused): the compact lists of the blocks
- * (block_unpack), colour by colour, the blocks of a colour in parallel,
- * each by the serial loop in pair order. The colouring was made at the
- * search over the whole pair list with the pass's blocks, and a block's
- * list holds a subset of its pairs, so no two blocks of a colour share a
- * node; every node receives its contributions in the order (colour, block,
- * pair, slot) in which ct_assemble_coloured would add them from the
- * per-pair forces (it skips the zero forces of the pairs out of contact),
- * bit for bit, for any thread count. fxn, fyn, fzn are zeroed first. */
-int cti_cycle_assemble_fused(const ctd_cycle *cy, ct_real *fxn, ct_real *fyn, ct_real *fzn)
-{
-    const ct_idx nn = cy->nnode;
-    const ct_assemble_ws *ws = &cy->ws;
-    const ct_idx *restrict off = ws->col_off, *restrict perm = ws->bperm;
-    const ct_idx ncol = ws->ncolour;
-    int bad = 0;
-#pragma omp parallel
-    {
-#pragma omp for simd schedule(static)
-        for (ct_idx i = 0; i < nn; i++) {
-            fxn[i] = 0;
-            fyn[i] = 0;
-            fzn[i] = 0;
-        }
-        for (ct_idx c = 0; c < ncol; c++) {
-#pragma omp for schedule(static) reduction(| : bad)
-            for (ct_idx j = off[c]; j < off[c + 1]; j++) {
-                const ct_idx k0 = perm[j] * CY_BLOCK;
-                const ct_asm_map map =
-                    ct_asm_map_nodeseg((ct_idx)cy->blk[perm[j]].active, cy->cn[0] + k0,
-                                       cy->cn[1] + k0, cy->cn[2] + k0, cy->cn[3] + k0,
-                                       cy->cn[4] + k0);
-                const ct_real *const w[5] = {NULL, cy->g[1] + k0, cy->g[2] + k0,
-                                             cy->g[3] + k0, cy->g[4] + k0};
-                bad |= ct_assemble_serial(&map, w, cy->fp[0] + k0, cy->fp[1] + k0,
-                                          cy->fp[2] + k0, nn, fxn, fyn, fzn) != CT_OK;
-            }
-        }
-    }
-    return bad ? CT_ERR_ARG : CT_OK;
-}
-
 /* The two step limits of the na packed pairs of block k0 into the block's
  * record (indices of the whole list; packing keeps the order, so the
  * smallest index still wins a tie). */
@@ -380,6 +338,7 @@ int cti_cycle_pairs(ctd_cycle *cy, ct_idx n, const ct_real *x, const ct_real *y,
                 block_unpack(cy, k0, k1, na, s);
         }
         b->active = na;
+        cy->nact[bi] = na;
         double t2 = cti_cycle_wtime();
         if (b->rc == CT_OK)
             packed_timestep(cy, k0, na, s, b);

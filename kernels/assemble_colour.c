@@ -247,14 +247,17 @@ ct_idx ct_colour_degree(ct_assemble_ws *ws, const ct_asm_map *map, ct_idx nnode)
     return ws->max_degree;
 }
 
-/* Block b's pairs onto the nodes, in order. */
-static void colour_block(ct_idx b, ct_idx B, ct_idx npair, int ns, int mode,
-                         const ct_idx *const slot[], const ct_real *const w[],
+/* Block b's pairs onto the nodes, in order: all of them, or the first
+ * count[b] when count is given. */
+static void colour_block(ct_idx b, ct_idx B, ct_idx npair, const ct_idx *count, int ns,
+                         int mode, const ct_idx *const slot[], const ct_real *const w[],
                          const ct_real *sign, const ct_real *fx, const ct_real *fy,
                          const ct_real *fz, ct_real *fxn, ct_real *fyn, ct_real *fzn)
 {
     ct_idx lo, hi;
     cti_block_range(b, B, npair, &lo, &hi);
+    if (count)
+        hi = lo + CTI_MAX(0, CTI_MIN(count[b], hi - lo));
     cti_asm_range(lo, hi, ns, mode, slot, w, sign, fx, fy, fz, fxn, fyn, fzn);
 }
 
@@ -263,6 +266,16 @@ int ct_assemble_coloured(const ct_assemble_ws *ws, const ct_asm_map *map,
                          const ct_real *restrict fy, const ct_real *restrict fz,
                          ct_idx nnode, ct_real *restrict fxn, ct_real *restrict fyn,
                          ct_real *restrict fzn)
+{
+    return ct_assemble_coloured_prefix(ws, map, NULL, w, fx, fy, fz, nnode, fxn, fyn, fzn);
+}
+
+int ct_assemble_coloured_prefix(const ct_assemble_ws *ws, const ct_asm_map *map,
+                                const ct_idx *count, const ct_real *const w[],
+                                const ct_real *restrict fx, const ct_real *restrict fy,
+                                const ct_real *restrict fz, ct_idx nnode,
+                                ct_real *restrict fxn, ct_real *restrict fyn,
+                                ct_real *restrict fzn)
 {
     if (!ws || !cti_asm_map_ok(map) || !w || ws->col_npair != map->npair ||
         ws->col_nslot != map->nslot || ws->col_nnode != nnode)
@@ -275,7 +288,7 @@ int ct_assemble_coloured(const ct_assemble_ws *ws, const ct_asm_map *map,
     const ct_idx *const *slot = map->slot;
     const ct_real *sign = map->sign;
     const int mode = cti_asm_mode(ns, w);
-    if (B == 1) {
+    if (B == 1 && !count) {
         /* One pair per block: within a colour no two pairs share a node, so
          * the lanes of a SIMD loop never collide. */
 #define CTI_COLOUR_SIMD(NS, MODE)                                                        \
@@ -300,8 +313,8 @@ int ct_assemble_coloured(const ct_assemble_ws *ws, const ct_asm_map *map,
         for (ct_idx c = 0; c < ncol; c++) {
 #pragma omp for schedule(static)
             for (ct_idx j = off[c]; j < off[c + 1]; j++)
-                colour_block(bperm[j], B, npair, ns, mode, slot, w, sign, fx, fy, fz, fxn, fyn,
-                             fzn);
+                colour_block(bperm[j], B, npair, count, ns, mode, slot, w, sign, fx, fy, fz,
+                             fxn, fyn, fzn);
         }
     } else {
         /* A small list on one thread, without a team (see CTI_PAR_FOR):
@@ -309,8 +322,8 @@ int ct_assemble_coloured(const ct_assemble_ws *ws, const ct_asm_map *map,
          * receives its additions in the order the threads make them. */
         for (ct_idx c = 0; c < ncol; c++)
             for (ct_idx j = off[c]; j < off[c + 1]; j++)
-                colour_block(bperm[j], B, npair, ns, mode, slot, w, sign, fx, fy, fz, fxn, fyn,
-                             fzn);
+                colour_block(bperm[j], B, npair, count, ns, mode, slot, w, sign, fx, fy, fz,
+                             fxn, fyn, fzn);
     }
     return CT_OK;
 }

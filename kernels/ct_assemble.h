@@ -225,6 +225,23 @@ int ct_assemble_coloured(const ct_assemble_ws *ws, const ct_asm_map *map,
                          const ct_real *CT_RESTRICT fy, const ct_real *CT_RESTRICT fz,
                          ct_idx nnode, ct_real *CT_RESTRICT fxn, ct_real *CT_RESTRICT fyn,
                          ct_real *CT_RESTRICT fzn);
+
+/*
+ * The colouring over a prefix of each block: block b adds only its first
+ * count[b] pairs (count NULL: all, as ct_assemble_coloured). For a caller
+ * that keeps, at the start of each block, a compact list of the block's
+ * pairs that carry a force (a subset of the block's pairs, whose nodes the
+ * colouring already covers): the lists are added colour by colour, each
+ * block in order, with no atomics, in the order ct_assemble_coloured adds
+ * the same forces spread over the whole blocks (it skips zero forces), so
+ * the result is the same, bit for bit, for any thread count.
+ */
+int ct_assemble_coloured_prefix(const ct_assemble_ws *ws, const ct_asm_map *map,
+                                const ct_idx *count, const ct_real *const w[],
+                                const ct_real *CT_RESTRICT fx, const ct_real *CT_RESTRICT fy,
+                                const ct_real *CT_RESTRICT fz, ct_idx nnode,
+                                ct_real *CT_RESTRICT fxn, ct_real *CT_RESTRICT fyn,
+                                ct_real *CT_RESTRICT fzn);
 int ct_assemble_atomic(const ct_asm_map *map, const ct_real *const w[],
                        const ct_real *CT_RESTRICT fx, const ct_real *CT_RESTRICT fy,
                        const ct_real *CT_RESTRICT fz, ct_idx nnode, ct_real *CT_RESTRICT fxn,
