@@ -183,6 +183,26 @@ int ct_resort_needed(ct_idx nsec, const ct_idx *sec, ct_idx nmain,
                      const ct_real *z0, const ct_real *x, const ct_real *y,
                      const ct_real *z, ct_real margin, ct_real *bound);
 
+/*
+ * The re-sort criterion against two references in one pass over the
+ * nodes, for a code that also bounds each step (the contact cycle's skip
+ * of the narrow phase, driver/contact_cycle.h): the return value and
+ * *bound are ct_resort_needed's against x0/y0/z0 (the positions at the last
+ * sort), *step the same bound against xp/yp/zp (the previous positions: how
+ * much any distance can have shrunk since them), bit for bit. When xk is
+ * not NULL, xk/yk/zk receive the current positions of the listed nodes
+ * (the next call's xp; they must not alias x or xp: keep two arrays and
+ * swap them). *amax receives the largest coordinate magnitude of the listed
+ * nodes, infinite if one is NaN. bound, step, amax may be NULL. One pass
+ * reads the 9 coordinates of a node where ct_resort_needed twice and a copy
+ * read 15.
+ */
+int ct_resort_track(ct_idx nsec, const ct_idx *sec, ct_idx nmain, const ct_idx *main_nodes,
+                    const ct_real *x0, const ct_real *y0, const ct_real *z0, const ct_real *xp,
+                    const ct_real *yp, const ct_real *zp, const ct_real *x, const ct_real *y,
+                    const ct_real *z, ct_real *xk, ct_real *yk, ct_real *zk, ct_real margin,
+                    ct_real *bound, ct_real *step, double *amax);
+
 #ifdef __cplusplus
 }
 #endif

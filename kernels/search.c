@@ -1,7 +1,7 @@
 /*
  * search.c -- the search workspace, the dispatcher over the four
- * algorithms, the direct (all pairs) reference search and the re-sort
- * criterion.
+ * algorithms and the direct (all pairs) reference search. The re-sort
+ * criterion is in resort.c.
  */
 #include <stdlib.h>
 
@@ -223,67 +223,4 @@ int cti_search_direct(ct_search *s, const ct_search_input *in, ct_pairs *out)
         c->len[t] = len;
     }
     return cti_collect_finish(c, in->sec, out);
-}
-
-/* The displacements of the listed nodes since x0: the largest squared
- * length (NaN: infinite) into *m2 and the per-axis extremes into lo, hi. */
-static void resort_list(ct_idx n, const ct_idx *list, const ct_real *x0, const ct_real *y0,
-                        const ct_real *z0, const ct_real *x, const ct_real *y, const ct_real *z,
-                        ct_real *m2, ct_real lo[3], ct_real hi[3])
-{
-    ct_real m = 0, lx = (ct_real)INFINITY, ly = (ct_real)INFINITY, lz = (ct_real)INFINITY;
-    ct_real hx = -(ct_real)INFINITY, hy = -(ct_real)INFINITY, hz = -(ct_real)INFINITY;
-    /* A small list (an interface of a small model, every cycle) without a
-     * thread team (see CTI_PAR_FOR). */
-    CTI_PAR_FOR(n > 8192,
-                (schedule(static) reduction(max : m, hx, hy, hz) reduction(min : lx, ly, lz)),
-    for (ct_idx i = 0; i < n; i++) {
-        ct_idx k = list[i];
-        ct_real dx = x[k] - x0[k], dy = y[k] - y0[k], dz = z[k] - z0[k];
-        ct_real d2 = dx * dx + dy * dy + dz * dz;
-        /* NaN compares false: a NaN displacement forces a re-sort. */
-        m = (d2 > m || d2 != d2) ? (d2 != d2 ? (ct_real)INFINITY : d2) : m;
-        lx = dx < lx ? dx : lx;
-        ly = dy < ly ? dy : ly;
-        lz = dz < lz ? dz : lz;
-        hx = dx > hx ? dx : hx;
-        hy = dy > hy ? dy : hy;
-        hz = dz > hz ? dz : hz;
-    });
-    *m2 = m;
-    lo[0] = lx, lo[1] = ly, lo[2] = lz;
-    hi[0] = hx, hi[1] = hy, hi[2] = hz;
-}
-
-int ct_resort_needed(ct_idx nsec, const ct_idx *sec, ct_idx nmain, const ct_idx *main_nodes,
-                     const ct_real *x0, const ct_real *y0, const ct_real *z0, const ct_real *x,
-                     const ct_real *y, const ct_real *z, ct_real margin, ct_real *bound)
-{
-    ct_real ms, mm, sl[3], sh[3], ml[3], mh[3];
-    resort_list(nsec, sec, x0, y0, z0, x, y, z, &ms, sl, sh);
-    if (main_nodes == sec && nmain == nsec) {
-        /* One list for both sides (self contact): one pass. */
-        mm = ms;
-        for (int a = 0; a < 3; a++)
-            ml[a] = sl[a], mh[a] = sh[a];
-    } else {
-        resort_list(nmain, main_nodes, x0, y0, z0, x, y, z, &mm, ml, mh);
-    }
-    ct_real b = CTI_SQRT(ms) + CTI_SQRT(mm);
-    if (nsec > 0 && nmain > 0 && b <= (ct_real)CTI_HUGE) {
-        /* Per axis, the secondary-minus-main displacement lies in
-         * [min_s - max_m, max_s - min_m] (a point of a segment moves by a
-         * convex combination of its corners' displacements). */
-        ct_real r2 = 0;
-        for (int a = 0; a < 3; a++) {
-            ct_real u = sh[a] - ml[a], v = mh[a] - sl[a];
-            ct_real r = u > v ? u : v;
-            r2 += r * r;
-        }
-        ct_real rel = CTI_SQRT(r2);
-        b = rel < b ? rel : b;
-    }
-    if (bound)
-        *bound = b;
-    return !(b <= margin);
 }
