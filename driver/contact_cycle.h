@@ -4,7 +4,8 @@
  *
  * A cycle is:
  *  1. search: the re-sort criterion (ct_resort_needed, positions at the last
- *     sort kept); when it fires (and at the first cycle), the candidate
+ *     sort kept; with the skip, ct_resort_track, which bounds the step
+ *     since the last cycle in the same pass over the nodes); when it fires (and at the first cycle), the candidate
  *     search (ct_search_run), the assembly preparation (ct_asm_seg_slots,
  *     ct_assemble_prepare) and the friction history carried from the old
  *     pair list to the new one (ct_friction_remap);
@@ -72,7 +73,8 @@ typedef struct ctd_cycle_params {
  * (ct_resort_needed: the smaller of the largest secondary step plus the
  * largest main step and the relative bound per axis, 0 for a rigid
  * motion). The cycle sums that bound from one cycle to the next (positions
- * of the previous cycle kept); a candidate whose distance D was
+ * of the previous cycle kept; ct_resort_track evaluates it with the re-sort
+ * criterion, in one pass); a candidate whose distance D was
  * computed when that sum was M_c needs no narrow phase while the sum stays
  * below M_c + (D - gap - slack): its distance is still above the gap, so
  * its penetration, force, friction history and step limit are the zeros a

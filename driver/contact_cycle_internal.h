@@ -102,10 +102,11 @@ struct ctd_cycle {
     cy_scratch *scr; /* per thread (nscr) */
     int nscr;
     /* The skip (contact_cycle_skip.c): on, the previous cycle's positions
-     * (valid when have_prev), the motion sum since the last re-sort, the
-     * rounding slack of this cycle. */
-    int skip_on, have_prev;
-    ct_real *xp, *yp, *zp;
+     * (valid when have_prev) in buffer pc, the other receiving this
+     * cycle's, the motion sum since the last re-sort, the rounding slack
+     * of this cycle. */
+    int skip_on, have_prev, pc;
+    ct_real *xp[2], *yp[2], *zp[2];
     double motion, slack;
     /* Assembly. */
     ct_assemble_ws ws;
@@ -135,13 +136,15 @@ static inline int cti_cycle_fused(const ctd_cycle *cy)
 }
 
 /* The skip (contact_cycle_skip.c). cti_skip_motion adds this cycle's
- * motion bound to the sum and keeps the positions; cti_skip_remap carries
+ * motion bound to the sum and keeps the positions, and returns the re-sort
+ * criterion (its bound in *bound), evaluated in the same pass; cti_skip_remap carries
  * the expiries of the pairs that survive a re-sort (after the friction
  * remap filled old_of_new) and restarts the sum; cti_skip_select lists in
  * act the pairs of block [k0, k1) (indices in the block) whose expiry has
  * passed and returns their count; cti_skip_expiry sets the expiries of the
  * ne evaluated pairs act[j] from their narrow-phase results (packed). */
-void cti_skip_motion(ctd_cycle *cy, const ct_real *x, const ct_real *y, const ct_real *z);
+int cti_skip_motion(ctd_cycle *cy, const ct_real *x, const ct_real *y, const ct_real *z,
+                    ct_real *bound);
 void cti_skip_remap(ctd_cycle *cy, ct_idx n, int old, int now);
 ct_idx cti_skip_select(ctd_cycle *cy, ct_idx k0, ct_idx k1, ct_idx *act);
 void cti_skip_expiry(ctd_cycle *cy, ct_idx k0, ct_idx ne, const ct_idx *act, const ct_real *dist,

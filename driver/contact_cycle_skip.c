@@ -22,51 +22,28 @@
 #define CY_EPS DBL_EPSILON
 #endif
 
-/* Keep the positions of the listed nodes, and return their largest
- * coordinate magnitude (NaN: infinite), in one pass. */
-static double list_keep(ct_idx n, const ct_idx *restrict list, const ct_real *restrict x,
-                        const ct_real *restrict y, const ct_real *restrict z,
-                        ct_real *restrict xp, ct_real *restrict yp, ct_real *restrict zp)
+int cti_skip_motion(ctd_cycle *cy, const ct_real *x, const ct_real *y, const ct_real *z,
+                    ct_real *bound)
 {
+    /* One pass over the nodes (ct_resort_track): the re-sort criterion
+     * against the positions at the last sort, returned with its bound for
+     * the search phase; this step's bound, the criterion's against the last
+     * cycle's positions (buffer pc; 0 for a rigid motion), added to the
+     * sum; this cycle's positions into the other buffer. The first cycle
+     * has no previous positions: its pairs are all new (expiry -1), so the
+     * sum does not matter; it stays 0. */
+    const int p = cy->pc, q = 1 - p;
+    ct_real step = 0;
     double L = 0;
-#pragma omp parallel for schedule(static) reduction(max : L)
-    for (ct_idx i = 0; i < n; i++) {
-        const ct_idx k = list[i];
-        xp[k] = x[k];
-        yp[k] = y[k];
-        zp[k] = z[k];
-        /* Selects, not fmax: a libm call per coordinate (gcc does not
-         * inline fmax, whose NaN rule differs from a select's), and fmax
-         * would drop a NaN coordinate where the bound must be infinite. */
-        const double ax = fabs((double)x[k]), ay = fabs((double)y[k]), az = fabs((double)z[k]);
-        double a = ax > ay ? ax : ay;
-        a = az > a ? az : a;
-        a = ((ax != ax) | (ay != ay) | (az != az)) ? INFINITY : a;
-        L = a > L ? a : L;
-    }
-    return L;
-}
-
-void cti_skip_motion(ctd_cycle *cy, const ct_real *x, const ct_real *y, const ct_real *z)
-{
-    /* The first cycle has no previous positions: its pairs are all new
-     * (expiry -1), so the sum does not matter; it stays 0. Otherwise the
-     * step's bound is the re-sort criterion's, from the last cycle's
-     * positions: the smaller of the two largest steps' sum and the
-     * relative bound per axis (0 for a rigid motion). */
-    if (cy->have_prev) {
-        ct_real b = 0;
-        ct_resort_needed(cy->nsec, cy->sec, cy->nmain, cy->mainn, cy->xp, cy->yp, cy->zp, x, y,
-                         z, 0, &b);
-        cy->motion += b == b ? (double)b : INFINITY;
-    }
-    double L = list_keep(cy->nsec, cy->sec, x, y, z, cy->xp, cy->yp, cy->zp);
-    if (!cy->self) {
-        const double Lm = list_keep(cy->nmain, cy->mainn, x, y, z, cy->xp, cy->yp, cy->zp);
-        L = Lm > L ? Lm : L; /* neither is NaN */
-    }
+    int need = ct_resort_track(cy->nsec, cy->sec, cy->nmain, cy->mainn, cy->x0, cy->y0, cy->z0,
+                               cy->xp[p], cy->yp[p], cy->zp[p], x, y, z, cy->xp[q], cy->yp[q],
+                               cy->zp[q], cy->p.margin, bound, &step, &L);
+    if (cy->have_prev)
+        cy->motion += step == step ? (double)step : INFINITY;
+    cy->pc = q;
     cy->have_prev = 1;
     cy->slack = 1024 * CY_EPS * (L + (double)cy->p.gap);
+    return need;
 }
 
 void cti_skip_remap(ctd_cycle *cy, ct_idx n, int old, int now)
