@@ -5,10 +5,11 @@
  * A cycle is:
  *  1. search: the re-sort criterion (ct_resort_needed, positions at the last
  *     sort kept; with the skip, ct_resort_track, which bounds the step
- *     since the last cycle in the same pass over the nodes); when it fires (and at the first cycle), the candidate
- *     search (ct_search_run), the assembly preparation (ct_asm_seg_slots,
- *     ct_assemble_prepare) and the friction history carried from the old
- *     pair list to the new one (ct_friction_remap);
+ *     since the last cycle in the same pass over the nodes); when it fires
+ *     (and at the first cycle), the candidate search (ct_search_run), the
+ *     assembly preparation (ct_asm_seg_slots, ct_assemble_prepare) and the
+ *     friction history carried from the old pair list to the new one
+ *     (ct_friction_remap);
  *  2. narrow phase (ct_narrow_node_segment) of every candidate that may be
  *     in contact: with the skip on (the default, see below), a candidate
  *     whose last computed distance exceeds the gap by more than the motion

@@ -137,8 +137,8 @@ static inline int cti_cycle_fused(const ctd_cycle *cy)
 
 /* The skip (contact_cycle_skip.c). cti_skip_motion adds this cycle's
  * motion bound to the sum and keeps the positions, and returns the re-sort
- * criterion (its bound in *bound), evaluated in the same pass; cti_skip_remap carries
- * the expiries of the pairs that survive a re-sort (after the friction
+ * criterion (its bound in *bound), evaluated in the same pass;
+ * cti_skip_remap carries the expiries of the pairs that survive a re-sort (after the friction
  * remap filled old_of_new) and restarts the sum; cti_skip_select lists in
  * act the pairs of block [k0, k1) (indices in the block) whose expiry has
  * passed and returns their count; cti_skip_expiry sets the expiries of the
