@@ -39,6 +39,100 @@ Test(timestep, nodal_hand_values)
     cr_assert_eq(imin, 1);
 }
 
+/* The nodal step of entry i by hand, the kernel's operations in its order:
+ * the element stiffness (0 without) plus the contact stiffness, then
+ * sqrt(2 m / k). */
+static ct_real nodal_by_hand(const ct_idx *idx, const ct_real *m, const ct_real *ke,
+                             const ct_real *kc, ct_idx i)
+{
+    ct_idx j = idx ? idx[i] : i;
+    ct_real k = ke ? ke[j] + kc[i] : kc[i];
+    return (m[j] > 0 && k > 0) ? (ct_real)sqrt((ct_real)2 * m[j] / k) : CT_DT_NONE;
+}
+
+Test(timestep, every_path_several_chunks)
+{
+    /* Nodal: every combination of node list and element stiffness, over 1000
+     * entries (chunks of 256 and a remainder), 1 and 2 threads: each step
+     * the hand formula's bits, the minimum and its index a plain scan's.
+     * The list repeats and jumps (i * 37 mod 613). A NaN mass through the
+     * list is found at the first entry naming it. */
+    enum { N = 1000, NN = 613 };
+    ct_real m[NN], ke[NN], kc[N], dt[N];
+    ct_idx idx[N];
+    for (ct_idx j = 0; j < NN; j++) {
+        m[j] = (ct_real)(1 + (j * 7919) % 1000) / 64;
+        ke[j] = (ct_real)(50 + (j * 104729) % 977);
+    }
+    for (ct_idx i = 0; i < N; i++) {
+        idx[i] = (ct_idx)((i * 37) % NN);
+        kc[i] = (i % 11 == 0) ? 0 : (ct_real)(10 + (i * 31) % 500);
+    }
+    m[5] = 0; /* no mass: no limit */
+    for (int th = 1; th <= 2; th++) {
+        ctt_threads(th);
+        for (int c = 0; c < 4; c++) {
+            const ct_idx *ix = (c & 1) ? idx : NULL;
+            const ct_real *kk = (c & 2) ? ke : NULL;
+            ct_real dmin;
+            ct_idx imin;
+            cr_assert_eq(ct_dt_nodal(N, ix, m, kk, kc, dt, &dmin, &imin), CT_OK);
+            ct_real best = CT_DT_NONE;
+            ct_idx bi = -1;
+            for (ct_idx i = 0; i < N; i++) {
+                ct_real h = nodal_by_hand(ix, m, kk, kc, i);
+                cr_assert_eq(dt[i], h, "entry %d, list %d, element %d: %.17g, by hand %.17g",
+                             (int)i, c & 1, c >> 1, (double)dt[i], (double)h);
+                if (h < best) {
+                    best = h;
+                    bi = i;
+                }
+            }
+            cr_assert(dmin == best && imin == bi, "list %d element %d", c & 1, c >> 1);
+        }
+    }
+    /* The TYPE7 kinematic step over the same 1000 entries: (g - p) / (2 (-vn))
+     * where 0 < p < g (1 - RMIN) and vn < 0, by hand, bit for bit. */
+    ct_real p[N], g[N], vn[N];
+    for (ct_idx i = 0; i < N; i++) {
+        g[i] = (ct_real)(1 + i % 7) / 8;
+        p[i] = g[i] * (ct_real)((i * 13) % 17) / 16; /* 0 to g (deactivated) */
+        vn[i] = (ct_real)((int)((i * 29) % 41) - 30) / 4;
+    }
+    for (int th = 1; th <= 2; th++) {
+        ctt_threads(th);
+        ct_real dmin;
+        ct_idx imin;
+        cr_assert_eq(ct_dt_type7_kinematic(N, p, g, vn, dt, &dmin, &imin), CT_OK);
+        const ct_real xc = (ct_real)1 - (ct_real)CT_TYPE7_RMIN;
+        ct_real best = CT_DT_NONE;
+        ct_idx bi = -1;
+        for (ct_idx i = 0; i < N; i++) {
+            int lim = p[i] > 0 && g[i] > 0 && p[i] < g[i] * xc && vn[i] < 0;
+            ct_real h = lim ? (g[i] - p[i]) / ((ct_real)2 * -vn[i]) : CT_DT_NONE;
+            cr_assert_eq(dt[i], h, "TYPE7 entry %d", (int)i);
+            if (h < best) {
+                best = h;
+                bi = i;
+            }
+        }
+        cr_assert(bi >= 0 && dmin == best && imin == bi);
+    }
+    /* The first entry naming node 600 is the error's index. */
+    ct_idx first = -1;
+    for (ct_idx i = 0; i < N && first < 0; i++)
+        if (idx[i] == 600)
+            first = i;
+    cr_assert(first >= 0);
+    m[600] = NAN;
+    ct_real dmin;
+    ct_idx imin;
+    cr_assert_eq(ct_dt_nodal(N, idx, m, NULL, kc, NULL, &dmin, &imin), CT_ERR_NONFINITE);
+    cr_assert_eq(imin, first);
+    cr_assert_eq(ct_dt_nodal(N, idx, m, ke, kc, NULL, &dmin, &imin), CT_ERR_NONFINITE);
+    cr_assert_eq(imin, first);
+}
+
 Test(timestep, type7_kinematic_type6_tunnel)
 {
     /* (g - p)/(2 (-vn)): g = 1, p = 0.2, vn = -2: 0.8/4 = 0.2; separating
