@@ -120,6 +120,10 @@ cti_friction_pair(ct_real n0, ct_real n1, ct_real n2, ct_real v0, ct_real v1, ct
     ct_real rq = lim / (den > 0 ? den : (ct_real)1);
     ct_real r = den > 0 ? rq : (ct_real)1;
     ct_real g0 = r * t0, g1 = r * t1, g2 = r * t2;
+    /* |g| = r |t| (r >= 0): its magnitude without a second square root
+     * at the end of the pair's longest chain (sqrt of the trial, the
+     * division, then that square root: the loop waited on it). */
+    ct_real gm = r * tn;
     if (filt) {
         g0 = alpha * g0 + beta * o0;
         g1 = alpha * g1 + beta * o1;
@@ -133,6 +137,7 @@ cti_friction_pair(ct_real n0, ct_real n1, ct_real n2, ct_real v0, ct_real v1, ct
         g0 *= s;
         g1 *= s;
         g2 *= s;
+        gm = s * gn;
     }
     ct_real slip = tn - lim;
     ct_real slq = slip / (k > 0 ? k : (ct_real)1);
@@ -144,9 +149,8 @@ cti_friction_pair(ct_real n0, ct_real n1, ct_real n2, ct_real v0, ct_real v1, ct
     *g0_ = g0;
     *g1_ = g1;
     *g2_ = g2;
-    ct_real gg = g0 * g0 + g1 * g1 + g2 * g2;
-    gg = gg > 0 ? gg : 0;
-    ct_real d = CTI_SQRT(gg) * slip;
+    gm = fok > 0 ? gm : 0;
+    ct_real d = gm * slip;
     return d > 0 ? d : 0;
 }
 

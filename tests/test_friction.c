@@ -133,6 +133,20 @@ Test(friction, stick_slip_filter_hand_values)
     ct_friction_step(1, &nx, &ny, &nz, &vx, &vy, &vz, &fn, NULL, 0.5, NULL, 1000, 1e-3, 0.25,
                      &F[0], &F[1], &F[2], &dis);
     cr_assert_leq(ctt_rel(F[0], 1.5), TOL);
+    /* Filtered while slipping: fn = 1 (limit 0.5), kt dt = 1, old (-2, 0,
+     * 0) (from a larger normal force), v = (1, 0, 0): trial (-3, 0, 0) ->
+     * (-0.5, 0, 0) on the cone, slip (3 - 0.5)/100 = 0.025; filtered with
+     * alpha = 0.5: -1.25, scaled back to the cone: -0.5. The dissipation
+     * is the force on the cone times the slip, 0.5 * 0.025 = 0.0125 (not
+     * the filtered force's 1.25 * 0.025). */
+    fn = 1;
+    F[0] = -2;
+    F[1] = F[2] = 0;
+    ct_friction_step(1, &nx, &ny, &nz, &vx, &vy, &vz, &fn, NULL, 0.5, NULL, 100, 1e-2, 0.5,
+                     &F[0], &F[1], &F[2], &dis);
+    cr_assert_leq(ctt_rel(F[0], -0.5), TOL);
+    cr_assert(F[1] == 0 && F[2] == 0);
+    cr_assert_leq(ctt_rel(dis, 0.0125), CTT_TOL(1e-13, 1e-5));
     /* Out of contact: zero force, the history is cleared. */
     fn = 0;
     ct_friction_step(1, &nx, &ny, &nz, &vx, &vy, &vz, &fn, NULL, 0.5, NULL, 1000, 1e-3, 1,
