@@ -58,9 +58,11 @@ Test(timestep, every_path_several_chunks)
      * The list repeats and jumps (i * 37 mod 613). A NaN mass through the
      * list is found at the first entry naming it. */
     enum { N = 1000, NN = 613 };
-    ct_real m[NN], ke[NN], kc[N], dt[N];
+    /* Masses and element stiffnesses of N nodes: without the list, item i
+     * is node i; the list names the first NN. */
+    ct_real m[N], ke[N], kc[N], dt[N];
     ct_idx idx[N];
-    for (ct_idx j = 0; j < NN; j++) {
+    for (ct_idx j = 0; j < N; j++) {
         m[j] = (ct_real)(1 + (j * 7919) % 1000) / 64;
         ke[j] = (ct_real)(50 + (j * 104729) % 977);
     }
