@@ -55,9 +55,7 @@ struct cti_dt_in {
 };
 
 /* The nodal step of a node of mass mi and stiffness k (element plus
- * contact; without element stiffness, the contact's: 0 + k would be k but
- * for the sign of a zero, which the step does not read); *nan is set if
- * an input is NaN. */
+ * contact); *nan is set if an input is NaN. */
 static inline ct_real cti_dt_nodal_step(ct_real mi, ct_real k, int *nan)
 {
     *nan = mi != mi || k != k;
@@ -96,10 +94,15 @@ CTI_NOVEC static void cti_dt_fetch(const ct_idx *restrict ix, const ct_real *res
     CTI_NOVEC_LOOP
     for (int k = 0; k < n; k++)
         mc[k] = m[ix[k]];
+    if (!ke)
+        return;
     CTI_NOVEC_LOOP
-    for (int k = 0; ke && k < n; k++)
+    for (int k = 0; k < n; k++)
         kc[k] = ke[ix[k]];
 }
+
+/* Element stiffness zero, for the calls without one (a chunk's worth). */
+static const ct_real cti_dt_zero[CTI_DT_CHUNK];
 
 /* The steps of items [i0, i0 + n) (n <= CTI_DT_CHUNK) into d, their NaN
  * flags into nan; returns whether any is NaN. One vector loop per kind. */
@@ -110,8 +113,8 @@ static int cti_dt_chunk(const struct cti_dt_in *in, ct_idx i0, int n, ct_real *r
     if (in->kind == CTI_DT_NODAL) {
         /* Through a node list, the chunk's masses (and element
          * stiffnesses) are copied first by scalar loads; the vector loops
-         * then read contiguous arrays only, one loop with element
-         * stiffnesses and one without, so that no lane selects a pointer.
+         * then read contiguous arrays only (a chunk of zeros standing for
+         * absent element stiffnesses), so that no lane selects a pointer.
          * With the list and the NULL test inside the loop (and the TYPE7
          * loop's pointers read through the struct, below), gcc 12 loaded
          * every input with vector gathers, which AMD Zen 4 and 5 microcode:
@@ -119,31 +122,21 @@ static int cti_dt_chunk(const struct cti_dt_in *in, ct_idx i0, int n, ct_real *r
          * 1 thread) took 12.9 ns per node and cycle, now 5.8. */
         _Alignas(64) ct_real mc[CTI_DT_CHUNK], kc[CTI_DT_CHUNK];
         const struct cti_dt_nodal_in *nd = &in->nodal;
-        const ct_real *restrict mp = nd->m + i0, *restrict kp = nd->kelem;
+        const ct_real *restrict mp = nd->m + i0, *restrict kp = cti_dt_zero;
         if (nd->idx) {
-            cti_dt_fetch(nd->idx + i0, nd->m, kp, n, mc, kc);
+            cti_dt_fetch(nd->idx + i0, nd->m, nd->kelem, n, mc, kc);
             mp = mc;
-            kp = kp ? kc : NULL;
-        } else if (kp) {
-            kp += i0;
+            kp = nd->kelem ? kc : kp;
+        } else if (nd->kelem) {
+            kp = nd->kelem + i0;
         }
         const ct_real *restrict kq = nd->kcont + i0;
-        if (kp) {
 #pragma omp simd reduction(| : any)
-            for (int k = 0; k < n; k++) {
-                int f = 0;
-                d[k] = cti_dt_nodal_step(mp[k], kp[k] + kq[k], &f);
-                nan[k] = f;
-                any |= f;
-            }
-        } else {
-#pragma omp simd reduction(| : any)
-            for (int k = 0; k < n; k++) {
-                int f = 0;
-                d[k] = cti_dt_nodal_step(mp[k], kq[k], &f);
-                nan[k] = f;
-                any |= f;
-            }
+        for (int k = 0; k < n; k++) {
+            int f = 0;
+            d[k] = cti_dt_nodal_step(mp[k], kp[k] + kq[k], &f);
+            nan[k] = f;
+            any |= f;
         }
     } else {
         /* The arrays as restrict pointers to the chunk (see above). */
