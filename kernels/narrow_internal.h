@@ -1,6 +1,7 @@
 /*
  * narrow_internal.h -- helpers shared by the narrow-phase kernels
- * (project.c, project_quad.c, project_newton.c, edge.c).
+ * (project.c and its block kernels project_tri.c, project_quad.c,
+ * project_newton.c; edge.c and its block kernel edge_block.c).
  *
  * Structure of every pair loop: for a block of at most CTI_NR_BLOCK pairs,
  * a scalar loop (cti_nr_fetch) first copies the coordinates of each pair,
@@ -134,6 +135,13 @@ void cti_nr_block_tri(const cti_nr_args *a, ct_idx k0, ct_idx n, cti_nr_blk *b);
 void cti_nr_block_4tri(const cti_nr_args *a, ct_idx k0, ct_idx n, cti_nr_blk *b);
 void cti_nr_block_newton(const cti_nr_args *a, ct_idx k0, ct_idx n, cti_nr_blk *b);
 void cti_nr_block_closed(const cti_nr_args *a, ct_idx k0, ct_idx n, cti_nr_blk *b);
+
+/* Edge-edge: the nb <= CTI_EE_BLOCK pairs of the block at k0, their end
+ * points in C (as cti_ee_fetch in edge.c stores them) and gaps in G, into
+ * out at k0 and their integer flags into F. */
+void cti_ee_block(ct_idx nb, const ct_real *restrict G,
+                  const ct_real (*restrict C)[2 * CTI_EE_BLOCK], const ct_edge_geo *out,
+                  ct_idx k0, cti_nr_int *restrict F);
 
 /* The output arrays of a block as restrict locals o_*, offset by k0. */
 #define CTI_NR_OUTPTRS(a, k0)                                                             \
