@@ -58,6 +58,10 @@ char *ctd_rad_or_empty(char *s)
 
 /* ---- The file ---------------------------------------------------------- */
 
+/* The largest deck read (an endless stream, a FIFO fed forever, would
+ * otherwise take all the memory). */
+#define CTD_DECK_MAXBYTES ((size_t)1 << 30)
+
 char *ctd_rad_slurp(const char *path, size_t *size)
 {
     FILE *f = fopen(path, "rb");
@@ -79,6 +83,17 @@ char *ctd_rad_slurp(const char *path, size_t *size)
         }
         size_t k = fread(buf + n, 1, cap - n, f);
         n += k;
+        /* Not a text deck (/dev/zero, a binary file): stop at the first
+         * chunk with a NUL byte, which the scan reports with its line,
+         * instead of reading on (import: {file: /dev/zero} grew without end). */
+        if (k > 0 && memchr(buf + n - k, '\0', k))
+            break;
+        if (n > CTD_DECK_MAXBYTES) {
+            free(buf);
+            buf = NULL;
+            errno = EFBIG;
+            break;
+        }
         if (k == 0) {
             if (ferror(f)) {
                 free(buf);

@@ -479,10 +479,25 @@ int ctd_model_build(ctd_model *m, const ctd_scene *sc, char *err, size_t errlen)
         goto fail;
     for (ct_idx i = 0; i < nn; i++) {
         if (m->node_part[i] && !(m->mesh.nodes.m[i] > 0)) {
-            rc = cti_model_err(err, errlen, CT_ERR_ARG,
-                               "%s: node %lld (part %d) has no mass: only springs attach it "
-                               "(expected a truss, brick, shell or rigid part on it)",
-                               sc->path, (long long)m->node_id[i], m->node_part[i]);
+            /* Name the part (its line): a massive element whose mass
+             * underflowed (a tiny rho) is not "only springs". */
+            unsigned p = 0;
+            while (p < sc->parts_count && sc->parts[p].id != m->node_part[i])
+                p++;
+            const ctd_scene_part *pt = p < sc->parts_count ? &sc->parts[p] : NULL;
+            if (pt && pt->element != CTD_ELEM_SPRING)
+                rc = cti_model_err(err, errlen, CT_ERR_ARG,
+                                   "%s:%d: parts[%u].material.rho: node %lld of part %lld has "
+                                   "a mass of %g (rho %g is too small for its elements)",
+                                   sc->path, pt->line, p, (long long)m->node_id[i],
+                                   (long long)pt->id, (double)m->mesh.nodes.m[i],
+                                   pt->material.rho);
+            else
+                rc = cti_model_err(err, errlen, CT_ERR_ARG,
+                                   "%s:%d: parts[%u]: node %lld (part %d) has no mass: only "
+                                   "springs attach it (expected a truss, brick, shell or rigid "
+                                   "part on it)", sc->path, pt ? pt->line : 0, p,
+                                   (long long)m->node_id[i], m->node_part[i]);
             goto fail;
         }
         m->mass += m->mesh.nodes.m[i];

@@ -16,7 +16,7 @@ static void usage(FILE *f)
 {
     fprintf(f,
             "usage: contact run SCENE [--out DIR] [--threads N] [--search ALGO] [--end T]\n"
-            "                         [--dt-scale S] [--refine N] [--quiet]\n"
+            "                         [--dt-scale S] [--refine N] [--cycle-limit N] [--quiet]\n"
             "Runs a scene (YAML, see `contact check`) with the explicit solver and writes\n"
             "a VTU/PVD series, history.csv, summary.json and energies.png.\n"
             "  --out DIR       output directory (default: the scene's output.dir)\n"
@@ -27,6 +27,9 @@ static void usage(FILE *f)
             "                  replacing the scene's refine\n"
             "  --dt-scale S    safety factor on the stable time step (default: the scene's;\n"
             "                  values above 1 are allowed here, for experiments)\n"
+            "  --cycle-limit N the most cycles the run may need (default: the scene's\n"
+            "                  solver.cycle_limit, 1e8): a step too small to reach the end\n"
+            "                  within it is an error (exit 2), not a run of days\n"
             "  --quiet         no progress line and no report\n"
             "Exit codes: 0 success, 1 bad usage, 2 bad input, 4 the run went unstable,\n"
             "5 an output file could not be written.\n");
@@ -48,7 +51,7 @@ int ctd_run_main(int argc, char **argv)
     const char *scene = NULL, *out = NULL, *search = NULL;
     double end = 0, dts = 0;
     int threads = 0, quiet = 0;
-    int64_t refine = 0;
+    int64_t refine = 0, cycle_limit = 0;
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i];
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
@@ -100,6 +103,13 @@ int ctd_run_main(int argc, char **argv)
                 return CTD_EXIT_USAGE;
             }
             refine = (int64_t)x;
+        } else if (!strcmp(a, "--cycle-limit")) {
+            if (parse_pos(v, &x) || x > 1e15 || x != (double)(int64_t)x) {
+                fprintf(stderr, "contact run: --cycle-limit expects an integer in 1..1e15, got "
+                                "'%s'\n", v);
+                return CTD_EXIT_USAGE;
+            }
+            cycle_limit = (int64_t)x;
         } else if (!strcmp(a, "--threads")) {
             if (parse_pos(v, &x) || x != (int)x || x > 4096) {
                 fprintf(stderr, "contact run: --threads expects an integer in 1..4096, got "
@@ -154,6 +164,7 @@ int ctd_run_main(int argc, char **argv)
         ctd_solver_opts o = ctd_solver_default_opts();
         o.end_time = end;
         o.dt_scale = dts;
+        o.cycle_limit = cycle_limit;
         o.threads = threads;
         o.out_dir = out;
         o.quiet = quiet;
@@ -161,7 +172,7 @@ int ctd_run_main(int argc, char **argv)
         int rc = ctd_solver_init(&s, &model, &o, hooks, nhook, err, sizeof err);
         if (rc) {
             fprintf(stderr, "contact run: %s\n", err);
-            code = CTD_EXIT_OUTPUT;
+            code = s.exit_code == CTD_EXIT_BADINPUT ? CTD_EXIT_BADINPUT : CTD_EXIT_OUTPUT;
         } else {
             code = ctd_solver_run(&s);
             if (code != CTD_EXIT_OK)

@@ -2,6 +2,8 @@
  * scene.c -- loading a scene file: the libyaml tree (lines), the typed load
  * through libcyaml, then the checks (scene_validate.c); `contact check`.
  */
+#include <ctype.h>
+#include <errno.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -71,6 +73,78 @@ static cyaml_config_t config(logbuf *b)
     c.log_level = CYAML_LOG_ERROR;
     c.flags = CYAML_CFG_NO_ALIAS;
     return c;
+}
+
+/* ---- Numbers read in full ------------------------------------------------------ */
+
+/* libcyaml (1.3.1) reads a number with strtoll(base 0)/strtod and ignores
+ * whatever follows it: `part: 1e3` loads as 1, `cells: [2.5]` as 2,
+ * `part: 010` as 8, `E: 2.1e11 7800` as 2.1e11. Re-read every scalar that the
+ * schema types as a number, in full, and report the ones that are not. */
+static int int_text_ok(const char *s)
+{
+    const char *p = s + (*s == '+' || *s == '-');
+    if (!isdigit((unsigned char)*p))
+        return 0;
+    if (p[0] == '0' && p[1])
+        return 0; /* 010 would be octal, 0x10 hexadecimal */
+    while (isdigit((unsigned char)*p))
+        p++;
+    return *p == '\0';
+}
+
+static int float_text_ok(const char *s)
+{
+    char *end;
+    errno = 0;
+    (void)strtod(s, &end);
+    return end != s && *end == '\0';
+}
+
+static void check_numbers(cti_errs *e, const cti_ynode *n, const cyaml_schema_value_t *v,
+                          char *path, size_t plen, size_t cap)
+{
+    if (!n || !v || plen >= cap)
+        return;
+    switch (v->type) {
+    case CYAML_INT:
+    case CYAML_UINT:
+    case CYAML_FLOAT:
+        /* A list or a mapping here has been reported by libcyaml already. */
+        if (n->kind == CTI_Y_SCALAR &&
+            !(v->type == CYAML_FLOAT ? float_text_ok(n->value) : int_text_ok(n->value)))
+            cti_err(e, CT_ERR_ARG, n->line, path, "expected %s, got '%.60s'",
+                    v->type == CYAML_FLOAT ? "a number" : "a decimal integer", n->value);
+        return;
+    case CYAML_MAPPING:
+        if (n->kind != CTI_Y_MAP)
+            return;
+        for (int i = 0; i < n->n; i++) {
+            const cyaml_schema_field_t *f = v->mapping.fields;
+            while (f->key && !(n->key[i] && strcmp(f->key, n->key[i]) == 0))
+                f++;
+            if (!f->key)
+                continue;
+            int k = snprintf(path + plen, cap - plen, "%s%s", plen ? "." : "", f->key);
+            if (k > 0)
+                check_numbers(e, n->child[i], &f->value, path, plen + (size_t)k, cap);
+            path[plen] = '\0';
+        }
+        return;
+    case CYAML_SEQUENCE:
+    case CYAML_SEQUENCE_FIXED:
+        if (n->kind != CTI_Y_SEQ)
+            return;
+        for (int i = 0; i < n->n; i++) {
+            int k = snprintf(path + plen, cap - plen, "[%d]", i);
+            if (k > 0)
+                check_numbers(e, n->child[i], v->sequence.entry, path, plen + (size_t)k, cap);
+            path[plen] = '\0';
+        }
+        return;
+    default:
+        return;
+    }
 }
 
 /* ---- Load / free ----------------------------------------------------------- */
@@ -153,6 +227,16 @@ int ctd_scene_load_refined(const char *path, int64_t refine, ctd_scene **out,
         return e.code;
     }
     free(lb);
+    {
+        char npath[256] = "";
+        check_numbers(&e, root, &cti_scene_schema, npath, 0, sizeof npath);
+        if (e.count > 0) {
+            cyaml_config_t c0 = config(NULL);
+            cyaml_free(&c0, &cti_scene_schema, sc, 0);
+            cti_ynode_free(root);
+            return e.code;
+        }
+    }
     sc->internal = root;
     sc->path = strdup(path);
     const char *slash = strrchr(path, '/');

@@ -47,7 +47,11 @@
  *   solver      optional mapping:
  *                 dt_scale  number in (0, 1] (0.9): safety factor on the
  *                           stable time step;
- *                 threads   integer >= 0 (0: OpenMP's default).
+ *                 threads   integer >= 0 (0: OpenMP's default);
+ *                 cycle_limit integer in 1 .. 1e15 (1e8): a run whose stable
+ *                           step would need more cycles than this to reach
+ *                           end_time stops at once with an error (exit 2)
+ *                           naming the step, instead of running for days.
  *   mesh        list, required, at least one entry, each exactly one of:
  *     generate: {kind, part, cells, size, origin, radius, length, to, layers,
  *                spacing, tri}
@@ -170,6 +174,9 @@ extern "C" {
 
 /* Exit codes of ctd_scene_check_main. */
 enum { CTD_EXIT_OK = 0, CTD_EXIT_BADINPUT = 2 };
+
+/* The default of solver.cycle_limit: the most cycles a run may need. */
+#define CTD_CYCLE_LIMIT ((int64_t)100000000)
 
 /* A parsed `where` filter: every clause must hold (axis 0..2, op one of
  * CTD_WHERE_*). */
@@ -308,6 +315,7 @@ typedef struct ctd_scene_output {
 typedef struct ctd_scene_solver {
     double dt_scale;
     int64_t threads;
+    int64_t cycle_limit; /* filled by the loader: 1e8 when absent */
 } ctd_scene_solver;
 
 /* A loaded scene. The lists hold `*_count` entries. */

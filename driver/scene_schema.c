@@ -130,6 +130,7 @@ static const cyaml_schema_field_t f_output[] = {
 static const cyaml_schema_field_t f_solver[] = {
     NUM("dt_scale", OPT, ctd_scene_solver, dt_scale),
     INT("threads", OPT, ctd_scene_solver, threads),
+    INT("cycle_limit", OPT, ctd_scene_solver, cycle_limit),
     CYAML_FIELD_END};
 
 static const cyaml_schema_field_t f_scene[] = {

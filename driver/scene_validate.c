@@ -39,8 +39,11 @@ int cti_vnum(vctx *v, const char *path, double x, double lo, int lo_open, double
              const char *expect)
 {
     if (!isfinite(x)) {
-        cti_err(v->e, CT_ERR_NONFINITE, 0, path, "expected a finite number (%s), got %g", expect,
-                x);
+        if (strcmp(expect, "a finite number") == 0)
+            cti_err(v->e, CT_ERR_NONFINITE, 0, path, "expected a finite number, got %g", x);
+        else
+            cti_err(v->e, CT_ERR_NONFINITE, 0, path, "expected a finite number (%s), got %g",
+                    expect, x);
         return 0;
     }
     int ok = (lo_open ? x > lo : x >= lo) && (hi_open ? x < hi : x <= hi);
@@ -215,9 +218,11 @@ static void check_parts(vctx *v)
     for (unsigned i = 0; i < sc->parts_count; i++) {
         ctd_scene_part *p = &sc->parts[i];
         p->line = cti_path_line(v->e->root, cti_vpath(v, "parts[%u]", i));
-        if (p->id <= 0)
+        /* The model keeps part ids in int32_t (cell_part, node_part, the VTU
+         * part_id array): 4294967297 was written as part 1. */
+        if (p->id <= 0 || p->id > INT32_MAX)
             cti_err(v->e, CT_ERR_ARG, 0, cti_vpath(v, "parts[%u].id", i),
-                    "expected an integer > 0, got %lld", (long long)p->id);
+                    "expected an integer in 1 .. 2147483647, got %lld", (long long)p->id);
         for (unsigned j = 0; j < i; j++)
             if (sc->parts[j].id == p->id) {
                 cti_err(v->e, CT_ERR_ARG, 0, cti_vpath(v, "parts[%u].id", i),
@@ -227,12 +232,23 @@ static void check_parts(vctx *v)
             }
         p->element = cti_venum(v, cti_vpath(v, "parts[%u].element", i), p->element_name,
                                cti_elem_names, CTD_ELEM_NKIND);
-        cti_vnum(v, cti_vpath(v, "parts[%u].material.E", i), p->material.E, 0, 1, INFINITY, 0,
-                 "a number > 0");
+        int okE = cti_vnum(v, cti_vpath(v, "parts[%u].material.E", i), p->material.E, 0, 1,
+                           INFINITY, 0, "a number > 0");
         cti_vnum(v, cti_vpath(v, "parts[%u].material.nu", i), p->material.nu, -1, 1, 0.5, 1,
                  "a number in (-1, 0.5)");
-        cti_vnum(v, cti_vpath(v, "parts[%u].material.rho", i), p->material.rho, 0, 1, INFINITY, 0,
-                 "a number > 0");
+        int okr = cti_vnum(v, cti_vpath(v, "parts[%u].material.rho", i), p->material.rho, 0, 1,
+                           INFINITY, 0, "a number > 0");
+        /* Each > 0 and finite is not enough: rho 4.9e-324 gave nodes a mass
+         * of 0 ("only springs attach it"), rho 1e-300 or E 1e308 a wave speed
+         * sqrt(E/rho) of inf and a stable step of 0 ("unstable" at cycle 0).
+         * Any consistent unit system (SI, mm-ms-kg, mm-s-t) is far inside. */
+        if (okE && okr && !(p->material.rho >= 1e-100 && p->material.E <= 1e100 &&
+                            p->material.E / p->material.rho >= 1e-60 &&
+                            p->material.E / p->material.rho <= 1e60))
+            cti_err(v->e, CT_ERR_ARG, 0, cti_vpath(v, "parts[%u].material", i),
+                    "E %g and rho %g give a wave speed squared E/rho of %g: expected rho >= "
+                    "1e-100, E <= 1e100 and E/rho in 1e-60 .. 1e60 (check the units)",
+                    p->material.E, p->material.rho, p->material.E / p->material.rho);
         static const char *const keys[3] = {"thickness", "area", "stiffness"};
         const int need[3] = {CTD_ELEM_SHELL, CTD_ELEM_TRUSS, CTD_ELEM_SPRING};
         const double val[3] = {p->thickness, p->area, p->stiffness};
@@ -373,7 +389,9 @@ static void check_boundary(vctx *v)
 static int check_top(vctx *v)
 {
     ctd_scene *sc = v->sc;
-    cti_vnum(v, "end_time", sc->end_time, 0, 1, INFINITY, 0, "a number > 0");
+    /* > 0 alone let end_time 4.9e-324 through: one step of that size
+     * divides into inf, and the run ended "ok" with NaN external work. */
+    cti_vnum(v, "end_time", sc->end_time, 1e-20, 0, INFINITY, 0, "a number >= 1e-20");
     if (!cti_vhas(v, "refine"))
         sc->refine = 1;
     else if (sc->refine < 1 || sc->refine > 1000) {
@@ -407,7 +425,7 @@ static int check_top(vctx *v)
     if (!cti_vhas(v, "output.every"))
         o->every = isfinite(sc->end_time) && sc->end_time > 0 ? sc->end_time / 100 : 1.0;
     else
-        cti_vnum(v, "output.every", o->every, 0, 1, INFINITY, 0, "a number > 0");
+        cti_vnum(v, "output.every", o->every, 1e-20, 0, INFINITY, 0, "a number >= 1e-20");
     if (o->dir && !o->dir[0])
         cti_err(v->e, CT_ERR_ARG, 0, "output.dir", "expected a directory name, got ''");
     if (o->dir) {
@@ -429,11 +447,18 @@ static int check_top(vctx *v)
     if (!cti_vhas(v, "solver.dt_scale"))
         sc->solver->dt_scale = 0.9;
     else
-        cti_vnum(v, "solver.dt_scale", sc->solver->dt_scale, 0, 1, 1, 0, "a number in (0, 1]");
+        cti_vnum(v, "solver.dt_scale", sc->solver->dt_scale, 1e-6, 0, 1, 0,
+                 "a number in [1e-6, 1]");
     if (sc->solver->threads < 0 || sc->solver->threads > 4096)
         cti_err(v->e, CT_ERR_ARG, 0, "solver.threads",
                 "expected an integer in 0..4096 (0: OpenMP's default), got %lld",
                 (long long)sc->solver->threads);
+    if (!cti_vhas(v, "solver.cycle_limit"))
+        sc->solver->cycle_limit = CTD_CYCLE_LIMIT;
+    else if (sc->solver->cycle_limit < 1 || sc->solver->cycle_limit > (int64_t)1000000000000000)
+        cti_err(v->e, CT_ERR_ARG, 0, "solver.cycle_limit",
+                "expected an integer in 1 .. 1e15, got %lld",
+                (long long)sc->solver->cycle_limit);
     return CT_OK;
 }
 

@@ -8,8 +8,15 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "ct_internal.h"
 #include "meshgen.h"
 #include "scene_validate_internal.h"
+
+#ifdef CT_SINGLE
+#define CTI_HUGE_TEXT "3e38"
+#else
+#define CTI_HUGE_TEXT "1e300"
+#endif
 
 /* ---- Interfaces ------------------------------------------------------------ */
 
@@ -121,11 +128,19 @@ void cti_vcheck_interface(vctx *v, unsigned i, ctd_scene_interface *f)
     cti_vnum(v, cti_vpath(v, "%s.Gap_max_m", b), f->Gap_max_m, 0, 0, INFINITY, 0, "a number >= 0");
     cti_vnum(v, cti_vpath(v, "%s.Ipen_max", b), f->Ipen_max, 0, 0, INFINITY, 0, "a number >= 0");
     cti_vnum(v, cti_vpath(v, "%s.VisS", b), f->VisS, 0, 0, INFINITY, 0, "a number >= 0");
-    cti_vnum(v, cti_vpath(v, "%s.Fric", b), f->Fric, 0, 0, INFINITY, 0, "a number >= 0");
+    /* The friction kernels refuse coefficients above CTI_HUGE
+     * (ct_friction_check): bound them here so that `contact check` agrees
+     * with `contact run` and the message names the field. */
+    cti_vnum(v, cti_vpath(v, "%s.Fric", b), f->Fric, 0, 0, (double)CTI_HUGE, 0,
+             "a number in [0, " CTI_HUGE_TEXT "]");
     const double C[6] = {f->C1, f->C2, f->C3, f->C4, f->C5, f->C6};
     for (int k = 0; k < 6; k++)
-        cti_vnum(v, cti_vpath(v, "%s.C%d", b, k + 1), C[k], -INFINITY, 0, INFINITY, 0,
-                 "a finite number");
+        cti_vnum(v, cti_vpath(v, "%s.C%d", b, k + 1), C[k], -(double)CTI_HUGE, 0,
+                 (double)CTI_HUGE, 0, "a number in [-" CTI_HUGE_TEXT ", " CTI_HUGE_TEXT "]");
+    if (f->Ifric == 3 && !(f->C4 <= f->C2))
+        cti_err(v->e, CT_ERR_ARG, 0, cti_vpath(v, "%s.C4", b),
+                "Renard friction (Ifric 3) expects C4 = mu_min <= C2 = mu_d, got C4 = %g, "
+                "C2 = %g", f->C4, f->C2);
     if (f->Ifric == 3 && !(f->C5 > 0 && f->C6 > f->C5))
         cti_err(v->e, CT_ERR_ARG, 0, cti_vpath(v, "%s.C5", b),
                 "Renard friction (Ifric 3) expects 0 < C5 < C6, got C5 = %g, C6 = %g", f->C5,

@@ -25,6 +25,10 @@ static const struct {
     [CTD_GEN_NET] = {2, 2, 0, 0, 0, 0, LINE},    [CTD_GEN_ROD] = {1, 0, 0, 0, 1, 0, LINE},
 };
 
+/* The largest coordinate a generated mesh may reach: edges below 2e74, so
+ * that an edge squared, squared, stays below 1e300 (kernels/mesh.c). */
+#define GEN_MAXCOORD 1e74
+
 /* The most nodes a generated mesh may have (meshgen's limit, ct_idx). */
 #define GEN_MAXNODES ((int64_t)INT32_MAX - 64)
 
@@ -127,13 +131,45 @@ static void check_generate(vctx *v, unsigned i, ctd_scene_generate *g)
         cti_err(v->e, CT_ERR_ARG, 0, pl, "expected an integer in 1 .. 1e8, got %lld",
                 (long long)g->layers);
     const char *pt = cti_vpath(v, "%s.to", b);
-    if (kind_spec[k].to && !cti_vhas(v, pt))
-        cti_err(v->e, CT_ERR_ARG, 0, pt,
+    char pts[96];
+    snprintf(pts, sizeof pts, "%s", pt);
+    if (kind_spec[k].to && !cti_vhas(v, pts))
+        cti_err(v->e, CT_ERR_ARG, 0, pts,
                 "required field missing for kind rod (expected a list "
                 "of 3 numbers)");
-    else if (kind_spec[k].to && g->to[0] == g->origin[0] && g->to[1] == g->origin[1] &&
-             g->to[2] == g->origin[2])
-        cti_err(v->e, CT_ERR_ARG, 0, pt, "expected a point other than origin");
+    else if (kind_spec[k].to && cti_vhas(v, pts)) {
+        int fin = 1;
+        for (int j = 0; j < 3; j++)
+            fin &= cti_vnum(v, cti_vpath(v, "%s[%d]", pts, j), g->to[j], -INFINITY, 0,
+                            INFINITY, 0, "a finite number");
+        if (fin && g->to[0] == g->origin[0] && g->to[1] == g->origin[1] &&
+            g->to[2] == g->origin[2])
+            cti_err(v->e, CT_ERR_ARG, 0, pts, "expected a point other than origin");
+    }
+    /* Finite inputs can still make coordinates the arithmetic cannot hold
+     * (origin -1e308 with size 1e308 gives inf; a rod from -1e308 overflows
+     * the edge search's boxes). Bound every coordinate the mesh can reach by
+     * GEN_MAXCOORD, the limit the deck reader enforces on segments
+     * (ct_mesh_validate: longest edge squared, squared, below 1e300). */
+    if (v->e->count == nerr) {
+        double reach = 0, span = 0;
+        for (int j = 0; j < 3; j++) {
+            reach = fmax(reach, fabs(g->origin[j]));
+            if (kind_spec[k].to)
+                reach = fmax(reach, fabs(g->to[j]));
+        }
+        /* folded: size [h] is one cell's size */
+        const double per = k == CTD_GEN_FOLDED ? (double)(g->cells_eff[0] + g->cells_eff[1]) : 1;
+        for (unsigned j = 0; j < g->size_count; j++)
+            span += g->size[j] * per;
+        span += 2 * g->radius + g->length;
+        if (k == CTD_GEN_FOLDED)
+            span += g->spacing * (double)g->layers;
+        if (!(reach + span <= GEN_MAXCOORD))
+            cti_err(v->e, CT_ERR_ARG, 0, cti_vpath(v, "%s", b),
+                    "the mesh would reach coordinates of %g, expected at most %g (scale the "
+                    "model's length unit)", reach + span, GEN_MAXCOORD);
+    }
     if (g->tri && k != CTD_GEN_PLATE)
         cti_err(v->e, CT_ERR_ARG, 0, cti_vpath(v, "%s.tri", b), "only used by kind plate");
     v->sc->mesh[i].nnode = v->e->count == nerr ? gen_nodes(g) : -1;

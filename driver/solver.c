@@ -102,6 +102,9 @@ int ctd_solver_init(ctd_solver *s, ctd_model *m, const ctd_solver_opts *opts,
     s->opts = opts ? *opts : ctd_solver_default_opts();
     s->end_time = s->opts.end_time > 0 ? s->opts.end_time : sc->end_time;
     s->dt_scale = s->opts.dt_scale > 0 ? s->opts.dt_scale : sc->solver->dt_scale;
+    s->cycle_limit = s->opts.cycle_limit > 0           ? s->opts.cycle_limit
+                     : sc->solver->cycle_limit > 0 ? sc->solver->cycle_limit
+                                                    : CTD_CYCLE_LIMIT;
     s->every = s->opts.every > 0 ? s->opts.every
                : sc->output->every > 0 ? sc->output->every
                                       : s->end_time / 100;
@@ -165,8 +168,13 @@ int ctd_solver_init(ctd_solver *s, ctd_model *m, const ctd_solver_opts *opts,
             w->bc_node[w->nbc++] = i;
     }
     int lrc = ctd_loads_init(&w->loads, m, err, errlen);
-    if (lrc != CT_OK)
+    if (lrc != CT_OK) {
+        /* A selection that selects nothing is the input's fault: tell the
+         * caller (run.c reported every init failure as exit 5, "an output
+         * file could not be written"). */
+        s->exit_code = lrc == CT_ERR_NOMEM ? CTD_EXIT_OUTPUT : CTD_EXIT_BADINPUT;
         return lrc == CT_ERR_NOMEM ? err_out(err, errlen, lrc, "out of memory") : lrc;
+    }
     /* Driven bodies start with their imposed velocity and no spin. */
     for (int b = 0; b < m->nbody; b++) {
         ctd_model_body *bd = &m->body[b];
@@ -595,6 +603,19 @@ int ctd_solver_run(ctd_solver *s)
                  "is %g", (long long)s->cycle, s->time, dt_new);
             break;
         }
+        /* A run that cannot end: end_time 9e18 s, or a step made tiny by a
+         * huge Stfac or E/rho, ran on with no message (hours to years). The
+         * estimate is checked at every step, as the step changes. */
+        if (!final && s->opts.max_cycles <= 0 &&
+            (double)s->cycle + (end - s->time) / dt_new > (double)s->cycle_limit) {
+            fail(s, "error", CTD_EXIT_BADINPUT,
+                 "cycle %lld (t = %.6g): the stable time step %.3g would need %.3g more cycles "
+                 "to reach end_time %g, more than solver.cycle_limit (%lld) allows: expected a "
+                 "shorter end_time, a larger step (check the interfaces' Stfac and the "
+                 "materials' E/rho) or a larger cycle_limit", (long long)s->cycle, s->time,
+                 dt_new, (end - s->time) / dt_new, end, (long long)s->cycle_limit);
+            break;
+        }
         double dtk = s->cycle == 0 ? 0.5 * dt_new : 0.5 * (w->dt_prev + dt_new);
         kick(s, dtk, dt_new, check);
         rigid_kick(s, dtk, dt_new);
@@ -602,6 +623,16 @@ int ctd_solver_run(ctd_solver *s)
             cti_solver_energies(s);
             double ref = fmax(s->e0.total, fabs(s->e.external));
             double live = s->e.kinetic + s->e.internal + s->e.contact;
+            if (!isfinite(live) || !isfinite(ref) || !isfinite(s->e.external)) {
+                /* A NaN compares false below: without this a NaN contact
+                 * energy went to history.csv with status "ok" and exit 0. */
+                fail(s, "unstable", CTD_EXIT_UNSTABLE,
+                     "cycle %lld (t = %.6g): non-finite energy: kinetic %g, internal %g, "
+                     "contact %g, external work %g, initial total %g", (long long)s->cycle,
+                     s->time, s->e.kinetic, s->e.internal, s->e.contact, s->e.external,
+                     s->e0.total);
+                break;
+            }
             if (s->cycle > 0 && live > 100 * ref + 1e-30) {
                 ct_idx f = fastest_node(s);
                 fail(s, "unstable", CTD_EXIT_UNSTABLE,

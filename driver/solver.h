@@ -148,6 +148,7 @@ typedef struct ctd_solver_opts {
     int progress;        /* -1: on a terminal (stderr) only; 0 off; 1 on */
     FILE *report;        /* the report's stream (NULL: stdout) */
     int64_t max_cycles;  /* > 0: stop (status "ok") after this many cycles */
+    int64_t cycle_limit; /* > 0: overrides solver.cycle_limit (ignored with max_cycles) */
     /* Called once per cycle (NULL: never), after the kick: s->time, the
      * positions x(n), the velocities v(n+1/2) (rigid bodies' nodes
      * included), s->dt (the step that led to x(n)) and each interface's
@@ -178,6 +179,7 @@ typedef struct ctd_solver {
     ctd_model *model;
     ctd_solver_opts opts;
     double end_time, dt_scale, every;
+    int64_t cycle_limit; /* a run needing more cycles fails (exit 2) */
     int threads;
     /* The state: x(n), the latest velocities (half step), forces. */
     ct_idx nnode;

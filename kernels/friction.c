@@ -14,9 +14,12 @@ int ct_friction_check(int law, const ct_real coef[7], ct_diag *diag)
 {
     if (law < 0 || law >= CT_FRIC_NLAW || !coef)
         return cti_fail(diag, CT_ERR_ARG, -1, "Unknown friction law %d.", law);
+    static const char *const name[7] = {"Fric", "C1", "C2", "C3", "C4", "C5", "C6"};
     for (int i = 0; i < 7; i++)
         if (!(CTI_FABS(coef[i]) <= CTI_HUGE))
-            return cti_fail(diag, CT_ERR_ARG, i, "Friction coefficient %d is not finite.", i);
+            return cti_fail(diag, CT_ERR_ARG, i,
+                            "Friction coefficient %d (%s) = %g is not finite or above %g.", i,
+                            name[i], (double)coef[i], (double)CTI_HUGE);
     if (law == CT_FRIC_RENARD) {
         if (!(coef[5] > 0))
             return cti_fail(diag, CT_ERR_ARG, 5, "Renard needs C5 = Vcr1 > 0.");

@@ -40,6 +40,16 @@ static int hook_step(void *ctx, const ctd_state *s, ct_real *fx, ct_real *fy, ct
     ctd_iface_report r;
     int rc = ctd_iface_step(h->it, s->time, (ct_real)s->dt, s->x, s->y, s->z, s->vx, s->vy,
                             s->vz, s->m, fx, fy, fz, &r);
+    if (rc == CT_OK && !(r.dt > 0)) {
+        /* A stable step of 0 or NaN comes from a contact stiffness that
+         * overflowed (Stfac 1e308, or Istf 1 with a huge Stfac): read below
+         * as "no limit", it let the run finish with NaN contact energies, or
+         * fail later as an unstable step. */
+        rc = CT_ERR_ARG;
+        snprintf(r.msg, sizeof r.msg,
+                 "its stable time step is %g: the contact stiffness overflows (expected a "
+                 "smaller Stfac, or a finite Stmax)", (double)r.dt);
+    }
     rep->energy = r.e_contact;
     rep->damping = r.e_damp;
     rep->friction = r.e_fric;

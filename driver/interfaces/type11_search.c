@@ -148,6 +148,13 @@ static int edge_search(ctd_iface *it, ctdi_epass *e, const ct_real *x, const ct_
                 ext += (double)box[6 * b + 3 + ax] - (double)box[6 * b + ax];
             }
         int64_t nbox = b1 - b0;
+        /* Boxes past the double range (huge coordinates or margins) would
+         * make the cell counts below inf or NaN, whose conversion to int64_t
+         * is undefined (it gave INT64_MIN, a signed overflow, then a bogus
+         * "out of memory"). */
+        if (nbox > 0 && !(isfinite(ext) && isfinite(hi[0] - lo[0]) &&
+                          isfinite(hi[1] - lo[1]) && isfinite(hi[2] - lo[2])))
+            return CT_ERR_NONFINITE;
         g.h = nbox > 0 ? ext / (3.0 * (double)nbox) : 1.0;
         if (!(g.h > 0))
             g.h = 1.0;
@@ -156,8 +163,10 @@ static int edge_search(ctd_iface *it, ctdi_epass *e, const ct_real *x, const ct_
             int64_t tot = 1;
             for (int ax = 0; ax < 3; ax++) {
                 g.o[ax] = lo[ax];
-                g.n[ax] = nbox > 0 ? (int64_t)((hi[ax] - lo[ax]) / g.h) + 1 : 1;
-                tot *= g.n[ax];
+                double span = nbox > 0 ? (hi[ax] - lo[ax]) / g.h : 0;
+                /* Clamped before the conversion; a larger span grows h. */
+                g.n[ax] = span < (double)maxc ? (int64_t)span + 1 : maxc + 1;
+                tot = tot > maxc / g.n[ax] ? maxc + 1 : tot * g.n[ax];
             }
             if (tot <= maxc)
                 break;
