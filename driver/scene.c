@@ -3,7 +3,6 @@
  * through libcyaml, then the checks (scene_validate.c); `contact check`.
  */
 #include <ctype.h>
-#include <errno.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -96,7 +95,6 @@ static int int_text_ok(const char *s)
 static int float_text_ok(const char *s)
 {
     char *end;
-    errno = 0;
     (void)strtod(s, &end);
     return end != s && *end == '\0';
 }

@@ -12,12 +12,6 @@
 #include "meshgen.h"
 #include "scene_validate_internal.h"
 
-#ifdef CT_SINGLE
-#define CTI_HUGE_TEXT "3e38"
-#else
-#define CTI_HUGE_TEXT "1e300"
-#endif
-
 /* ---- Interfaces ------------------------------------------------------------ */
 
 void cti_vcheck_interface(vctx *v, unsigned i, ctd_scene_interface *f)
@@ -131,12 +125,14 @@ void cti_vcheck_interface(vctx *v, unsigned i, ctd_scene_interface *f)
     /* The friction kernels refuse coefficients above CTI_HUGE
      * (ct_friction_check): bound them here so that `contact check` agrees
      * with `contact run` and the message names the field. */
-    cti_vnum(v, cti_vpath(v, "%s.Fric", b), f->Fric, 0, 0, (double)CTI_HUGE, 0,
-             "a number in [0, " CTI_HUGE_TEXT "]");
+    const double huge = (double)CTI_HUGE;
+    char ex[2][64];
+    snprintf(ex[0], sizeof ex[0], "a number in [0, %g]", huge);
+    snprintf(ex[1], sizeof ex[1], "a number in [%g, %g]", -huge, huge);
+    cti_vnum(v, cti_vpath(v, "%s.Fric", b), f->Fric, 0, 0, huge, 0, ex[0]);
     const double C[6] = {f->C1, f->C2, f->C3, f->C4, f->C5, f->C6};
     for (int k = 0; k < 6; k++)
-        cti_vnum(v, cti_vpath(v, "%s.C%d", b, k + 1), C[k], -(double)CTI_HUGE, 0,
-                 (double)CTI_HUGE, 0, "a number in [-" CTI_HUGE_TEXT ", " CTI_HUGE_TEXT "]");
+        cti_vnum(v, cti_vpath(v, "%s.C%d", b, k + 1), C[k], -huge, 0, huge, 0, ex[1]);
     if (f->Ifric == 3 && !(f->C4 <= f->C2))
         cti_err(v->e, CT_ERR_ARG, 0, cti_vpath(v, "%s.C4", b),
                 "Renard friction (Ifric 3) expects C4 = mu_min <= C2 = mu_d, got C4 = %g, "
