@@ -130,6 +130,21 @@ size_t ctdi_pass_memory(const ctdi_pass *p, ct_idx nnode)
     return b;
 }
 
+const char *ctdi_pass_setup_why(int rc)
+{
+    switch (rc) {
+    case CT_ERR_NOMEM:
+        return "out of memory";
+    case CT_ERR_RANGE:
+        return "a node index is out of range";
+    case CT_ERR_ARG:
+        return "a two-sided surface needs a gap > 0: give the interface "
+               "a gap (only shell parts carry a thickness to take it from)";
+    default:
+        return ct_strerror(rc);
+    }
+}
+
 int ctdi_pass_setup(ctd_iface *it, ctdi_pass *p, ct_idx nsec, ct_idx *sec_owned, ct_idx nseg,
                     const ct_idx *n1, const ct_idx *n2, const ct_idx *n3, const ct_idx *n4,
                     ct_real *kseg_owned, int self, int two_sided, int law)

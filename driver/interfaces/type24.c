@@ -5,6 +5,8 @@
  * Igap0 gaps, Inacti / Ipen0 / Ipen_max, grnd_IDs, VisS and friction; the
  * pass engine is iface_pass.c.
  */
+#include <stdio.h>
+
 #include "iface_internal.h"
 
 /* Istf of the card -> ct_stiff_combine (0 and 2 mean, 3 max, 4 min,
@@ -83,8 +85,9 @@ int ctdi_type24_setup(ctd_iface *it, const ctd_iface_data *d, ct_diag *diag)
                          d->n4, kseg, c->self != 0, two, CTDI_LAW_LINEAR);
     if (rc != CT_OK) {
         ct_free(kseg2);
-        return ctdi_fail(diag, rc, -1, "TYPE24 setup failed (a range error, memory, or a "
-                                       "two-sided surface without a gap).");
+        char msg[256];
+        snprintf(msg, sizeof msg, "TYPE24 setup failed: %s.", ctdi_pass_setup_why(rc));
+        return ctdi_fail(diag, rc, -1, msg);
     }
     if (!c->symmetric || c->self) {
         ct_free(kseg2);
@@ -102,8 +105,12 @@ int ctdi_type24_setup(ctd_iface *it, const ctd_iface_data *d, ct_diag *diag)
     it->npass = 2;
     rc = ctdi_pass_setup(it, &it->pass[1], (ct_idx)n2, sec2, d->nsseg, d->s1, d->s2, d->s3,
                          d->s4, kseg2, 0, two, CTDI_LAW_LINEAR);
-    if (rc != CT_OK)
-        return ctdi_fail(diag, rc, -1, "TYPE24 second pass setup failed.");
+    if (rc != CT_OK) {
+        char msg[256];
+        snprintf(msg, sizeof msg, "TYPE24 setup of its second pass failed: %s.",
+                 ctdi_pass_setup_why(rc));
+        return ctdi_fail(diag, rc, -1, msg);
+    }
     /* Its nodes are the main side's: the report counts its force negative,
      * so that the total is the force on the secondary surface. */
     it->pass[1].reverse = 1;
