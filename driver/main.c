@@ -7,7 +7,7 @@
  *   contact demo                 the search comparison, each checked against direct: on
  *                                a self-contact sheet and on two plates
  *   contact run SCENE [options]  run a scene (explicit dynamics)
- *   contact check SCENE          validate a scene file without running it
+ *   contact check SCENE          validate a scene (file, model, first step) without running it
  *
  * Exit codes: 0 success, 1 bad usage, 2 bad input (scene), 3 a verification
  * failed, 4 the run went unstable, 5 output failure.
@@ -369,7 +369,7 @@ static void usage(FILE *f)
                "  search    run and verify the contact searches on a synthetic case\n"
                "  demo      the search comparison on a self-contact sheet and two plates\n"
                "  run       run a scene: contact run SCENE [--out DIR] [--threads N] ...\n"
-               "  check     validate a scene file (YAML) without running it\n"
+               "  check     validate a scene (file, model, interfaces, first step) without running it\n"
                "Run `contact <command> --help` for a command's options.\n");
 }
 
@@ -397,12 +397,20 @@ int main(int argc, char **argv)
     if (!strcmp(cmd, "run"))
         return ctd_run_main(argc - 2, argv + 2);
     if (!strcmp(cmd, "check")) {
-        if (argc != 3 || !strcmp(argv[2], "--help")) {
-            printf("usage: contact check SCENE\nValidates a scene file: every error names the "
-                   "file, the line and the field.\nExit codes: 0 valid, 2 bad input.\n");
-            return argc == 3 ? 0 : EXIT_USAGE;
+        int file_only = argc == 4 && !strcmp(argv[2], "--file-only");
+        if (argc != 3 + file_only || !strcmp(argv[2], "--help")) {
+            int help = argc == 3 && !strcmp(argv[2], "--help");
+            fprintf(help ? stdout : stderr, "usage: contact check [--file-only] SCENE\nValidates a scene: reads the file "
+                   "(every error names the file, the line and the field),\nbuilds the model, "
+                   "the interfaces and the loads, and computes the first cycle's forces and\n"
+                   "stable step, as `contact run` would, without writing anything. Prints the "
+                   "step and\nthe cycles the run would need.\n"
+                   "  --file-only  read and validate the file only (no model: quick on any "
+                   "size)\nExit codes: 0 valid, 1 bad usage, 2 bad input, 4 the first cycle's "
+                   "forces or step are not\nfinite, 5 out of memory.\n");
+            return help ? 0 : EXIT_USAGE;
         }
-        return ctd_scene_check_main(argv[2]);
+        return ctd_check_main(argv[2 + file_only], file_only);
     }
     if (!strcmp(cmd, "demo")) {
         if (argc > 2 && strcmp(argv[2], "--help") == 0) {

@@ -1,6 +1,6 @@
 /*
- * run.c -- `contact run` (run.h): options, scene, model, interfaces,
- * solver.
+ * run.c -- `contact run` and `contact check` (run.h): options, scene,
+ * model, interfaces, solver.
  */
 #include <errno.h>
 #include <stdio.h>
@@ -44,6 +44,69 @@ static int parse_pos(const char *s, double *v)
         return -1;
     *v = x;
     return 0;
+}
+
+/* What `run` and `check` both build: the scene, its model, the interfaces
+ * and the solver (loads resolved; the output directory opened unless
+ * o->no_output). */
+typedef struct run_setup {
+    ctd_scene *sc;
+    ctd_model model;
+    int have_model, have_solver;
+    ctd_solver s;
+} run_setup;
+
+/* Build everything; print what fails on stderr after `who`. Returns
+ * CTD_EXIT_OK or the exit code (2 bad input, 5 an unusable output
+ * directory or no memory). setup_close is due in every case. */
+static int setup_open(run_setup *r, const char *who, const char *scene, int64_t refine,
+                      const char *search, const ctd_solver_opts *o)
+{
+    memset(r, 0, sizeof *r);
+    ctd_scene_err *se = calloc(1, sizeof *se);
+    if (!se) {
+        fprintf(stderr, "%s: out of memory\n", who);
+        return CTD_EXIT_OUTPUT;
+    }
+    if (ctd_scene_load_refined(scene, refine, &r->sc, se) != CT_OK) {
+        ctd_scene_print_errors(stderr, scene, se);
+        free(se);
+        return CTD_EXIT_BADINPUT;
+    }
+    free(se);
+    if (search) {
+        int algo = ct_search_algo_from_name(search);
+        for (unsigned i = 0; i < r->sc->interfaces_count; i++)
+            r->sc->interfaces[i].search = algo;
+    }
+    char err[1024] = "";
+    if (ctd_model_build(&r->model, r->sc, err, sizeof err) != CT_OK) {
+        fprintf(stderr, "%s: %s\n", who, err);
+        return CTD_EXIT_BADINPUT;
+    }
+    r->have_model = 1;
+    ctd_contact_hook *hooks = NULL;
+    int nhook = 0;
+    if (r->sc->interfaces_count &&
+        ctd_interfaces_build(&r->model, r->sc, &hooks, &nhook, err, sizeof err) != CT_OK) {
+        fprintf(stderr, "%s: %s\n", who, err);
+        return CTD_EXIT_BADINPUT;
+    }
+    r->have_solver = 1; /* the solver owns the hooks from here, even on failure */
+    if (ctd_solver_init(&r->s, &r->model, o, hooks, nhook, err, sizeof err)) {
+        fprintf(stderr, "%s: %s\n", who, err);
+        return r->s.exit_code == CTD_EXIT_BADINPUT ? CTD_EXIT_BADINPUT : CTD_EXIT_OUTPUT;
+    }
+    return CTD_EXIT_OK;
+}
+
+static void setup_close(run_setup *r)
+{
+    if (r->have_solver)
+        ctd_solver_destroy(&r->s);
+    if (r->have_model)
+        ctd_model_destroy(&r->model);
+    ctd_scene_free(r->sc);
 }
 
 int ctd_run_main(int argc, char **argv)
@@ -126,61 +189,66 @@ int ctd_run_main(int argc, char **argv)
         usage(stderr);
         return CTD_EXIT_USAGE;
     }
-    ctd_scene *sc = NULL;
-    ctd_scene_err *se = calloc(1, sizeof *se);
-    if (!se)
-        return CTD_EXIT_OUTPUT;
-    if (ctd_scene_load_refined(scene, refine, &sc, se) != CT_OK) {
-        for (int k = 0; k < se->count && k < CTD_SCENE_MAXERR; k++)
-            fprintf(stderr, "%s\n", se->msg[k].text); /* "FILE:LINE: FIELD: what" */
-        if (se->count > CTD_SCENE_MAXERR)
-            fprintf(stderr, "%s: %d more errors\n", scene, se->count - CTD_SCENE_MAXERR);
-        free(se);
-        return CTD_EXIT_BADINPUT;
-    }
-    free(se);
-    if (search) {
-        int algo = ct_search_algo_from_name(search);
-        for (unsigned i = 0; i < sc->interfaces_count; i++)
-            sc->interfaces[i].search = algo;
-    }
-    char err[1024] = "";
-    ctd_model model;
-    int code = CTD_EXIT_OK;
-    if (ctd_model_build(&model, sc, err, sizeof err) != CT_OK) {
-        fprintf(stderr, "contact run: %s\n", err);
-        ctd_scene_free(sc);
-        return CTD_EXIT_BADINPUT;
-    }
-    ctd_contact_hook *hooks = NULL;
-    int nhook = 0;
-    if (sc->interfaces_count) {
-        if (ctd_interfaces_build(&model, sc, &hooks, &nhook, err, sizeof err) != CT_OK) {
-            fprintf(stderr, "contact run: %s\n", err);
-            code = CTD_EXIT_BADINPUT;
-        }
-    }
+    ctd_solver_opts o = ctd_solver_default_opts();
+    o.end_time = end;
+    o.dt_scale = dts;
+    o.cycle_limit = cycle_limit;
+    o.threads = threads;
+    o.out_dir = out;
+    o.quiet = quiet;
+    run_setup r;
+    int code = setup_open(&r, "contact run", scene, refine, search, &o);
     if (code == CTD_EXIT_OK) {
-        ctd_solver_opts o = ctd_solver_default_opts();
-        o.end_time = end;
-        o.dt_scale = dts;
-        o.cycle_limit = cycle_limit;
-        o.threads = threads;
-        o.out_dir = out;
-        o.quiet = quiet;
-        ctd_solver s;
-        int rc = ctd_solver_init(&s, &model, &o, hooks, nhook, err, sizeof err);
-        if (rc) {
-            fprintf(stderr, "contact run: %s\n", err);
-            code = s.exit_code == CTD_EXIT_BADINPUT ? CTD_EXIT_BADINPUT : CTD_EXIT_OUTPUT;
-        } else {
-            code = ctd_solver_run(&s);
-            if (code != CTD_EXIT_OK)
-                fprintf(stderr, "contact run: %s: %s\n", s.status, s.message);
-        }
-        ctd_solver_destroy(&s);
+        code = ctd_solver_run(&r.s);
+        if (code != CTD_EXIT_OK)
+            fprintf(stderr, "contact run: %s: %s\n", r.s.status, r.s.message);
     }
-    ctd_model_destroy(&model);
-    ctd_scene_free(sc);
+    setup_close(&r);
+    return code;
+}
+
+int ctd_check_main(const char *scene, int file_only)
+{
+    if (file_only) {
+        ctd_scene_err *se = calloc(1, sizeof *se);
+        ctd_scene *sc = NULL;
+        if (!se) {
+            fprintf(stderr, "contact check: out of memory\n");
+            return CTD_EXIT_OUTPUT;
+        }
+        int rc = ctd_scene_load(scene, &sc, se);
+        if (rc == CT_OK)
+            ctd_scene_print_summary(stdout, scene, sc);
+        else
+            ctd_scene_print_errors(stderr, scene, se);
+        ctd_scene_free(sc);
+        free(se);
+        return rc == CT_OK ? CTD_EXIT_OK : CTD_EXIT_BADINPUT;
+    }
+    ctd_solver_opts o = ctd_solver_default_opts();
+    o.no_output = 1;
+    o.quiet = 1;
+    o.progress = 0;
+    o.dry = 1;
+    run_setup r;
+    int code = setup_open(&r, "contact check", scene, 0, NULL, &o);
+    if (code == CTD_EXIT_OK) {
+        code = ctd_solver_run(&r.s);
+        if (code != CTD_EXIT_OK) {
+            fprintf(stderr, "contact check: %s: %s\n", r.s.status, r.s.message);
+        } else {
+            ctd_scene_print_summary(stdout, scene, r.sc);
+            const ctd_solver *s = &r.s;
+            char why[64];
+            if (s->dt == s->every)
+                snprintf(why, sizeof why, "output.every");
+            else
+                snprintf(why, sizeof why, "the stable step x dt_scale %g", s->dt_scale);
+            printf("%s: first time step %.4g s (%s), about %.4g cycles to end_time %g "
+                   "(cycle_limit %lld)\n", scene, s->dt, why, s->end_time / s->dt, s->end_time,
+                   (long long)s->cycle_limit);
+        }
+    }
+    setup_close(&r);
     return code;
 }

@@ -15,4 +15,18 @@
 /* argv[0] is SCENE or an option (the words after `run`). */
 int ctd_run_main(int argc, char **argv);
 
+/*
+ * `contact check SCENE`: everything `run` does before its time loop (the
+ * scene, the model, the interfaces, the loads) and its first cycle's
+ * forces and stable step, with every check of a run (finite forces, the
+ * contact stiffness, the cycle limit), writing nothing. Prints on stdout
+ * "SCENE: ok: ..." (ctd_scene_print_summary) and a line with the first
+ * stable step and the cycles the run would need; on failure, the errors
+ * on stderr. Returns the exit code a run would return: 0 valid, 2 bad
+ * input, 4 the first cycle is not finite, 5 no memory. file_only: read
+ * and validate the file only (seconds for a scene of 10^9 nodes, whose
+ * counts come from formulas) and print the first line.
+ */
+int ctd_check_main(const char *scene, int file_only);
+
 #endif

@@ -252,29 +252,21 @@ int ctd_scene_load_refined(const char *path, int64_t refine, ctd_scene **out,
     return CT_OK;
 }
 
-/* ---- contact check --------------------------------------------------------- */
+/* ---- What `contact check` and `contact run` print -------------------------- */
 
-int ctd_scene_check_main(const char *path)
+void ctd_scene_print_errors(FILE *f, const char *path, const ctd_scene_err *err)
 {
-    ctd_scene_err *err = calloc(1, sizeof *err);
-    if (!err) {
-        fprintf(stderr, "contact check: out of memory\n");
-        return CTD_EXIT_BADINPUT;
-    }
-    ctd_scene *sc = NULL;
-    int rc = ctd_scene_load(path, &sc, err);
-    if (rc != CT_OK) {
-        int shown = err->count < CTD_SCENE_MAXERR ? err->count : CTD_SCENE_MAXERR;
-        for (int i = 0; i < shown; i++)
-            fprintf(stderr, "%s\n", err->msg[i].text);
-        if (err->count > shown)
-            fprintf(stderr, "%s: %d more errors not shown\n", path ? path : "(null)",
-                    err->count - shown);
-        fprintf(stderr, "%s: invalid scene (%d error%s)\n", path ? path : "(null)", err->count,
-                err->count == 1 ? "" : "s");
-        free(err);
-        return CTD_EXIT_BADINPUT;
-    }
+    const char *p = path ? path : "(null)";
+    int shown = err->count < CTD_SCENE_MAXERR ? err->count : CTD_SCENE_MAXERR;
+    for (int i = 0; i < shown; i++)
+        fprintf(f, "%s\n", err->msg[i].text); /* "FILE:LINE: FIELD: what" */
+    if (err->count > shown)
+        fprintf(f, "%s: %d more errors not shown\n", p, err->count - shown);
+    fprintf(f, "%s: invalid scene (%d error%s)\n", p, err->count, err->count == 1 ? "" : "s");
+}
+
+void ctd_scene_print_summary(FILE *f, const char *path, const ctd_scene *sc)
+{
     int64_t nnode = 0;
     int known = 1;
     for (unsigned i = 0; i < sc->mesh_count; i++) {
@@ -296,20 +288,17 @@ int ctd_scene_check_main(const char *path)
             listed |= sc->rigid_bodies[b].part == sc->parts[i].id;
         nbody += !listed;
     }
-    printf("%s: ok: \"%s\", end_time %g, %u mesh%s (%s%lld nodes), %u part%s, %u rigid "
-           "bod%s, %u boundary condition%s, %u interface%s, output to %s\n",
-           path, sc->title ? sc->title : "", sc->end_time, sc->mesh_count,
-           sc->mesh_count == 1 ? "" : "es", known ? "" : ">= ", (long long)nnode,
-           sc->parts_count, sc->parts_count == 1 ? "" : "s", nbody, nbody == 1 ? "y" : "ies",
-           sc->boundary_count,
-           sc->boundary_count == 1 ? "" : "s", sc->interfaces_count,
-           sc->interfaces_count == 1 ? "" : "s", sc->out_dir);
+    fprintf(f, "%s: ok: \"%s\", end_time %g, %u mesh%s (%s%lld nodes), %u part%s, %u rigid "
+            "bod%s, %u boundary condition%s, %u interface%s, output to %s\n",
+            path, sc->title ? sc->title : "", sc->end_time, sc->mesh_count,
+            sc->mesh_count == 1 ? "" : "es", known ? "" : ">= ", (long long)nnode,
+            sc->parts_count, sc->parts_count == 1 ? "" : "s", nbody, nbody == 1 ? "y" : "ies",
+            sc->boundary_count, sc->boundary_count == 1 ? "" : "s", sc->interfaces_count,
+            sc->interfaces_count == 1 ? "" : "s", sc->out_dir);
     for (unsigned i = 0; i < sc->mesh_count; i++) {
         const ctd_deck *d = sc->mesh[i].import ? sc->mesh[i].import->deck : NULL;
         if (d && ctd_deck_warning(d)[0])
-            printf("%s: warning: %s: %s\n", path, sc->mesh[i].import->path, ctd_deck_warning(d));
+            fprintf(f, "%s: warning: %s: %s\n", path, sc->mesh[i].import->path,
+                    ctd_deck_warning(d));
     }
-    ctd_scene_free(sc);
-    free(err);
-    return CTD_EXIT_OK;
 }

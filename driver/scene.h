@@ -163,6 +163,7 @@
 #ifndef CTD_SCENE_H
 #define CTD_SCENE_H
 
+#include <stdio.h>
 #include <stdbool.h>
 #include <stdint.h>
 
@@ -172,7 +173,7 @@
 extern "C" {
 #endif
 
-/* Exit codes of ctd_scene_check_main. */
+/* Exit codes of `contact check` and `contact run` (solver.h has the others). */
 enum { CTD_EXIT_OK = 0, CTD_EXIT_BADINPUT = 2 };
 
 /* The default of solver.cycle_limit: the most cycles a run may need. */
@@ -384,10 +385,15 @@ const char *ctd_element_name(int element);
 const char *ctd_gen_kind_name(int kind);
 const char *ctd_bc_kind_name(int kind);
 
-/* `contact check SCENE`: load the scene; print "FILE: ok (...summary...)" on
- * stdout and return CTD_EXIT_OK, or print every error on stderr and return
- * CTD_EXIT_BADINPUT. */
-int ctd_scene_check_main(const char *path);
+/* Print a failed load's messages ("FILE:LINE: FIELD: what", at most
+ * CTD_SCENE_MAXERR of them) and a last line counting them. */
+void ctd_scene_print_errors(FILE *f, const char *path, const ctd_scene_err *err);
+
+/* Print "PATH: ok: ..." (title, end time, meshes, node count, parts,
+ * rigid bodies, boundary conditions, interfaces, output directory) and
+ * each imported deck's warning: the first lines of `contact check`
+ * (driver/run.c). */
+void ctd_scene_print_summary(FILE *f, const char *path, const ctd_scene *sc);
 
 #ifdef __cplusplus
 }

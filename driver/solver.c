@@ -551,7 +551,7 @@ int ctd_solver_run(ctd_solver *s)
     s->exit_code = CTD_EXIT_OK;
     for (;;) {
         double t0 = now_s();
-        int final = s->time >= end - tol ||
+        int final = s->time >= end - tol || s->opts.dry ||
                      (s->opts.max_cycles > 0 && s->cycle >= s->opts.max_cycles);
         int out_step = s->time >= next_out - tol || final;
         int check = out_step || s->cycle % 100 == 0;
@@ -606,7 +606,7 @@ int ctd_solver_run(ctd_solver *s)
         /* A run that cannot end: end_time 9e18 s, or a step made tiny by a
          * huge Stfac or E/rho, ran on with no message (hours to years). The
          * estimate is checked at every step, as the step changes. */
-        if (!final && s->opts.max_cycles <= 0 &&
+        if ((!final || s->opts.dry) && s->opts.max_cycles <= 0 &&
             (double)s->cycle + (end - s->time) / dt_new > (double)s->cycle_limit) {
             fail(s, "error", CTD_EXIT_BADINPUT,
                  "cycle %lld (t = %.6g): the stable time step %.3g would need %.3g more cycles "
@@ -658,6 +658,8 @@ int ctd_solver_run(ctd_solver *s)
                 next_out += s->every;
         }
         w->w_bc += w->w_bc_back + w->w_bc_fwd;
+        if (s->opts.dry)
+            s->dt = dt_new; /* the step the run would start with */
         if (final) {
             s->timers.total += now_s() - t0;
             break;

@@ -149,6 +149,9 @@ typedef struct ctd_solver_opts {
     FILE *report;        /* the report's stream (NULL: stdout) */
     int64_t max_cycles;  /* > 0: stop (status "ok") after this many cycles */
     int64_t cycle_limit; /* > 0: overrides solver.cycle_limit (ignored with max_cycles) */
+    int dry;             /* 1: cycle 0 only (forces, contact, stable step and the
+                            cycle-limit estimate, with every check of a run), then
+                            stop with s->dt the stable step found (contact check) */
     /* Called once per cycle (NULL: never), after the kick: s->time, the
      * positions x(n), the velocities v(n+1/2) (rigid bodies' nodes
      * included), s->dt (the step that led to x(n)) and each interface's

@@ -174,6 +174,16 @@ static int run_text(const char *text, const char *extra, const char *extra_value
     return rc;
 }
 
+/* Check `text` as `contact check SCENE`; returns the exit code. */
+static int check_text(const char *text)
+{
+    char p[256];
+    write_text(p, sizeof p, text);
+    int rc = ctd_check_main(p, 0);
+    unlink(p);
+    return rc;
+}
+
 #define DROP                                                                                     \
     "mesh:\n"                                                                                    \
     "  - generate: {kind: plate, part: 1, cells: [1, 1], size: [0.04, 0.04],"                   \
@@ -209,6 +219,61 @@ Test(input_limits, runs_that_cannot_end_well_stop_at_once, .init = cr_redirect_s
     cr_assert_eq(run_text(t, "--cycle-limit", "3"), CTD_EXIT_BADINPUT);
     cr_assert_eq(run_text(t, "--cycle-limit", "100000"), CTD_EXIT_OK);
     cr_assert_eq(run_text(t, "--end", "9e18"), CTD_EXIT_BADINPUT);
+}
+
+/* `contact check` computes the first cycle's step as the run does: it
+ * refuses the overflowing stiffness and the step that cannot reach
+ * end_time within the cycle limit, without running (it read the file
+ * only and said "ok"). */
+static void quiet_both(void)
+{
+    cr_redirect_stdout();
+    cr_redirect_stderr();
+}
+
+Test(input_limits, check_finds_what_the_first_cycle_finds, .init = quiet_both)
+{
+    char t[2048];
+    snprintf(t, sizeof t, "end_time: 2.0e-6\n%sinterfaces:\n"
+             "  - {type: 24, main: {part: 1}, secondary: {part: 2}, Istf: 1, Stfac: 1.0e308}\n",
+             DROP);
+    cr_assert_eq(check_text(t), CTD_EXIT_BADINPUT);
+    snprintf(t, sizeof t, "end_time: 2.0e-6\n%sinterfaces:\n"
+             "  - {type: 24, main: {part: 1}, secondary: {part: 2}, Istf: 1, Stfac: 1.0e20}\n",
+             DROP);
+    cr_assert_eq(check_text(t), CTD_EXIT_BADINPUT);
+    snprintf(t, sizeof t, "end_time: 2.0e-6\n%sinterfaces:\n"
+             "  - {type: 24, main: {part: 1}, secondary: {part: 2}}\n", DROP);
+    cr_assert_eq(check_text(t), CTD_EXIT_OK);
+    snprintf(t, sizeof t, "end_time: 2.0e-6\nsolver: {cycle_limit: 3}\n%sinterfaces:\n"
+             "  - {type: 24, main: {part: 1}, secondary: {part: 2}}\n", DROP);
+    cr_assert_eq(check_text(t), CTD_EXIT_BADINPUT);
+    cr_assert_eq(run_text(t, NULL, NULL), CTD_EXIT_BADINPUT);
+}
+
+/* Finite velocities whose kinetic energy overflows: the energies are inf,
+ * the runaway test (live > 100 ref) compares inf with inf and passed, and
+ * the run ended "ok". It is unstable at cycle 0, and the check says so. */
+Test(input_limits, infinite_energy_fails_the_run, .init = quiet_both)
+{
+    const char *t = "end_time: 1.0e-6\nmesh:\n"
+                    "  - generate: {kind: block, part: 1, cells: [1, 1, 1], size: [0.01, 0.01, 0.01]}\n"
+                    "parts:\n"
+                    "  - {id: 1, element: brick, material: {E: 2.1e11, nu: 0.3, rho: 7800}}\n"
+                    "boundary:\n"
+                    "  - {kind: initial_velocity, nodes: {part: 1}, value: [0, 0, -1.0e200]}\n";
+    cr_assert_eq(run_text(t, NULL, NULL), CTD_EXIT_UNSTABLE);
+    cr_assert_eq(check_text(t), CTD_EXIT_UNSTABLE);
+}
+
+/* A deck that never ends (/dev/zero, a FIFO fed forever) was read until
+ * the memory ran out; the reader stops at the first chunk holding a NUL
+ * byte, and the scan names the line (without the stop it reads 1 GiB and
+ * fails on the size instead). */
+Test(input_limits, an_endless_deck_stops_at_its_first_chunk)
+{
+    expect_refused("end_time: 1.0e-6\nmesh:\n  - import: {file: /dev/zero}\nparts:\n" BRICK_PART,
+                   3, "mesh[0].import.file", "/dev/zero:1: line of 65536 characters");
 }
 
 /* A load that selects nothing is bad input (2), not "output" (5). */

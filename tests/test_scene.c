@@ -5,11 +5,13 @@
  * The scene files are in tests/data/scenes/ (their line numbers are quoted
  * below; the broken ones are base_ok.yaml or valid.yaml with one change).
  */
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 #include <unistd.h>
 
 #include "output.h"
+#include "run.h"
 #include "scene.h"
 #include "test_util.h"
 
@@ -79,6 +81,7 @@ Test(scene, valid_scene_values)
     cr_assert_str_eq(sc->parts[2].name, "lid");
     cr_assert_eq(sc->parts[2].element, CTD_ELEM_RIGID);
     cr_assert_eq(sc->parts[2].line, 19);
+    cr_assert_eq(sc->parts[2].thickness, 0.005);
     cr_assert_eq(ctd_scene_part_by_id(sc, 2), &sc->parts[1]);
     cr_assert_null(ctd_scene_part_by_id(sc, 4));
     cr_assert(sc->rigid_bodies_count == 1 && sc->rigid_bodies[0].part == 3);
@@ -111,12 +114,13 @@ Test(scene, valid_scene_values)
     cr_assert_eq(i24->search, CT_SEARCH_BSP);
     cr_assert_eq(i24->VisS, 1.0);
     cr_assert_eq(i24->self, 0);
-    cr_assert_eq(i24->line, 30);
+    cr_assert_eq(i24->line, 31);
     cr_assert_eq(i7->self, 1);
     cr_assert_str_eq(i7->label, "if1");
     cr_assert(i7->Stfac == 1.0 && i7->VisS == 0.05);
     cr_assert_eq(i7->search, CT_SEARCH_BUCKET);
-    cr_assert_eq(i7->line, 33);
+    cr_assert_eq(i7->line, 34);
+    cr_assert_eq(i7->gap, 0.001);
     cr_assert(i3->Stfac == 0.2 && i3->VisS == 0.0);
     cr_assert_eq(i3->search, CT_SEARCH_TOPO);
     cr_assert_eq(i6->curve_count, 3);
@@ -214,7 +218,7 @@ Test(scene, broken_files_name_file_line_field, .init = cr_redirect_stderr)
                            b->what);
         cr_assert_eq(m->line, b->line, "%s", b->file);
         cr_assert_str_eq(m->field, b->field, "%s", b->file);
-        cr_assert_eq(ctd_scene_check_main(p), CTD_EXIT_BADINPUT, "%s", b->file);
+        cr_assert_eq(ctd_check_main(p, 0), CTD_EXIT_BADINPUT, "%s", b->file);
     }
 }
 
@@ -242,21 +246,65 @@ Test(scene, nonexistent_file, .init = cr_redirect_stderr)
     cr_assert_str_eq(err.msg[0].text,
                      "/nonexistent/dir/scene.yaml: cannot open the scene file: No such file or "
                      "directory");
-    cr_assert_eq(ctd_scene_check_main(p), CTD_EXIT_BADINPUT);
+    cr_assert_eq(ctd_check_main(p, 0), CTD_EXIT_BADINPUT);
     cr_assert_eq(ctd_scene_load(NULL, &sc, &err), CT_ERR_ARG);
 }
 
 /* `contact check` on a scene (relative to tests/data/scenes) prints its
- * path followed by `line`. */
-static void expect_check_line(const char *name, const char *line)
+ * path followed by `line`, then the first time step: positive, and the
+ * cycles it announces are end_time / step. Returns the step. */
+static double expect_check_line(const char *name, const char *line)
 {
     char p[1024];
     scene_path(p, sizeof p, name);
-    cr_assert_eq(ctd_scene_check_main(p), CTD_EXIT_OK);
+    cr_assert_eq(ctd_check_main(p, 0), CTD_EXIT_OK);
+    fflush(stdout);
+    char want[1200], got[1200], got2[1200];
+    FILE *f = cr_get_redirected_stdout();
+    cr_assert_not_null(fgets(got, sizeof got, f));
+    snprintf(want, sizeof want, "%s: %s\n", p, line);
+    cr_assert_str_eq(got, want);
+    cr_assert_not_null(fgets(got2, sizeof got2, f));
+    size_t n = strlen(p);
+    cr_assert_eq(strncmp(got2, p, n), 0, "%s", got2);
+    double dt, cycles, end;
+    long long limit;
+    char why[64];
+    cr_assert_eq(sscanf(got2 + n, ": first time step %lg s (%63[^)]), about %lg cycles to "
+                        "end_time %lg (cycle_limit %lld)", &dt, why, &cycles, &end, &limit),
+                 5, "%s", got2);
+    cr_assert(!strcmp(why, "output.every") || !strncmp(why, "the stable step x dt_scale ", 27),
+              "%s", got2);
+    cr_assert(dt > 0 && dt < end, "%s", got2);
+    cr_assert_float_eq(cycles, end / dt, 1e-3 * cycles, "%s", got2);
+    cr_assert_eq(limit, CTD_CYCLE_LIMIT);
+    cr_assert_null(fgets(got2, sizeof got2, f), "a third line: %s", got2);
+    return dt;
+}
+
+/* --file-only reads the file and nothing more: a scene whose interface
+ * selects nothing passes it (one line, the summary) and fails the full
+ * check. */
+Test(scene, check_file_only_reads_the_file_only, .init = cr_redirect_stdout)
+{
+    char p[1024];
+    scene_path(p, sizeof p, "iface_empty_main.yaml");
+    cr_assert_eq(ctd_check_main(p, 1), CTD_EXIT_OK);
     fflush(stdout);
     char want[1200];
-    snprintf(want, sizeof want, "%s: %s\n", p, line);
+    snprintf(want, sizeof want, "%s: ok: \"empty main\", end_time 1e-05, 2 meshes (36 nodes), "
+             "2 parts, 0 rigid bodies, 0 boundary conditions, 1 interface, output to "
+             "out/iface_empty_main\n", p);
     cr_assert_stdout_eq_str(want);
+}
+
+/* The check's first step against the bar's analytic one: 100 trusses of
+ * 1 cm, c = sqrt(E/rho), dt = 0.9 L/c (printed to 4 digits). */
+Test(scene, check_step_is_the_bars_analytic_step, .init = cr_redirect_stdout)
+{
+    double dt = expect_check_line("../../../data/scenes/bar-wave.yaml", "ok: \"bar wave\", end_time 0.00015417, 1 mesh (101 nodes), 1 part, 0 rigid bodies, 1 boundary condition, 0 interfaces, output to out/bar-wave");
+    double want = 0.9 * 0.01 / sqrt(2.1e11 / 7800);
+    cr_assert_float_eq(dt, want, 1e-3 * want, "step %g, expected %g", dt, want);
 }
 
 Test(scene, check_main_valid, .init = cr_redirect_stdout)

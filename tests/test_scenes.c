@@ -221,12 +221,16 @@ static void expect_build_error(const char *name, const char *text)
     ctd_scene_free(sc);
     char *argv[] = {p, "--quiet"};
     cr_expect_eq(ctd_run_main(2, argv), CTD_EXIT_BADINPUT);
+    /* `contact check` builds the interfaces too: it refused none of these
+     * (it read the file only). */
+    cr_expect_eq(ctd_check_main(p, 0), CTD_EXIT_BADINPUT, "%s passed the check", name);
 }
 
 Test(scenes, interface_errors_name_file_line, .init = cr_redirect_stderr)
 {
     expect_build_error("iface_empty_main.yaml", "main selects no surface segment");
     expect_build_error("iface_empty_secondary.yaml", "secondary selects no node");
+    expect_build_error("iface_type7_no_gap.yaml", "a two-sided surface needs a gap > 0");
 }
 
 /* A gap that spans the interface's nodes is an input mistake told at the
