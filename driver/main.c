@@ -398,7 +398,7 @@ int main(int argc, char **argv)
         return ctd_run_main(argc - 2, argv + 2);
     if (!strcmp(cmd, "check")) {
         int file_only = argc == 4 && !strcmp(argv[2], "--file-only");
-        if (argc != 3 + file_only || !strcmp(argv[2], "--help")) {
+        if (argc != 3 + file_only || argv[2 + file_only][0] == '-') {
             int help = argc == 3 && !strcmp(argv[2], "--help");
             fprintf(help ? stdout : stderr, "usage: contact check [--file-only] SCENE\nValidates a scene: reads the file "
                    "(every error names the file, the line and the field),\nbuilds the model, "

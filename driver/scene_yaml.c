@@ -9,6 +9,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <yaml.h>
 
 #include "scene_internal.h"
@@ -172,6 +173,12 @@ cti_ynode *cti_yaml_read(const char *path, int *line, char *field, size_t fieldl
     FILE *f = fopen(path, "rb");
     if (!f) {
         snprintf(msg, msglen, "cannot open the scene file: %s", strerror(errno));
+        return NULL;
+    }
+    struct stat st;
+    if (fstat(fileno(f), &st) == 0 && S_ISDIR(st.st_mode)) {
+        fclose(f); /* libyaml said "input error" */
+        snprintf(msg, msglen, "cannot read the scene file: it is a directory");
         return NULL;
     }
     ybuild b;

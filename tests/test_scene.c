@@ -248,6 +248,10 @@ Test(scene, nonexistent_file, .init = cr_redirect_stderr)
                      "directory");
     cr_assert_eq(ctd_check_main(p, 0), CTD_EXIT_BADINPUT);
     cr_assert_eq(ctd_scene_load(NULL, &sc, &err), CT_ERR_ARG);
+    /* A directory opens; libyaml then said "malformed YAML: input error". */
+    cr_assert_eq(ctd_scene_load("/tmp", &sc, &err), CT_ERR_ARG);
+    cr_assert_null(sc);
+    cr_assert_str_eq(err.msg[0].text, "/tmp: cannot read the scene file: it is a directory");
 }
 
 /* `contact check` on a scene (relative to tests/data/scenes) prints its
