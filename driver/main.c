@@ -404,7 +404,9 @@ int main(int argc, char **argv)
                    "(every error names the file, the line and the field),\nbuilds the model, "
                    "the interfaces and the loads, and computes the first cycle's forces and\n"
                    "stable step, as `contact run` would, without writing anything. Prints the "
-                   "step and\nthe cycles the run would need.\n"
+                   "step, the\ncycles the run would need, each interface's pairs in contact "
+                   "at t = 0 and the nodes\nwithin their gap at t = 0 (initial "
+                   "penetrations).\n"
                    "  --file-only  read and validate the file only (no model: quick on any "
                    "size)\nExit codes: 0 valid, 1 bad usage, 2 bad input, 4 the first cycle's "
                    "forces or step are not\nfinite, 5 out of memory.\n");

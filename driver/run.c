@@ -207,6 +207,35 @@ int ctd_run_main(int argc, char **argv)
     return code;
 }
 
+/* What the interfaces found in the dry cycle: per interface its pairs in
+ * contact and its stable step; then the nodes within their gap at the
+ * start (initial penetrations, the usual cause of a violent first cycle). */
+static void print_contact_at_start(const char *scene, const ctd_solver *s)
+{
+    const ctd_model *m = s->model;
+    for (int i = 0; i < s->nhook; i++) {
+        const ctd_contact_report *r = &s->rep[i];
+        char step[64] = "no step limit";
+        if (r->dt_limit > 0 && r->dt_limit < CTD_DT_NONE)
+            snprintf(step, sizeof step, "stable step %.4g s", r->dt_limit);
+        printf("%s: interface %s (type %d): %lld pair%s in contact at t = 0, %s\n", scene,
+               s->hooks[i].name ? s->hooks[i].name : "?", s->hooks[i].type,
+               (long long)r->active, r->active == 1 ? "" : "s", step);
+    }
+    if (!s->nhook)
+        return;
+    int64_t count;
+    double pmax;
+    ct_idx at;
+    ctd_solver_penetration(s, &count, &pmax, &at);
+    if (count == 0)
+        printf("%s: initial penetration: none (no node within its gap at t = 0)\n", scene);
+    else
+        printf("%s: initial penetration: %lld node%s within the gap at t = 0, the deepest %.4g "
+               "at node %lld (part %d)\n", scene, (long long)count, count == 1 ? "" : "s", pmax,
+               (long long)m->node_id[at], m->node_part[at]);
+}
+
 int ctd_check_main(const char *scene, int file_only)
 {
     if (file_only) {
@@ -247,6 +276,7 @@ int ctd_check_main(const char *scene, int file_only)
             printf("%s: first time step %.4g s (%s), about %.4g cycles to end_time %g "
                    "(cycle_limit %lld)\n", scene, s->dt, why, s->end_time / s->dt, s->end_time,
                    (long long)s->cycle_limit);
+            print_contact_at_start(scene, s);
         }
     }
     setup_close(&r);

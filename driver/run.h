@@ -20,8 +20,11 @@ int ctd_run_main(int argc, char **argv);
  * scene, the model, the interfaces, the loads) and its first cycle's
  * forces and stable step, with every check of a run (finite forces, the
  * contact stiffness, the cycle limit), writing nothing. Prints on stdout
- * "SCENE: ok: ..." (ctd_scene_print_summary) and a line with the first
- * stable step and the cycles the run would need; on failure, the errors
+ * "SCENE: ok: ..." (ctd_scene_print_summary), a line with the first
+ * time step and the cycles the run would need, one line per interface
+ * (its pairs in contact at t = 0 and its stable step) and the initial
+ * penetrations (the nodes within their gap at t = 0, the deepest one);
+ * on failure, the errors
  * on stderr. Returns the exit code a run would return: 0 valid, 2 bad
  * input, 4 the first cycle is not finite, 5 no memory. file_only: read
  * and validate the file only (seconds for a scene of 10^9 nodes, whose

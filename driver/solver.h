@@ -232,6 +232,12 @@ void ctd_solver_destroy(ctd_solver *s);
  * M v_c of each body) from the latest velocities. */
 void ctd_solver_momentum(const ctd_solver *s, double p[3]);
 
+/* The nodes in contact at the last cycle that filled the output fields
+ * (every output cycle, and the one cycle of a dry run): how many have a
+ * positive penetration p = gap - distance on some interface, the deepest
+ * p and its node (index; -1 and 0 when none). */
+void ctd_solver_penetration(const ctd_solver *s, int64_t *count, double *pmax, ct_idx *node);
+
 #ifdef __cplusplus
 }
 #endif

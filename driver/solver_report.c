@@ -110,6 +110,24 @@ double cti_solver_gravity_work(ctd_solver *s)
     return sum;
 }
 
+void ctd_solver_penetration(const ctd_solver *s, int64_t *count, double *pmax, ct_idx *node)
+{
+    const ct_real *pen = s->w->pen;
+    int64_t c = 0;
+    double best = 0;
+    ct_idx at = -1;
+    for (ct_idx i = 0; i < s->nnode; i++) {
+        c += pen[i] > 0;
+        if (pen[i] > best) { /* the first deepest: any thread count */
+            best = pen[i];
+            at = i;
+        }
+    }
+    *count = c;
+    *pmax = best;
+    *node = at;
+}
+
 void cti_solver_energies(ctd_solver *s)
 {
     cti_solver_work *w = s->w;

@@ -282,8 +282,74 @@ static double expect_check_line(const char *name, const char *line)
     cr_assert(dt > 0 && dt < end, "%s", got2);
     cr_assert_float_eq(cycles, end / dt, 1e-3 * cycles, "%s", got2);
     cr_assert_eq(limit, CTD_CYCLE_LIMIT);
-    cr_assert_null(fgets(got2, sizeof got2, f), "a third line: %s", got2);
+    /* Then one line per interface and the initial penetrations. */
+    int ninterface = 0;
+    while (fgets(got2, sizeof got2, f) && strstr(got2, ": interface "))
+        ninterface++;
+    if (ninterface)
+        cr_assert_not_null(strstr(got2, ": initial penetration: "), "%s", got2);
+    cr_assert_null(fgets(got2, sizeof got2, f), "one line too many: %s", got2);
     return dt;
+}
+
+/* The check reports the nodes that start within their gap: the block's
+ * bottom face, 0.4 mm over the plate, with a 1 mm gap: 4 nodes at 0.6 mm
+ * (by hand). Lifted to 1.1 mm, none. */
+Test(scene, check_reports_initial_penetration, .init = cr_redirect_stdout)
+{
+    char p[1024];
+    scene_path(p, sizeof p, "check_initial_pen.yaml");
+    cr_assert_eq(ctd_check_main(p, 0), CTD_EXIT_OK);
+    fflush(stdout);
+    FILE *f = cr_get_redirected_stdout();
+    char line[1200];
+    for (int k = 0; k < 2; k++)
+        cr_assert_not_null(fgets(line, sizeof line, f));
+    size_t n = strlen(p);
+    cr_assert_not_null(fgets(line, sizeof line, f));
+    cr_assert_eq(strncmp(line, p, n), 0, "%s", line);
+    const char *iface = ": interface drop (type 24): 4 pairs in contact at t = 0, stable step ";
+    cr_assert_eq(strncmp(line + n, iface, strlen(iface)), 0, "%s", line);
+    cr_assert_not_null(fgets(line, sizeof line, f));
+    long long count, node;
+    double pmax;
+    int part;
+    cr_assert_eq(sscanf(line + n, ": initial penetration: %lld nodes within the gap at t = 0, "
+                        "the deepest %lg at node %lld (part %d)", &count, &pmax, &node, &part),
+                 4, "%s", line);
+    cr_assert_eq(count, 4);
+    cr_assert_float_eq(pmax, 0.0006, 1e-4 * 0.0006, "%s", line);
+    cr_assert(node >= 5 && node <= 12 && part == 2, "%s", line);
+}
+
+Test(scene, check_reports_no_initial_penetration, .init = cr_redirect_stdout)
+{
+    static const char *text =
+        "end_time: 2.0e-6\nmesh:\n"
+        "  - generate: {kind: plate, part: 1, cells: [1, 1], size: [0.04, 0.04], origin: [-0.02, -0.02, 0]}\n"
+        "  - generate: {kind: block, part: 2, cells: [1, 1, 1], size: [0.01, 0.01, 0.01], origin: [-0.005, -0.005, 0.0011]}\n"
+        "parts:\n"
+        "  - {id: 1, element: rigid, thickness: 0.002, material: {E: 2.1e11, nu: 0.3, rho: 7800}}\n"
+        "  - {id: 2, element: brick, material: {E: 1.0e8, nu: 0.3, rho: 2000}}\n"
+        "interfaces:\n"
+        "  - {type: 24, name: drop, main: {part: 1}, secondary: {part: 2}, gap: 0.001}\n";
+    char p[256];
+    snprintf(p, sizeof p, "/tmp/ct_check_nopen_%ld.yaml", (long)getpid());
+    FILE *w = fopen(p, "w");
+    cr_assert_not_null(w);
+    fputs(text, w);
+    fclose(w);
+    int rc = ctd_check_main(p, 0);
+    unlink(p);
+    cr_assert_eq(rc, CTD_EXIT_OK);
+    fflush(stdout);
+    FILE *f = cr_get_redirected_stdout();
+    char line[1200], want[1200];
+    for (int k = 0; k < 4; k++)
+        cr_assert_not_null(fgets(line, sizeof line, f));
+    snprintf(want, sizeof want, "%s: initial penetration: none (no node within its gap at t = 0)\n",
+             p);
+    cr_assert_str_eq(line, want);
 }
 
 /* --file-only reads the file and nothing more: a scene whose interface
