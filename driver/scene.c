@@ -110,9 +110,12 @@ static void check_numbers(cti_errs *e, const cti_ynode *n, const cyaml_schema_va
     case CYAML_FLOAT:
         /* A list or a mapping here has been reported by libcyaml already. */
         if (n->kind == CTI_Y_SCALAR &&
-            !(v->type == CYAML_FLOAT ? float_text_ok(n->value) : int_text_ok(n->value)))
-            cti_err(e, CT_ERR_ARG, n->line, path, "expected %s, got '%.60s'",
-                    v->type == CYAML_FLOAT ? "a number" : "a decimal integer", n->value);
+            !(v->type == CYAML_FLOAT ? float_text_ok(n->value) : int_text_ok(n->value))) {
+            char q[80];
+            cti_quote_value(n->value, q, sizeof q);
+            cti_err(e, CT_ERR_ARG, n->line, path, "expected %s, got %s",
+                    v->type == CYAML_FLOAT ? "a number" : "a decimal integer", q);
+        }
         return;
     case CYAML_MAPPING:
         if (n->kind != CTI_Y_MAP)

@@ -285,6 +285,20 @@ int cti_path_line(const cti_ynode *root, const char *path)
     return line;
 }
 
+void cti_quote_value(const char *s, char *buf, size_t len)
+{
+    size_t n = strlen(s), cut = n > 60 ? 60 : n;
+    /* When the first byte left out continues a UTF-8 sequence (10xxxxxx),
+     * leave out the whole sequence: back to its lead byte. */
+    if (cut < n) {
+        size_t k = cut;
+        while (k > 0 && ((unsigned char)s[k] & 0xC0) == 0x80)
+            k--;
+        cut = k;
+    }
+    snprintf(buf, len, "'%.*s%s'", (int)cut, s, cut < n ? "..." : "");
+}
+
 void cti_ynode_describe(const cti_ynode *n, char *buf, size_t len)
 {
     if (!n)
@@ -296,7 +310,7 @@ void cti_ynode_describe(const cti_ynode *n, char *buf, size_t len)
     else if (!n->value[0])
         snprintf(buf, len, "an empty value");
     else
-        snprintf(buf, len, "'%.60s'", n->value);
+        cti_quote_value(n->value, buf, len);
 }
 
 /* ---- Errors -------------------------------------------------------------- */

@@ -81,6 +81,24 @@ Test(input_limits, numbers_are_read_whole)
     ctd_scene_free(sc);
 }
 
+/* A long value is quoted to 60 bytes; the cut fell inside a two-byte
+ * character and left half of it in the message. "x" and 40 e-acutes: the
+ * 60th byte is the first half of the 30th, so 29 are kept, then "...". */
+Test(input_limits, long_values_are_cut_between_characters)
+{
+    char text[512], want[128];
+    int k = snprintf(text, sizeof text, "end_time: 1\nmesh:\n  - generate: {kind: block, part: 1, "
+                     "cells: [1, 1, 1], size: [x");
+    for (int i = 0; i < 40; i++)
+        k += snprintf(text + k, sizeof text - (size_t)k, "\xc3\xa9");
+    snprintf(text + k, sizeof text - (size_t)k, ", 1, 1]}\nparts:\n" BRICK_PART);
+    k = snprintf(want, sizeof want, "got 'x");
+    for (int i = 0; i < 29; i++)
+        k += snprintf(want + k, sizeof want - (size_t)k, "\xc3\xa9");
+    snprintf(want + k, sizeof want - (size_t)k, "...'");
+    expect_refused(text, 3, "mesh[0].generate.size[0]", want);
+}
+
 /* A generated mesh's `to` is checked finite, and no generated coordinate
  * may pass 1e74 (a rod from -1e308 overflowed the TYPE11 edge search). */
 Test(input_limits, generated_coordinates_are_bounded)
