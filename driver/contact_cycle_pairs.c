@@ -181,12 +181,18 @@ static ct_idx block_pack(const ctd_cycle *cy, ct_idx k0, ct_idx ne, cy_scratch *
             ms[i] = mass[nd[k]];
         }
         if (cy->p.mu > 0) {
+            /* The three components in one pass: three streams of loads in
+             * flight per pair, not one array after another. */
             ct_real *const *ft = cy->ft[cy->cur];
-            for (int d = 0; d < 3; d++) {
-                const ct_real *restrict f = ft[d] + k0;
-                ct_real *restrict t = v[CS_T0 + d];
-                for (ct_idx i = 0; i < na; i++)
-                    t[i] = f[ac[i]];
+            const ct_real *restrict f0 = ft[0] + k0, *restrict f1 = ft[1] + k0;
+            const ct_real *restrict f2 = ft[2] + k0;
+            ct_real *restrict t0 = v[CS_T0], *restrict t1 = v[CS_T0 + 1];
+            ct_real *restrict t2 = v[CS_T0 + 2];
+            for (ct_idx i = 0; i < na; i++) {
+                const ct_idx k = ac[i];
+                t0[i] = f0[k];
+                t1[i] = f1[k];
+                t2[i] = f2[k];
             }
         }
     }
@@ -260,11 +266,21 @@ static void block_unpack(const ctd_cycle *cy, ct_idx k0, ct_idx k1, ct_idx na,
             for (ct_idx i = 0; fric && i < na; i++)
                 f[act[i]] = fn[i] + fh[i];
         }
-        if (!fric)
-            continue;
-        memset(h, 0, sizeof(ct_real) * (size_t)(k1 - k0));
-        for (ct_idx i = 0; i < na; i++)
-            h[act[i]] = fh[i];
+        if (fric)
+            memset(h, 0, sizeof(ct_real) * (size_t)(k1 - k0));
+    }
+    if (fric) {
+        /* The histories of the pairs in contact, the three components in
+         * one pass (as block_pack reads them). */
+        ct_real *restrict h0 = ft[0] + k0, *restrict h1 = ft[1] + k0, *restrict h2 = ft[2] + k0;
+        const ct_real *restrict g0 = s->v[CS_T0], *restrict g1 = s->v[CS_T0 + 1];
+        const ct_real *restrict g2 = s->v[CS_T0 + 2];
+        for (ct_idx i = 0; i < na; i++) {
+            const ct_idx k = act[i];
+            h0[k] = g0[i];
+            h1[k] = g1[i];
+            h2[k] = g2[i];
+        }
     }
     if (!fused)
         return;
