@@ -212,7 +212,6 @@ int ctd_run_main(int argc, char **argv)
  * start (initial penetrations, the usual cause of a violent first cycle). */
 static void print_contact_at_start(const char *scene, const ctd_solver *s)
 {
-    const ctd_model *m = s->model;
     for (int i = 0; i < s->nhook; i++) {
         const ctd_contact_report *r = &s->rep[i];
         char step[64] = "no step limit";
@@ -222,18 +221,9 @@ static void print_contact_at_start(const char *scene, const ctd_solver *s)
                s->hooks[i].name ? s->hooks[i].name : "?", s->hooks[i].type,
                (long long)r->active, r->active == 1 ? "" : "s", step);
     }
-    if (!s->nhook)
-        return;
-    int64_t count;
-    double pmax;
-    ct_idx at;
-    ctd_solver_penetration(s, &count, &pmax, &at);
-    if (count == 0)
-        printf("%s: initial penetration: none (no node within its gap at t = 0)\n", scene);
-    else
-        printf("%s: initial penetration: %lld node%s within the gap at t = 0, the deepest %.4g "
-               "at node %lld (part %d)\n", scene, (long long)count, count == 1 ? "" : "s", pmax,
-               (long long)m->node_id[at], m->node_part[at]);
+    char prefix[1100];
+    snprintf(prefix, sizeof prefix, "%s: ", scene);
+    ctd_solver_print_penetration(stdout, prefix, s);
 }
 
 int ctd_check_main(const char *scene, int file_only)

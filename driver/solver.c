@@ -568,6 +568,8 @@ int ctd_solver_run(ctd_solver *s)
         s->timers.elements += t1 - t0;
         if (contact_forces(s, out_step))
             break;
+        if (s->cycle == 0 && s->nhook) /* an output cycle: the fields hold them */
+            ctd_solver_penetration(s, &s->pen0_count, &s->pen0_max, &s->pen0_node);
         ctd_loads_apply(&w->loads, s->time, s->x, s->y, s->z, w->fx, w->fy, w->fz);
         if (m->has_gravity) {
             const ct_real gx = (ct_real)m->gravity[0], gy = (ct_real)m->gravity[1],

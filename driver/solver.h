@@ -200,6 +200,11 @@ typedef struct ctd_solver {
     ctd_contact_report *rep;
     double *if_force_max;
     int64_t *if_active_max;
+    /* The nodes within their gap at cycle 0 (initial penetrations): how
+     * many, the deepest p = gap - distance and its node (-1 when none). */
+    int64_t pen0_count;
+    double pen0_max;
+    ct_idx pen0_node;
     /* Outcome of ctd_solver_run. */
     const char *status;  /* "ok", "unstable", "error" */
     int exit_code;
@@ -233,10 +238,15 @@ void ctd_solver_destroy(ctd_solver *s);
 void ctd_solver_momentum(const ctd_solver *s, double p[3]);
 
 /* The nodes in contact at the last cycle that filled the output fields
- * (every output cycle, and the one cycle of a dry run): how many have a
- * positive penetration p = gap - distance on some interface, the deepest
- * p and its node (index; -1 and 0 when none). */
+ * (every output cycle, cycle 0 among them): how many have a positive
+ * penetration p = gap - distance on some interface, the deepest p and its
+ * node (index; -1 and 0 when none). */
 void ctd_solver_penetration(const ctd_solver *s, int64_t *count, double *pmax, ct_idx *node);
+
+/* "PREFIXinitial penetration: ..." from pen0_*: none, or how many nodes
+ * start within their gap and the deepest (its depth, node id and part);
+ * nothing without interfaces. In the run's report and `contact check`. */
+void ctd_solver_print_penetration(FILE *f, const char *prefix, const ctd_solver *s);
 
 #ifdef __cplusplus
 }

@@ -128,6 +128,20 @@ void ctd_solver_penetration(const ctd_solver *s, int64_t *count, double *pmax, c
     *node = at;
 }
 
+void ctd_solver_print_penetration(FILE *f, const char *prefix, const ctd_solver *s)
+{
+    const ctd_model *m = s->model;
+    if (!s->nhook)
+        return;
+    if (s->pen0_count == 0 || s->pen0_node < 0)
+        fprintf(f, "%sinitial penetration: none (no node within its gap at t = 0)\n", prefix);
+    else
+        fprintf(f, "%sinitial penetration: %lld node%s within the gap at t = 0, the deepest %.4g "
+                   "at node %lld (part %d)\n", prefix, (long long)s->pen0_count,
+                s->pen0_count == 1 ? "" : "s", s->pen0_max,
+                (long long)m->node_id[s->pen0_node], m->node_part[s->pen0_node]);
+}
+
 void cti_solver_energies(ctd_solver *s)
 {
     cti_solver_work *w = s->w;
@@ -291,6 +305,7 @@ static void print_report(ctd_solver *s, FILE *f)
                    "re-sorts %lld\n", s->w->if_names[i], s->hooks[i].type,
                 s->hooks[i].search ? s->hooks[i].search : "?", s->if_force_max[i],
                 (long long)s->if_active_max[i], (long long)s->w->if_resorts[i]);
+    ctd_solver_print_penetration(f, "  ", s);
     const ctd_timers *t = &s->timers;
     double tot = t->total > 0 ? t->total : 1;
     fprintf(f, "  time split: search %.1f%%, narrow %.1f%%, force %.1f%%, assembly %.1f%%, "

@@ -7,6 +7,7 @@
  */
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
@@ -320,6 +321,28 @@ Test(scene, check_reports_initial_penetration, .init = cr_redirect_stdout)
     cr_assert_eq(count, 4);
     cr_assert_float_eq(pmax, 0.0006, 1e-4 * 0.0006, "%s", line);
     cr_assert(node >= 5 && node <= 12 && part == 2, "%s", line);
+}
+
+/* The run's report says it too (from its cycle 0). */
+Test(scene, run_reports_initial_penetration, .init = cr_redirect_stdout)
+{
+    char p[1024], out[256];
+    scene_path(p, sizeof p, "check_initial_pen.yaml");
+    snprintf(out, sizeof out, "/tmp/ct_pen_run_%ld", (long)getpid());
+    char *argv[] = {p, "--out", out, "--end", "1e-7"};
+    cr_assert_eq(ctd_run_main(5, argv), CTD_EXIT_OK);
+    fflush(stdout);
+    char cmd[300];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", out);
+    cr_assert_eq(system(cmd), 0);
+    FILE *f = cr_get_redirected_stdout();
+    char line[1200];
+    const char *want = "  initial penetration: 4 nodes within the gap at t = 0, the deepest "
+                       "0.0006 at node ";
+    int found = 0;
+    while (fgets(line, sizeof line, f))
+        found += strncmp(line, want, strlen(want)) == 0;
+    cr_assert_eq(found, 1);
 }
 
 Test(scene, check_reports_no_initial_penetration, .init = cr_redirect_stdout)
