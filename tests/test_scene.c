@@ -28,6 +28,16 @@ static void scene_path(char *buf, size_t n, const char *name)
         snprintf(buf, n, "data/scenes/%s", name);
 }
 
+/* Write the scene `text` to /tmp/ct_scene_<pid>_<tag>.yaml, its path in p. */
+static void write_scene_text(char *p, size_t n, const char *tag, const char *text)
+{
+    snprintf(p, n, "/tmp/ct_scene_%ld_%s.yaml", (long)getpid(), tag);
+    FILE *f = fopen(p, "w");
+    cr_assert_not_null(f);
+    fputs(text, f);
+    fclose(f);
+}
+
 static ctd_scene *load_ok(const char *name)
 {
     char p[1024];
@@ -357,11 +367,7 @@ Test(scene, check_reports_no_initial_penetration, .init = cr_redirect_stdout)
         "interfaces:\n"
         "  - {type: 24, name: drop, main: {part: 1}, secondary: {part: 2}, gap: 0.001}\n";
     char p[256];
-    snprintf(p, sizeof p, "/tmp/ct_check_nopen_%ld.yaml", (long)getpid());
-    FILE *w = fopen(p, "w");
-    cr_assert_not_null(w);
-    fputs(text, w);
-    fclose(w);
+    write_scene_text(p, sizeof p, "nopen", text);
     int rc = ctd_check_main(p, 0);
     unlink(p);
     cr_assert_eq(rc, CTD_EXIT_OK);
@@ -486,11 +492,7 @@ Test(scene, deep_nesting_is_an_error)
 static int load_text_fails(const char *text, ctd_scene_err *err)
 {
     char p[256];
-    snprintf(p, sizeof p, "/tmp/ct_scene_%ld_text.yaml", (long)getpid());
-    FILE *f = fopen(p, "w");
-    cr_assert_not_null(f);
-    fputs(text, f);
-    fclose(f);
+    write_scene_text(p, sizeof p, "text", text);
     ctd_scene *sc = (ctd_scene *)1;
     int rc = ctd_scene_load(p, &sc, err);
     unlink(p);
