@@ -369,7 +369,7 @@ static void usage(FILE *f)
                "  search    run and verify the contact searches on a synthetic case\n"
                "  demo      the search comparison on a self-contact sheet and two plates\n"
                "  run       run a scene: contact run SCENE [--out DIR] [--threads N] ...\n"
-               "  check     validate a scene (file, model, interfaces, first step) without running it\n"
+               "  check     validate a scene (file, model, first step) without running it\n"
                "Run `contact <command> --help` for a command's options.\n");
 }
 
@@ -400,16 +400,17 @@ int main(int argc, char **argv)
         int file_only = argc == 4 && !strcmp(argv[2], "--file-only");
         if (argc != 3 + file_only || argv[2 + file_only][0] == '-') {
             int help = argc == 3 && !strcmp(argv[2], "--help");
-            fprintf(help ? stdout : stderr, "usage: contact check [--file-only] SCENE\nValidates a scene: reads the file "
-                   "(every error names the file, the line and the field),\nbuilds the model, "
-                   "the interfaces and the loads, and computes the first cycle's forces and\n"
-                   "stable step, as `contact run` would, without writing anything. Prints the "
-                   "step, the\ncycles the run would need, each interface's pairs in contact "
-                   "at t = 0 and the nodes\nwithin their gap at t = 0 (initial "
-                   "penetrations).\n"
-                   "  --file-only  read and validate the file only (no model: quick on any "
-                   "size)\nExit codes: 0 valid, 1 bad usage, 2 bad input, 4 the first cycle's "
-                   "forces or step are not\nfinite, 5 out of memory.\n");
+            fprintf(help ? stdout : stderr,
+                    "usage: contact check [--file-only] SCENE\n"
+                    "Validates a scene: reads the file (every error names the file, the line "
+                    "and the field),\nbuilds the model, the interfaces and the loads, and "
+                    "computes the first cycle's forces and\nstable step, as `contact run` "
+                    "would, without writing anything. Prints the step, the\ncycles the run "
+                    "would need, each interface's pairs in contact at t = 0 and the nodes\n"
+                    "within their gap at t = 0 (initial penetrations).\n"
+                    "  --file-only  read and validate the file only (no model: quick on any "
+                    "size)\nExit codes: 0 valid, 1 bad usage, 2 bad input, 4 the first "
+                    "cycle's forces or step are not\nfinite, 5 out of memory.\n");
             return help ? 0 : EXIT_USAGE;
         }
         return ctd_check_main(argv[2 + file_only], file_only);

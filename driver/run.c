@@ -56,6 +56,23 @@ typedef struct run_setup {
     ctd_solver s;
 } run_setup;
 
+/* Load the scene (refine 0: the file's); print its errors on stderr.
+ * Returns CTD_EXIT_OK, CTD_EXIT_BADINPUT or CTD_EXIT_OUTPUT (no memory). */
+static int load_scene(const char *who, const char *scene, int64_t refine, ctd_scene **sc)
+{
+    *sc = NULL;
+    ctd_scene_err *se = calloc(1, sizeof *se);
+    if (!se) {
+        fprintf(stderr, "%s: out of memory\n", who);
+        return CTD_EXIT_OUTPUT;
+    }
+    int rc = ctd_scene_load_refined(scene, refine, sc, se);
+    if (rc != CT_OK)
+        ctd_scene_print_errors(stderr, scene, se);
+    free(se);
+    return rc == CT_OK ? CTD_EXIT_OK : CTD_EXIT_BADINPUT;
+}
+
 /* Build everything; print what fails on stderr after `who`. Returns
  * CTD_EXIT_OK or the exit code (2 bad input, 5 an unusable output
  * directory or no memory). setup_close is due in every case. */
@@ -63,17 +80,9 @@ static int setup_open(run_setup *r, const char *who, const char *scene, int64_t 
                       const char *search, const ctd_solver_opts *o)
 {
     memset(r, 0, sizeof *r);
-    ctd_scene_err *se = calloc(1, sizeof *se);
-    if (!se) {
-        fprintf(stderr, "%s: out of memory\n", who);
-        return CTD_EXIT_OUTPUT;
-    }
-    if (ctd_scene_load_refined(scene, refine, &r->sc, se) != CT_OK) {
-        ctd_scene_print_errors(stderr, scene, se);
-        free(se);
-        return CTD_EXIT_BADINPUT;
-    }
-    free(se);
+    int code = load_scene(who, scene, refine, &r->sc);
+    if (code != CTD_EXIT_OK)
+        return code;
     if (search) {
         int algo = ct_search_algo_from_name(search);
         for (unsigned i = 0; i < r->sc->interfaces_count; i++)
@@ -229,20 +238,12 @@ static void print_contact_at_start(const char *scene, const ctd_solver *s)
 int ctd_check_main(const char *scene, int file_only)
 {
     if (file_only) {
-        ctd_scene_err *se = calloc(1, sizeof *se);
-        ctd_scene *sc = NULL;
-        if (!se) {
-            fprintf(stderr, "contact check: out of memory\n");
-            return CTD_EXIT_OUTPUT;
-        }
-        int rc = ctd_scene_load(scene, &sc, se);
-        if (rc == CT_OK)
+        ctd_scene *sc;
+        int code = load_scene("contact check", scene, 0, &sc);
+        if (code == CTD_EXIT_OK)
             ctd_scene_print_summary(stdout, scene, sc);
-        else
-            ctd_scene_print_errors(stderr, scene, se);
         ctd_scene_free(sc);
-        free(se);
-        return rc == CT_OK ? CTD_EXIT_OK : CTD_EXIT_BADINPUT;
+        return code;
     }
     ctd_solver_opts o = ctd_solver_default_opts();
     o.no_output = 1;

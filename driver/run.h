@@ -24,8 +24,7 @@ int ctd_run_main(int argc, char **argv);
  * time step and the cycles the run would need, one line per interface
  * (its pairs in contact at t = 0 and its stable step) and the initial
  * penetrations (the nodes within their gap at t = 0, the deepest one);
- * on failure, the errors
- * on stderr. Returns the exit code a run would return: 0 valid, 2 bad
+ * on failure, the errors on stderr. Returns the exit code a run would return: 0 valid, 2 bad
  * input, 4 the first cycle is not finite, 5 no memory. file_only: read
  * and validate the file only (seconds for a scene of 10^9 nodes, whose
  * counts come from formulas) and print the first line.

@@ -38,12 +38,12 @@ const cti_ynode *cti_ynode_at(const cti_ynode *root, const char *path);
  * line of the deepest part of the path that exists (0 when nothing does). */
 int cti_path_line(const cti_ynode *root, const char *path);
 
-/* A short description of a node for "got ..." ("'abc'", "a list", "a
- * mapping", "nothing"). */
 /* "'value'" for a message: at most 60 bytes of s, cut before a UTF-8
  * sequence rather than inside it, and "..." when cut. */
 void cti_quote_value(const char *s, char *buf, size_t len);
 
+/* A short description of a node for "got ..." ("'abc'", "a list", "a
+ * mapping", "nothing"). */
 void cti_ynode_describe(const cti_ynode *n, char *buf, size_t len);
 
 /* The top-level schema (a pointer to ctd_scene). */

@@ -176,7 +176,7 @@ int ctdi_add_pass(ctd_iface *it, const ct_idx *const lists[6], const ct_idx coun
                   ct_diag *diag)
 {
     const ctd_iface_cfg *c = &it->cfg;
-    char msg[256];
+    char msg[200];
     if (it->npass >= 2)
         return ctdi_fail(diag, CT_ERR_ARG, -1, "An interface has at most two passes.");
     if (s->nseg <= 0 || !s->q1 || !s->q2 || !s->q3 || !s->q4) {
@@ -213,9 +213,8 @@ int ctdi_add_pass(ctd_iface *it, const ct_idx *const lists[6], const ct_idx coun
     int rc = ctdi_pass_setup(it, p, (ct_idx)ns, sec, s->nseg, s->q1, s->q2, s->q3, s->q4, kseg,
                              1, c->two_sided != 0, law);
     if (rc != CT_OK) {
-        snprintf(msg, sizeof msg, "TYPE%d setup failed against its %s: %s.", c->type, what,
-                 ctdi_pass_setup_why(rc));
-        return ctdi_fail(diag, rc, -1, msg);
+        snprintf(msg, sizeof msg, "TYPE%d setup failed against its %s", c->type, what);
+        return ctdi_pass_setup_fail(diag, rc, msg);
     }
     p->reverse = reverse;
     return CT_OK;

@@ -180,9 +180,9 @@ double ctdi_mean_seg_edge(ct_idx nseg, const ct_idx *n1, const ct_idx *n2, const
                           const ct_idx *n4, const ct_real *x, const ct_real *y,
                           const ct_real *z);
 
-/* Why ctdi_pass_setup failed with code rc, in words for the user (a gap
- * of 0 on a two-sided surface, memory, a node out of range). */
-const char *ctdi_pass_setup_why(int rc);
+/* Fail (ctdi_fail) with "WHAT: why." for a ctdi_pass_setup that returned
+ * rc: a gap of 0 on a two-sided surface, memory, a node out of range. */
+int ctdi_pass_setup_fail(ct_diag *diag, int rc, const char *what);
 
 /* Node-segment pass (iface_pass.c). ctdi_pass_setup copies the segments
  * and the secondary list (already unique and sorted) and allocates the

@@ -130,19 +130,17 @@ size_t ctdi_pass_memory(const ctdi_pass *p, ct_idx nnode)
     return b;
 }
 
-const char *ctdi_pass_setup_why(int rc)
+int ctdi_pass_setup_fail(ct_diag *diag, int rc, const char *what)
 {
-    switch (rc) {
-    case CT_ERR_NOMEM:
-        return "out of memory";
-    case CT_ERR_RANGE:
-        return "a node index is out of range";
-    case CT_ERR_ARG:
-        return "a two-sided surface needs a gap > 0: give the interface "
-               "a gap (only shell parts carry a thickness to take it from)";
-    default:
-        return ct_strerror(rc);
-    }
+    const char *why = rc == CT_ERR_NOMEM   ? "out of memory"
+                      : rc == CT_ERR_RANGE ? "a node index is out of range"
+                      : rc == CT_ERR_ARG   ? "a two-sided surface needs a gap > 0: give the "
+                                             "interface a gap (only shell parts carry a "
+                                             "thickness to take it from)"
+                                           : ct_strerror(rc);
+    char msg[sizeof diag->msg];
+    snprintf(msg, sizeof msg, "%s: %s.", what, why);
+    return ctdi_fail(diag, rc, -1, msg);
 }
 
 int ctdi_pass_setup(ctd_iface *it, ctdi_pass *p, ct_idx nsec, ct_idx *sec_owned, ct_idx nseg,

@@ -5,8 +5,6 @@
  * Igap0 gaps, Inacti / Ipen0 / Ipen_max, grnd_IDs, VisS and friction; the
  * pass engine is iface_pass.c.
  */
-#include <stdio.h>
-
 #include "iface_internal.h"
 
 /* Istf of the card -> ct_stiff_combine (0 and 2 mean, 3 max, 4 min,
@@ -85,9 +83,7 @@ int ctdi_type24_setup(ctd_iface *it, const ctd_iface_data *d, ct_diag *diag)
                          d->n4, kseg, c->self != 0, two, CTDI_LAW_LINEAR);
     if (rc != CT_OK) {
         ct_free(kseg2);
-        char msg[256];
-        snprintf(msg, sizeof msg, "TYPE24 setup failed: %s.", ctdi_pass_setup_why(rc));
-        return ctdi_fail(diag, rc, -1, msg);
+        return ctdi_pass_setup_fail(diag, rc, "TYPE24 setup failed");
     }
     if (!c->symmetric || c->self) {
         ct_free(kseg2);
@@ -105,12 +101,8 @@ int ctdi_type24_setup(ctd_iface *it, const ctd_iface_data *d, ct_diag *diag)
     it->npass = 2;
     rc = ctdi_pass_setup(it, &it->pass[1], (ct_idx)n2, sec2, d->nsseg, d->s1, d->s2, d->s3,
                          d->s4, kseg2, 0, two, CTDI_LAW_LINEAR);
-    if (rc != CT_OK) {
-        char msg[256];
-        snprintf(msg, sizeof msg, "TYPE24 setup of its second pass failed: %s.",
-                 ctdi_pass_setup_why(rc));
-        return ctdi_fail(diag, rc, -1, msg);
-    }
+    if (rc != CT_OK)
+        return ctdi_pass_setup_fail(diag, rc, "TYPE24 setup of its second pass failed");
     /* Its nodes are the main side's: the report counts its force negative,
      * so that the total is the force on the secondary surface. */
     it->pass[1].reverse = 1;

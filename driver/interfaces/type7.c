@@ -4,8 +4,6 @@
  * nonlinear law K = K0 g/(g - p), damping, friction, the kinematic time
  * step; the pass engine is iface_pass.c.
  */
-#include <stdio.h>
-
 #include "iface_internal.h"
 
 int ctdi_type7_setup(ctd_iface *it, const ctd_iface_data *d, ct_diag *diag)
@@ -36,10 +34,5 @@ int ctdi_type7_setup(ctd_iface *it, const ctd_iface_data *d, ct_diag *diag)
     it->npass = 1;
     int rc = ctdi_pass_setup(it, &it->pass[0], (ct_idx)nsec, sec, d->nseg, d->n1, d->n2,
                              d->n3, d->n4, kseg, 1, 1, CTDI_LAW_TYPE7);
-    if (rc != CT_OK) {
-        char msg[256];
-        snprintf(msg, sizeof msg, "TYPE7 setup failed: %s.", ctdi_pass_setup_why(rc));
-        return ctdi_fail(diag, rc, -1, msg);
-    }
-    return CT_OK;
+    return rc == CT_OK ? CT_OK : ctdi_pass_setup_fail(diag, rc, "TYPE7 setup failed");
 }
