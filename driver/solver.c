@@ -134,7 +134,7 @@ int ctd_solver_init(ctd_solver *s, ctd_model *m, const ctd_solver_opts *opts,
     w->free_node = calloc(n1, 1);
     w->bc_node = malloc(sizeof(ct_idx) * n1);
     w->nchunk = (int)((nn + CTI_CHUNK - 1) / CTI_CHUNK);
-    w->part_sum = calloc((size_t)w->nchunk + 1, sizeof(double));
+    w->part_sum = calloc(2 * ((size_t)w->nchunk + 1), sizeof(double));
     w->vc_old = calloc((size_t)m->nbody + 1, sizeof *w->vc_old);
     w->L_old = calloc((size_t)m->nbody + 1, sizeof *w->L_old);
     int nh = s->nhook;
@@ -623,7 +623,10 @@ int ctd_solver_run(ctd_solver *s)
         rigid_kick(s, dtk, dt_new);
         if (check) {
             cti_solver_energies(s);
-            double ref = fmax(s->e0.total, fabs(s->e.external));
+            /* The gravity work's resolution too: a body at rest has E0 = 0,
+             * and its first displacements can be below the coordinates'
+             * rounding (a work of 0 against a kinetic energy > 0). */
+            double ref = fmax(fmax(s->e0.total, fabs(s->e.external)), w->grav_res);
             double live = s->e.kinetic + s->e.internal + s->e.contact;
             if (!isfinite(live) || !isfinite(ref) || !isfinite(s->e.external)) {
                 /* A NaN compares false below: without this a NaN contact
@@ -639,8 +642,9 @@ int ctd_solver_run(ctd_solver *s)
                 ct_idx f = fastest_node(s);
                 fail(s, "unstable", CTD_EXIT_UNSTABLE,
                      "cycle %lld (t = %.6g): runaway energy: kinetic + internal + contact = %.4g "
-                     "exceeds 100 x max(E0, |W_ext|) = %.4g; fastest node %lld (part %d); the "
-                     "time step (dt = %.3g) is likely above the stable limit",
+                     "exceeds 100 x max(E0, |W_ext|, the gravity work's resolution) = %.4g; "
+                     "fastest node %lld (part %d); the time step (dt = %.3g) is likely above "
+                     "the stable limit",
                      (long long)s->cycle, s->time, live, 100 * ref,
                      f >= 0 ? (long long)m->node_id[f] : -1LL, f >= 0 ? m->node_part[f] : 0,
                      w->dt_prev);

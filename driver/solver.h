@@ -38,7 +38,9 @@
  *
  * Robustness: a NaN or infinite force or position, an inverted element,
  * an interface returning an error, or a runaway energy (K + U + contact >
- * 100 max(E_0, |W_ext|) + 1e-30) stops the run: s->status is "unstable",
+ * 100 max(E_0, |W_ext|, R) + 1e-30, R = 2 eps sum m |g| . |x| the gravity
+ * work's resolution: steps whose displacement is below the coordinates'
+ * rounding leave W_ext at 0) stops the run: s->status is "unstable",
  * s->message names the node (scene id and part), element (index in its
  * part) or interface and the cycle, and the last state that passed the
  * checks is written to OUT/last_good.vtu. Nothing is allocated inside the

@@ -26,7 +26,7 @@ typedef struct cti_solver_work {
     uint8_t *free_node;           /* 1: integrated by the kick (not rigid, m > 0) */
     ct_idx nbc;
     ct_idx *bc_node;              /* constrained nodes not in rigid bodies */
-    double *part_sum;             /* chunk partial sums */
+    double *part_sum;             /* chunk partial sums (two per chunk) */
     int nchunk;
     double (*vc_old)[3];          /* rigid bodies' centre velocity before the kick */
     double (*L_old)[3];           /* and their angular momentum before the kick */
@@ -38,6 +38,7 @@ typedef struct cti_solver_work {
     double damping, friction;     /* dissipation so far */
     double internal;              /* elements' energy at x(n) */
     double contact;               /* interfaces' stored energy at x(n) */
+    double grav_res;              /* the gravity work's resolution (cti_solver_gravity_work) */
     double dt_prev;
     ctd_output *out;
     double *if_force;             /* per-interface values for the CSV row */
@@ -49,6 +50,10 @@ typedef struct cti_solver_work {
 
 /* solver_report.c */
 double cti_solver_kinetic(ctd_solver *s);
+/* The gravity work sum m g . (x - x(0)), and in w->grav_res the work
+ * gravity does over one rounding step of every coordinate: a displacement
+ * below it is lost in the positions, so the work computed from them can
+ * stay 0 while the velocities (and the kinetic energy) already grow. */
 double cti_solver_gravity_work(ctd_solver *s);
 /* Energies at the current cycle into s->e (x(n), v- in vo, v+ in v). */
 void cti_solver_energies(ctd_solver *s);

@@ -88,25 +88,34 @@ double cti_solver_kinetic(ctd_solver *s)
 double cti_solver_gravity_work(ctd_solver *s)
 {
     const ctd_model *m = s->model;
+    cti_solver_work *w = s->w;
+    w->grav_res = 0;
     if (!m->has_gravity)
         return 0;
-    cti_solver_work *w = s->w;
     const ct_nodes *nd = &m->mesh.nodes;
     const ct_idx nn = s->nnode;
     const double g0 = m->gravity[0], g1 = m->gravity[1], g2 = m->gravity[2];
+    const double a0 = fabs(g0), a1 = fabs(g1), a2 = fabs(g2);
+    double *res = w->part_sum + w->nchunk + 1;
     CTI_PAR_FOR(w->nchunk > 1, (schedule(static)),
     for (int c = 0; c < w->nchunk; c++) {
         ct_idx lo = (ct_idx)c * CTI_CHUNK, hi = lo + CTI_CHUNK < nn ? lo + CTI_CHUNK : nn;
-        double sum = 0;
-        for (ct_idx i = lo; i < hi; i++)
-            sum += nd->m[i] * (g0 * ((double)s->x[i] - nd->x[i]) +
-                               g1 * ((double)s->y[i] - nd->y[i]) +
-                               g2 * ((double)s->z[i] - nd->z[i]));
+        double sum = 0, r = 0;
+        for (ct_idx i = lo; i < hi; i++) {
+            const double X = s->x[i], Y = s->y[i], Z = s->z[i];
+            sum += nd->m[i] * (g0 * (X - nd->x[i]) + g1 * (Y - nd->y[i]) + g2 * (Z - nd->z[i]));
+            r += nd->m[i] * (a0 * fabs(X) + a1 * fabs(Y) + a2 * fabs(Z));
+        }
         w->part_sum[c] = sum;
+        res[c] = r;
     });
-    double sum = 0;
-    for (int c = 0; c < w->nchunk; c++)
+    double sum = 0, r = 0;
+    for (int c = 0; c < w->nchunk; c++) {
         sum += w->part_sum[c];
+        r += res[c];
+    }
+    /* One rounding step of a coordinate is at most 2 eps |x|. */
+    w->grav_res = 2 * (double)CTI_EPS * r;
     return sum;
 }
 

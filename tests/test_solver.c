@@ -236,6 +236,29 @@ Test(solver, gravity_drop)
     run_free(&r);
 }
 
+/* (4a) The same fall over one step of 1e-9 s: the block (at z = 1)
+ * moves g dt^2 / 2 = 4.9e-18 m, below the rounding of its coordinates, so
+ * the gravity work computed from the positions is 0 while the kinetic
+ * energy is not. That is no runaway: the run ends "ok" (it stopped as
+ * unstable at cycle 1 before the check allowed for the work's
+ * resolution). */
+Test(solver, fall_below_the_coordinates_rounding_is_no_runaway)
+{
+    run_ctx r;
+    ctd_solver_opts o = ctd_solver_default_opts();
+    o.end_time = 1e-9;
+    o.no_output = 1;
+    run_scene(&r, "solver_drop.yaml", 0, &o);
+    cr_assert_eq(r.s.exit_code, CTD_EXIT_OK, "%s", r.s.message);
+    cr_assert(fabs(r.s.time - 1e-9) < 1e-21);
+    /* The case arises: no work, and a kinetic energy above 100 times the
+     * reference max(E0, |W_ext|) of the check without the resolution. */
+    cr_assert_eq(r.s.e.external, 0, "W %g", r.s.e.external);
+    cr_assert(r.s.e.kinetic > 100 * fmax(r.s.e0.total, 0) + 1e-30, "kinetic %g, E0 %g",
+              r.s.e.kinetic, r.s.e0.total);
+    run_free(&r);
+}
+
 /* (4b) A rigid body at rest pushed by a load raised from zero, below its
  * centre: the first kick spins it before the load has done any work (the
  * work is summed over completed steps), which must not count as a
