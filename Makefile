@@ -220,7 +220,6 @@ SCENE ?= data/scenes/showcase.yaml
 # fresh checkout has none.
 run: deps
 	@$(MAKE) --no-print-directory $(CONTACT)
-	@mkdir -p out
 	$(CONTACT) run $(SCENE) --out out/$(basename $(notdir $(SCENE)))
 
 # Criterion forks one process per test; tests set their own thread counts.

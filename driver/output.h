@@ -68,19 +68,29 @@ int ctd_vtu_write_as(const char *path, const ctd_out_mesh *m, int format, char *
 typedef struct ctd_output ctd_output;
 
 typedef struct ctd_output_opts {
-    const char *dir;   /* created if missing (its parent must exist) */
+    const char *dir;   /* created if missing, with its missing parents */
     const char *base;  /* file name stem of the VTU series (NULL: "state") */
     int vtu, csv;      /* which series to write */
     int vtu_format;    /* CTD_VTU_ASCII (0) or CTD_VTU_RAW */
 } ctd_output_opts;
 
 /*
- * Open an output directory: create it when missing (the parent must exist),
- * then prove it writable by writing and removing a probe file, and check
- * that at least 1 MiB is free. On failure *out is NULL and err holds e.g.
- * "cannot create output directory 'out/x': No such file or directory".
+ * Open an output directory: create it when missing, with its missing
+ * parents (as mkdir -p), then prove it writable by writing and removing a
+ * probe file, and check that at least 1 MiB is free. On failure *out is
+ * NULL and err holds e.g. "cannot create output directory 'res/run1':
+ * Not a directory" (res is a file).
  */
 int ctd_output_open(ctd_output **out, const ctd_output_opts *opts, char *err, size_t errlen);
+
+/*
+ * What ctd_output_open would find, creating and writing nothing (for
+ * `contact check`): dir exists and is a writable directory, or is missing
+ * and its nearest existing ancestor is one; and the disk has 1 MiB free.
+ * CT_OK, or an error with the messages of ctd_output_open (CT_ERR_NOMEM:
+ * no memory).
+ */
+int ctd_output_check_dir(const char *dir, char *err, size_t errlen);
 void ctd_output_close(ctd_output *o);
 const char *ctd_output_error(const ctd_output *o);
 const char *ctd_output_dir(const ctd_output *o);

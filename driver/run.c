@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "model.h"
+#include "output.h"
 #include "run.h"
 #include "scene.h"
 #include "solver.h"
@@ -235,7 +236,7 @@ static void print_contact_at_start(const char *scene, const ctd_solver *s)
     ctd_solver_print_penetration(stdout, prefix, s);
 }
 
-int ctd_check_main(const char *scene, int file_only)
+int ctd_check_main(const char *scene, int file_only, const char *out)
 {
     if (file_only) {
         ctd_scene *sc;
@@ -254,8 +255,13 @@ int ctd_check_main(const char *scene, int file_only)
     int code = setup_open(&r, "contact check", scene, 0, NULL, &o);
     if (code == CTD_EXIT_OK) {
         code = ctd_solver_run(&r.s);
+        char err[1200];
         if (code != CTD_EXIT_OK) {
             fprintf(stderr, "contact check: %s: %s\n", r.s.status, r.s.message);
+        } else if (ctd_output_check_dir(out ? out : r.sc->out_dir, err, sizeof err) != CT_OK) {
+            /* What the run's first step would refuse, found creating nothing. */
+            fprintf(stderr, "contact check: %s\n", err[0] ? err : "out of memory");
+            code = CTD_EXIT_OUTPUT;
         } else {
             ctd_scene_print_summary(stdout, scene, r.sc);
             const ctd_solver *s = &r.s;

@@ -25,10 +25,12 @@ int ctd_run_main(int argc, char **argv);
  * (its pairs in contact at t = 0 and its stable step) and the initial
  * penetrations (the nodes within their gap at t = 0, the deepest one);
  * on failure, the errors on stderr. Returns the exit code a run would return: 0 valid, 2 bad
- * input, 4 the first cycle is not finite, 5 no memory. file_only: read
- * and validate the file only (seconds for a scene of 10^9 nodes, whose
- * counts come from formulas) and print the first line.
+ * input, 4 the first cycle is not finite, 5 an output directory the run
+ * could not create or write (out, or else the scene's output.dir; checked
+ * with nothing created) or no memory. file_only: read and validate the
+ * file only (seconds for a scene of 10^9 nodes, whose counts come from
+ * formulas) and print the first line.
  */
-int ctd_check_main(const char *scene, int file_only);
+int ctd_check_main(const char *scene, int file_only, const char *out);
 
 #endif

@@ -197,7 +197,7 @@ static int check_text(const char *text)
 {
     char p[256];
     write_text(p, sizeof p, text);
-    int rc = ctd_check_main(p, 0);
+    int rc = ctd_check_main(p, 0, NULL);
     unlink(p);
     return rc;
 }

@@ -444,16 +444,28 @@ Test(output, bad_directories)
     cr_assert_neq(open_fails("/proc", err, sizeof err), CT_OK);
     cr_assert_not_null(strstr(err, "cannot write to output directory '/proc': "), "%s", err);
     char *d = tmpdir(), p[256];
-    snprintf(p, sizeof p, "%s/no/such", d);
-    cr_assert_neq(open_fails(p, err, sizeof err), CT_OK);
-    char want[400];
-    snprintf(want, sizeof want, "cannot create output directory '%s': No such file or directory", p);
-    cr_assert_str_eq(err, want);
     snprintf(p, sizeof p, "%s/file", d);
     FILE *f = fopen(p, "w");
     fclose(f);
     cr_assert_neq(open_fails(p, err, sizeof err), CT_OK);
     cr_assert_not_null(strstr(err, "is not a directory"), "%s", err);
+    /* Under a file: no level can be made. */
+    char want[400];
+    snprintf(p, sizeof p, "%s/file/sub/run", d);
+    cr_assert_neq(open_fails(p, err, sizeof err), CT_OK);
+    snprintf(want, sizeof want, "cannot use output directory '%s': Not a directory", p);
+    cr_assert_str_eq(err, want);
+    /* Missing parents are created (as mkdir -p; a run's default
+     * out/<scene> in a fresh directory needs out/ too). */
+    snprintf(p, sizeof p, "%s/no/such/", d);
+    ctd_output *o2 = open_out(p);
+    struct stat st2;
+    cr_assert(stat(p, &st2) == 0 && S_ISDIR(st2.st_mode));
+    ctd_output_close(o2);
+    snprintf(p, sizeof p, "%s/no/such", d);
+    rmdir(p);
+    snprintf(p, sizeof p, "%s/no", d);
+    rmdir(p);
     /* A new leaf under an existing parent is created, and no probe is left. */
     snprintf(p, sizeof p, "%s/run", d);
     ctd_output *o = open_out(p);

@@ -9,11 +9,13 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "output.h"
 #include "run.h"
 #include "scene.h"
+#include "solver.h"
 #include "test_util.h"
 
 #include <criterion/redirect.h>
@@ -229,7 +231,7 @@ Test(scene, broken_files_name_file_line_field, .init = cr_redirect_stderr)
                            b->what);
         cr_assert_eq(m->line, b->line, "%s", b->file);
         cr_assert_str_eq(m->field, b->field, "%s", b->file);
-        cr_assert_eq(ctd_check_main(p, 0), CTD_EXIT_BADINPUT, "%s", b->file);
+        cr_assert_eq(ctd_check_main(p, 0, NULL), CTD_EXIT_BADINPUT, "%s", b->file);
     }
 }
 
@@ -257,7 +259,7 @@ Test(scene, nonexistent_file, .init = cr_redirect_stderr)
     cr_assert_str_eq(err.msg[0].text,
                      "/nonexistent/dir/scene.yaml: cannot open the scene file: No such file or "
                      "directory");
-    cr_assert_eq(ctd_check_main(p, 0), CTD_EXIT_BADINPUT);
+    cr_assert_eq(ctd_check_main(p, 0, NULL), CTD_EXIT_BADINPUT);
     cr_assert_eq(ctd_scene_load(NULL, &sc, &err), CT_ERR_ARG);
     /* A directory opens; libyaml then said "malformed YAML: input error". */
     cr_assert_eq(ctd_scene_load("/tmp", &sc, &err), CT_ERR_ARG);
@@ -272,7 +274,7 @@ static double expect_check_line(const char *name, const char *line)
 {
     char p[1024];
     scene_path(p, sizeof p, name);
-    cr_assert_eq(ctd_check_main(p, 0), CTD_EXIT_OK);
+    cr_assert_eq(ctd_check_main(p, 0, NULL), CTD_EXIT_OK);
     fflush(stdout);
     char want[1200], got[1200], got2[1200];
     FILE *f = cr_get_redirected_stdout();
@@ -310,7 +312,7 @@ Test(scene, check_reports_initial_penetration, .init = cr_redirect_stdout)
 {
     char p[1024];
     scene_path(p, sizeof p, "check_initial_pen.yaml");
-    cr_assert_eq(ctd_check_main(p, 0), CTD_EXIT_OK);
+    cr_assert_eq(ctd_check_main(p, 0, NULL), CTD_EXIT_OK);
     fflush(stdout);
     FILE *f = cr_get_redirected_stdout();
     char line[1200];
@@ -368,7 +370,7 @@ Test(scene, check_reports_no_initial_penetration, .init = cr_redirect_stdout)
         "  - {type: 24, name: drop, main: {part: 1}, secondary: {part: 2}, gap: 0.001}\n";
     char p[256];
     write_scene_text(p, sizeof p, "nopen", text);
-    int rc = ctd_check_main(p, 0);
+    int rc = ctd_check_main(p, 0, NULL);
     unlink(p);
     cr_assert_eq(rc, CTD_EXIT_OK);
     fflush(stdout);
@@ -388,13 +390,65 @@ Test(scene, check_file_only_reads_the_file_only, .init = cr_redirect_stdout)
 {
     char p[1024];
     scene_path(p, sizeof p, "iface_empty_main.yaml");
-    cr_assert_eq(ctd_check_main(p, 1), CTD_EXIT_OK);
+    cr_assert_eq(ctd_check_main(p, 1, NULL), CTD_EXIT_OK);
     fflush(stdout);
     char want[1200];
     snprintf(want, sizeof want, "%s: ok: \"empty main\", end_time 1e-05, 2 meshes (36 nodes), "
              "2 parts, 0 rigid bodies, 0 boundary conditions, 1 interface, output to "
              "out/iface_empty_main\n", p);
     cr_assert_stdout_eq_str(want);
+}
+
+/* The check refuses the output directories the run would refuse (exit 5,
+ * the run's message), creating nothing: --out naming a file, --out under a
+ * file, the scene's output.dir naming a file; and passes a missing
+ * directory two levels below an existing one (the run creates both),
+ * creating neither. */
+Test(scene, check_refuses_an_unusable_output_directory, .init = cr_redirect_stderr)
+{
+    char bar[1024], file[256], missing[256], deep[300], p[256], text[600];
+    scene_path(bar, sizeof bar, "../../../data/scenes/bar-wave.yaml");
+    snprintf(file, sizeof file, "/tmp/ct_outfile_%ld", (long)getpid());
+    snprintf(missing, sizeof missing, "/tmp/ct_outdir_%ld", (long)getpid());
+    snprintf(deep, sizeof deep, "%s/sub", file);
+    FILE *f = fopen(file, "w");
+    cr_assert_not_null(f);
+    fclose(f);
+    rmdir(missing);
+    FILE *o = freopen("/dev/null", "w", stdout);
+    cr_assert_not_null(o);
+    int rc_file = ctd_check_main(bar, 0, file);
+    int rc_deep = ctd_check_main(bar, 0, deep);
+    char two[300];
+    snprintf(two, sizeof two, "%s/sub", missing);
+    int rc_new = ctd_check_main(bar, 0, two);
+    struct stat st;
+    int created = stat(missing, &st) == 0;
+    snprintf(text, sizeof text,
+             "end_time: 1.0e-5\noutput: {dir: %s}\nmesh:\n"
+             "  - generate: {kind: block, part: 1, cells: [1, 1, 1], size: [0.1, 0.1, 0.1]}\n"
+             "parts:\n  - {id: 1, element: brick, material: {E: 1.0e6, nu: 0.3, rho: 1000}}\n",
+             file);
+    write_scene_text(p, sizeof p, "outfile", text);
+    int rc_scene = ctd_check_main(p, 0, NULL);
+    int rc_scene_out = ctd_check_main(p, 0, missing); /* --out wins */
+    unlink(p);
+    unlink(file);
+    rmdir(missing);
+    cr_assert_eq(rc_file, CTD_EXIT_OUTPUT);
+    cr_assert_eq(rc_deep, CTD_EXIT_OUTPUT);
+    cr_assert_eq(rc_new, CTD_EXIT_OK);
+    cr_assert_not(created, "the check created %s", missing);
+    cr_assert_eq(rc_scene, CTD_EXIT_OUTPUT);
+    cr_assert_eq(rc_scene_out, CTD_EXIT_OK);
+    fflush(stderr);
+    char want[1400];
+    snprintf(want, sizeof want,
+             "contact check: output path is not a directory '%s': Not a directory\n"
+             "contact check: cannot use output directory '%s': Not a directory\n"
+             "contact check: output path is not a directory '%s': Not a directory\n",
+             file, deep, file);
+    cr_assert_stderr_eq_str(want);
 }
 
 /* The check's first step against the bar's analytic one: 100 trusses of

@@ -223,7 +223,7 @@ static void expect_build_error(const char *name, const char *text)
     cr_expect_eq(ctd_run_main(2, argv), CTD_EXIT_BADINPUT);
     /* `contact check` builds the interfaces too: it refused none of these
      * (it read the file only). */
-    cr_expect_eq(ctd_check_main(p, 0), CTD_EXIT_BADINPUT, "%s passed the check", name);
+    cr_expect_eq(ctd_check_main(p, 0, NULL), CTD_EXIT_BADINPUT, "%s passed the check", name);
 }
 
 Test(scenes, interface_errors_name_file_line, .init = cr_redirect_stderr)

@@ -367,7 +367,7 @@ Test(solver, run_bad_input)
     char *a4[] = {q, "--search", "quick"};
     cr_assert_eq(ctd_run_main(3, a4), CTD_EXIT_USAGE);
     path_of(r, sizeof r, "bar-wave.yaml", 1);
-    char *a5[] = {r, "--out", "/nonexistent_dir_ct/out", "--quiet"};
+    char *a5[] = {r, "--out", "/proc/nonexistent_dir_ct/out", "--quiet"};
     cr_assert_eq(ctd_run_main(4, a5), CTD_EXIT_OUTPUT);
     char *a6[] = {"--help"};
     cr_assert_eq(ctd_run_main(1, a6), 0);
