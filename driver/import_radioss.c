@@ -140,6 +140,16 @@ int ctd_deck_read(const char *path, ctd_deck *deck, ct_diag *diag)
     memset(&z, 0, sizeof z);
     size_t size = 0;
     char *buf = ctd_rad_slurp(path, &size);
+    if (!buf && errno == EFBIG && size > 0)
+        return ctd_rad_fail(&r, CT_ERR_ARG, -1,
+                            "the file has %llu bytes, more than the %llu (%g GiB) a deck "
+                            "may have", (unsigned long long)size,
+                            (unsigned long long)CTD_DECK_MAXBYTES,
+                            (double)CTD_DECK_MAXBYTES / (double)((size_t)1 << 30));
+    if (!buf && errno == EFBIG)
+        return ctd_rad_fail(&r, CT_ERR_ARG, -1,
+                            "the stream passed the %g GiB a deck may have before its end",
+                            (double)CTD_DECK_MAXBYTES / (double)((size_t)1 << 30));
     if (!buf)
         return ctd_rad_fail(&r, CT_ERR_ARG, -1, "cannot open or read the file: %s",
                             strerror(errno));

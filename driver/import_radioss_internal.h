@@ -33,7 +33,12 @@ char *ctd_rad_dup_trim(const char *s, int n);
 /* A malloc'd "" when s is NULL, else s; NULL only when out of memory. */
 char *ctd_rad_or_empty(char *s);
 
-/* Read a whole file; NULL (errno set) on failure. */
+/* The largest deck read, in bytes (1 GiB: an endless stream, a FIFO fed
+ * forever, would otherwise take all the memory). */
+#define CTD_DECK_MAXBYTES ((size_t)1 << 30)
+
+/* Read a whole file; NULL (errno set) on failure: EFBIG for a file past
+ * CTD_DECK_MAXBYTES (*size: its size when known, else 0). */
 char *ctd_rad_slurp(const char *path, size_t *size);
 
 /* ---- Id maps (import_radioss_resolve.c) -------------------------------- */

@@ -12,6 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
+#include <sys/stat.h>
 
 #include "ct_internal.h"
 #include "import_radioss_internal.h"
@@ -58,15 +59,22 @@ char *ctd_rad_or_empty(char *s)
 
 /* ---- The file ---------------------------------------------------------- */
 
-/* The largest deck read (an endless stream, a FIFO fed forever, would
- * otherwise take all the memory). */
-#define CTD_DECK_MAXBYTES ((size_t)1 << 30)
-
 char *ctd_rad_slurp(const char *path, size_t *size)
 {
+    *size = 0;
     FILE *f = fopen(path, "rb");
     if (!f)
         return NULL;
+    /* A regular file past the limit is refused before any read (the loop
+     * below stops a stream only after reading 1 GiB of it). */
+    struct stat st;
+    if (fstat(fileno(f), &st) == 0 && S_ISREG(st.st_mode) &&
+        (uint64_t)st.st_size > (uint64_t)CTD_DECK_MAXBYTES) {
+        fclose(f);
+        *size = (size_t)st.st_size;
+        errno = EFBIG;
+        return NULL;
+    }
     size_t cap = 1 << 16, n = 0;
     char *buf = malloc(cap);
     while (buf) {
@@ -103,8 +111,10 @@ char *ctd_rad_slurp(const char *path, size_t *size)
             break;
         }
     }
+    int e = errno;
     fclose(f);
-    *size = n;
+    errno = e;
+    *size = buf ? n : 0;
     return buf;
 }
 

@@ -294,6 +294,28 @@ Test(input_limits, an_endless_deck_stops_at_its_first_chunk)
                    3, "mesh[0].import.file", "/dev/zero:1: line of 65536 characters");
 }
 
+/* A deck file past 1 GiB is refused from its size, before any read (it
+ * was read whole, 1 GiB of memory, before the limit fired). The file is
+ * sparse: no disk, and a read of it would find NUL bytes at once, a
+ * different message. */
+Test(input_limits, a_deck_past_1_gib_is_refused_by_its_size)
+{
+    char deck[128], text[400];
+    snprintf(deck, sizeof deck, "/tmp/ct_big_deck_%ld.rad", (long)getpid());
+    FILE *f = fopen(deck, "wb");
+    cr_assert_not_null(f);
+    cr_assert_eq(ftruncate(fileno(f), ((off_t)1 << 30) + 1), 0);
+    fclose(f);
+    snprintf(text, sizeof text,
+             "end_time: 1.0e-6\nmesh:\n  - import: {file: %s}\nparts:\n" BRICK_PART, deck);
+    char want[300];
+    snprintf(want, sizeof want,
+             "%s: the file has 1073741825 bytes, more than the 1073741824 (1 GiB) a deck may have",
+             deck);
+    expect_refused(text, 3, "mesh[0].import.file", want);
+    unlink(deck);
+}
+
 /* A load that selects nothing is bad input (2), not "output" (5). */
 Test(input_limits, empty_load_selection_is_bad_input, .init = cr_redirect_stderr)
 {
