@@ -214,10 +214,9 @@ $(BENCHBIN): $(BENCH_OBJ) $(LIBDRIVER) $(LIBCONTACT)
 # ---- User commands ----------------------------------------------------------
 
 # SCENE=path runs another scene; `contact demo` shows the search comparison.
+# The driver creates the output directory with its missing parents (out/ in
+# a fresh checkout) and prints where it wrote.
 SCENE ?= data/scenes/showcase.yaml
-# The driver creates the run's own directory but, on purpose, not a missing
-# parent (a mistyped path is an error there): out/ is made here, since a
-# fresh checkout has none.
 run: deps
 	@$(MAKE) --no-print-directory $(CONTACT)
 	$(CONTACT) run $(SCENE) --out out/$(basename $(notdir $(SCENE)))

@@ -37,7 +37,8 @@
  *               are multiplied by it (the scene's size parameter).
  *   output      optional mapping:
  *                 dir    string (default "out/<scene file name without .yaml>",
- *                        relative to the working directory);
+ *                        relative to the working directory; created with
+ *                        its missing parents);
  *                 every  number > 0, the output interval (default end_time/100);
  *                 vtu    bool (true): VTU + PVD series;
  *                 format "binary" (default) or "ascii": the VTU arrays as
