@@ -142,6 +142,35 @@ int ct_narrow_node_slots(ct_idx npair, const ct_idx *sel, const ct_idx *node, co
                          ct_quad_method method, int two_sided, const ct_contact_geo *out,
                          ct_narrow_stats *stats);
 
+/*
+ * Which of each secondary node's candidate pairs carry its contact, after
+ * the node-segment narrow phase; pairs grouped by node (a search's
+ * canonical order). Without it a node over a vertex shared by four
+ * segments gets four penalty forces, and one in a dent none (select.c):
+ *  - the pair with the smallest |dist| (skipping degenerate and non-finite
+ *    ones; ties to the first in list order) carries the node; one-sided,
+ *    behind its segment and outside its footprint, with the node within 60
+ *    degrees of the inward normal (a dent), it gets pen = gap + r (r the
+ *    distance to its contact point);
+ *  - two_sided: also the closest penetrating pair whose normal opposes the
+ *    first one's (a node pinched between two layers);
+ *  - every other pair gets pen = 0 (geo->pen is rewritten).
+ * carry[k] receives 1 for the carrying pairs (penetrating or not: their
+ * springs set the nodal step), 0 for the others. A code that keeps
+ * per-pair states (friction history, last penetration) gives p_prev, last
+ * step's penetration of each pair of this list, and handoff: handoff[k] is
+ * the pair of the same node and side that carried last step (p_prev > 0)
+ * and carries no more, the first in list order, when carrier k did not
+ * carry last step itself; else -1. Its states belong to k now (the node's
+ * contact moved to the next segment). p_prev and handoff may be NULL;
+ * *active (may be NULL) receives the carrying pairs with pen > 0. Node
+ * indices are not range-checked (they come from a search). CT_ERR_ARG for
+ * a NULL array or a negative count.
+ */
+int ct_select_pairs(ct_idx npair, const ct_idx *node, const ct_real *x, const ct_real *y,
+                    const ct_real *z, int two_sided, const ct_contact_geo *geo,
+                    const ct_real *p_prev, uint8_t *carry, ct_idx *handoff, int64_t *active);
+
 /* Edge-edge results, one element per pair, caller-allocated. */
 typedef struct ct_edge_geo {
     ct_real *dist, *pen;     /* |Pa - Pb|, max(0, gap - dist) */

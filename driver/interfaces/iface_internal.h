@@ -70,6 +70,7 @@ typedef struct ctdi_pass {
     int32_t *iflag;
     ct_real *r[CTDI_R_N];
     uint8_t *carry; /* 1: the pair carries its node this step (pair_select.c) */
+    ct_idx *handoff; /* the pair whose states move to this carrier, or -1 */
     ct_contact_geo geo;
     ct_assemble_ws ws;
     int ws_ok;

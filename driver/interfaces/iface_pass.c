@@ -36,6 +36,7 @@ static void free_scratch(ctdi_pass *p)
     ct_free(p->flag);
     ct_free(p->iflag);
     ct_free(p->carry);
+    ct_free(p->handoff);
     for (int i = 0; i < CTDI_R_N; i++)
         ct_free(p->r[i]);
     memset(p->s, 0, sizeof p->s);
@@ -45,6 +46,7 @@ static void free_scratch(ctdi_pass *p)
     p->flag = NULL;
     p->iflag = NULL;
     p->carry = NULL;
+    p->handoff = NULL;
     p->cap = 0;
 }
 
@@ -64,6 +66,7 @@ static int grow_scratch(ctdi_pass *p, size_t n)
     ok &= (p->flag = ct_calloc(c, 1)) != NULL;
     ok &= (p->iflag = ct_calloc(c, sizeof(int32_t))) != NULL;
     ok &= (p->carry = ct_calloc(c, 1)) != NULL;
+    ok &= (p->handoff = ct_calloc(c, sizeof(ct_idx))) != NULL;
     for (int i = 0; i < CTDI_R_N; i++)
         ok &= (p->r[i] = ct_calloc(c, sizeof(ct_real))) != NULL;
     if (!ok) {

@@ -1,0 +1,253 @@
+/*
+ * test_select.c -- ct_select_pairs (suite "select"): which of a node's
+ * pairs carry its contact after the narrow phase. Hand cases whose answer
+ * is geometry: a node over a vertex shared by four segments (one carrier,
+ * the penetration of the surface, not four), a node below the bottom of a
+ * dent (a penetration where every pair reports none), a node pinched
+ * between two layers (two carriers, two-sided), the hand-over of states
+ * when the contact moves to the next segment, and bad arguments.
+ */
+#include <math.h>
+#include <string.h>
+
+#include "test_util.h"
+
+enum { MAXP = 8, NF = 13 };
+
+/* A node-segment case: up to MAXP pairs of node 0 with segments given by
+ * their corners, run through the narrow phase (4 triangles). */
+typedef struct sel_case {
+    ct_real x[64], y[64], z[64];
+    ct_idx n1[MAXP], n2[MAXP], n3[MAXP], n4[MAXP];
+    ct_idx node[MAXP], seg[MAXP];
+    ct_idx np, nn;
+    ct_real f[NF][MAXP];
+    uint8_t flag[MAXP], carry[MAXP];
+    ct_idx handoff[MAXP];
+    ct_contact_geo g;
+} sel_case;
+
+static void sel_init(sel_case *c, ct_real px, ct_real py, ct_real pz)
+{
+    memset(c, 0, sizeof *c);
+    c->x[0] = px, c->y[0] = py, c->z[0] = pz;
+    c->nn = 1;
+    ct_real *const *f = (ct_real *const[NF]){c->f[0], c->f[1], c->f[2],  c->f[3],  c->f[4],
+                                             c->f[5], c->f[6], c->f[7],  c->f[8],  c->f[9],
+                                             c->f[10], c->f[11], c->f[12]};
+    ct_contact_geo g = {f[0], f[1], f[2], f[3],  f[4],  f[5],  f[6],
+                        f[7], f[8], f[9], f[10], f[11], f[12], c->flag};
+    c->g = g;
+}
+
+static ct_idx sel_node(sel_case *c, ct_real x, ct_real y, ct_real z)
+{
+    c->x[c->nn] = x, c->y[c->nn] = y, c->z[c->nn] = z;
+    return c->nn++;
+}
+
+/* A quad a b c d (counter-clockwise seen from its normal's side). */
+static void sel_quad(sel_case *c, const ct_real a[3], const ct_real b[3], const ct_real d3[3],
+                     const ct_real e[3])
+{
+    ct_idx k = c->np++;
+    c->n1[k] = sel_node(c, a[0], a[1], a[2]);
+    c->n2[k] = sel_node(c, b[0], b[1], b[2]);
+    c->n3[k] = sel_node(c, d3[0], d3[1], d3[2]);
+    c->n4[k] = sel_node(c, e[0], e[1], e[2]);
+    c->node[k] = 0;
+    c->seg[k] = k;
+}
+
+static void sel_narrow(sel_case *c, ct_real gap, int two_sided)
+{
+    int rc = ct_narrow_node_segment(c->np, c->node, c->seg, c->n1, c->n2, c->n3, c->n4, c->x,
+                                    c->y, c->z, NULL, NULL, gap, 0, 0, CT_QUAD_4TRI, two_sided,
+                                    &c->g, NULL);
+    cr_assert_eq(rc, CT_OK);
+}
+
+/* The four unit quads of [-1, 1]^2 at z = 0, normal +z. */
+static void four_quads(sel_case *c)
+{
+    for (int i = 0; i < 2; i++)
+        for (int j = 0; j < 2; j++) {
+            ct_real x0 = (ct_real)(i - 1), y0 = (ct_real)(j - 1);
+            const ct_real a[3] = {x0, y0, 0}, b[3] = {x0 + 1, y0, 0}, d[3] = {x0 + 1, y0 + 1, 0},
+                          e[3] = {x0, y0 + 1, 0};
+            sel_quad(c, a, b, d, e);
+        }
+}
+
+/* Over the shared vertex every pair sees the same penetration; one pair
+ * carries it (the first in list order: the ties' rule), the others get 0.
+ * Four pairs would push four times as hard. Two-sided too: the other
+ * pairs are on the same side (their normals agree), not a second layer. */
+Test(select, vertex_of_four_segments_carries_once)
+{
+    static sel_case c;
+    int64_t active = -1;
+    for (int two = 0; two < 2; two++) {
+        sel_init(&c, 0, 0, (ct_real)0.3);
+        four_quads(&c);
+        sel_narrow(&c, (ct_real)0.5, two);
+        for (int k = 0; k < 4; k++)
+            cr_assert_float_eq(c.g.pen[k], 0.2, CTT_TOL(1e-14, 1e-6), "pair %d before: %g", k,
+                               c.g.pen[k]);
+        cr_assert_eq(ct_select_pairs(c.np, c.node, c.x, c.y, c.z, two, &c.g, NULL, c.carry,
+                                     NULL, &active),
+                     CT_OK);
+        cr_assert_eq(active, 1, "two-sided %d: %lld carriers", two, (long long)active);
+        cr_assert_float_eq(c.g.pen[0], 0.2, CTT_TOL(1e-14, 1e-6));
+        cr_assert_eq(c.carry[0], 1);
+        for (int k = 1; k < 4; k++) {
+            cr_assert_eq(c.g.pen[k], 0, "pair %d keeps %g", k, c.g.pen[k]);
+            cr_assert_eq(c.carry[k], 0);
+        }
+    }
+    /* Off the vertex, over the third quad: that one carries. */
+    sel_init(&c, (ct_real)0.4, (ct_real)-0.3, (ct_real)0.1);
+    four_quads(&c);
+    sel_narrow(&c, (ct_real)0.5, 0);
+    cr_assert_eq(ct_select_pairs(c.np, c.node, c.x, c.y, c.z, 0, &c.g, NULL, c.carry, NULL,
+                                 &active),
+                 CT_OK);
+    cr_assert_eq(active, 1);
+    for (int k = 0; k < 4; k++)
+        cr_assert_eq(c.carry[k], k == 2, "pair %d", k);
+    cr_assert_float_eq(c.g.pen[2], 0.4, CTT_TOL(1e-14, 1e-6));
+}
+
+/* A valley along y: two faces meeting at x = 0, z = 0, normals up and
+ * inward. A node 0.1 below the bottom line lies behind both faces and
+ * outside both footprints: no pair reports a penetration, yet the node is
+ * 0.1 inside the solid. The carrier gets gap + 0.1. */
+Test(select, bottom_of_a_dent_penetrates)
+{
+    static sel_case c;
+    sel_init(&c, 0, (ct_real)0.5, (ct_real)-0.1);
+    const ct_real a[3] = {-1, 0, 1}, b[3] = {0, 0, 0}, d[3] = {0, 1, 0}, e[3] = {-1, 1, 1};
+    sel_quad(&c, a, b, d, e);
+    const ct_real a2[3] = {0, 0, 0}, b2[3] = {1, 0, 1}, d2[3] = {1, 1, 1}, e2[3] = {0, 1, 0};
+    sel_quad(&c, a2, b2, d2, e2);
+    const ct_real gap = (ct_real)0.05;
+    sel_narrow(&c, gap, 0);
+    for (int k = 0; k < 2; k++) {
+        cr_assert(c.g.nz[k] > 0, "pair %d: normal z %g (faces must face up)", k, c.g.nz[k]);
+        cr_assert_eq(c.g.pen[k], 0, "pair %d: pen %g", k, c.g.pen[k]);
+        cr_assert(c.g.flag[k] & CT_NARROW_BEHIND);
+        cr_assert(c.g.flag[k] & CT_NARROW_OUTSIDE);
+    }
+    int64_t active = 0;
+    cr_assert_eq(ct_select_pairs(c.np, c.node, c.x, c.y, c.z, 0, &c.g, NULL, c.carry, NULL,
+                                 &active),
+                 CT_OK);
+    cr_assert_eq(active, 1);
+    cr_assert_eq(c.carry[0] + c.carry[1], 1);
+    ct_real p = c.g.pen[0] + c.g.pen[1];
+    cr_assert_float_eq(p, gap + 0.1, CTT_TOL(1e-12, 1e-6), "pen %g", p);
+    /* Beside the surface's free edge instead (off the inward normal by
+     * more than 60 degrees): nothing. */
+    sel_init(&c, (ct_real)1.5, (ct_real)0.5, (ct_real)1.2);
+    sel_quad(&c, a2, b2, d2, e2);
+    sel_narrow(&c, gap, 0);
+    cr_assert_eq(ct_select_pairs(c.np, c.node, c.x, c.y, c.z, 0, &c.g, NULL, c.carry, NULL,
+                                 &active),
+                 CT_OK);
+    cr_assert_eq(active, 0);
+    cr_assert_eq(c.g.pen[0], 0);
+}
+
+/* Between two layers 0.2 apart, gap 0.15 each: two-sided, both push (the
+ * closer first); one-sided the same geometry gives one carrier. */
+Test(select, pinched_node_has_two_carriers)
+{
+    static sel_case c;
+    for (int two = 0; two < 2; two++) {
+        sel_init(&c, (ct_real)0.5, (ct_real)0.5, (ct_real)0.08);
+        const ct_real a[3] = {0, 0, 0}, b[3] = {1, 0, 0}, d[3] = {1, 1, 0}, e[3] = {0, 1, 0};
+        sel_quad(&c, a, b, d, e);
+        const ct_real a2[3] = {0, 0, (ct_real)0.2}, b2[3] = {0, 1, (ct_real)0.2},
+                      d2[3] = {1, 1, (ct_real)0.2}, e2[3] = {1, 0, (ct_real)0.2};
+        sel_quad(&c, a2, b2, d2, e2);
+        sel_narrow(&c, (ct_real)0.15, two);
+        int64_t active = 0;
+        cr_assert_eq(ct_select_pairs(c.np, c.node, c.x, c.y, c.z, two, &c.g, NULL, c.carry,
+                                     NULL, &active),
+                     CT_OK);
+        cr_assert_eq(c.carry[0], 1);
+        cr_assert_float_eq(c.g.pen[0], 0.07, CTT_TOL(1e-14, 1e-6));
+        if (two) {
+            cr_assert_eq(active, 2);
+            cr_assert_eq(c.carry[1], 1);
+            cr_assert_float_eq(c.g.pen[1], 0.03, CTT_TOL(1e-14, 1e-6));
+        } else {
+            cr_assert_eq(active, 1);
+            cr_assert_eq(c.carry[1], 0);
+            cr_assert_eq(c.g.pen[1], 0);
+        }
+    }
+}
+
+/* The contact moves from quad 0 to quad 1 (the node crossed x = 0): quad
+ * 1's pair did not carry last step, quad 0's did, so its states go to
+ * quad 1's pair. When quad 1's pair carried already, nothing moves. Two
+ * nodes in one list: each run is decided alone. */
+Test(select, handoff_follows_the_contact)
+{
+    static sel_case c;
+    sel_init(&c, (ct_real)0.1, (ct_real)0.5, (ct_real)0.1);
+    const ct_real a[3] = {-1, 0, 0}, b[3] = {0, 0, 0}, d[3] = {0, 1, 0}, e[3] = {-1, 1, 0};
+    sel_quad(&c, a, b, d, e);
+    const ct_real a2[3] = {0, 0, 0}, b2[3] = {1, 0, 0}, d2[3] = {1, 1, 0}, e2[3] = {0, 1, 0};
+    sel_quad(&c, a2, b2, d2, e2);
+    /* Node 1 (a second secondary node) over quad 0, pairs 2 and 3. */
+    ct_idx n2 = sel_node(&c, (ct_real)-0.5, (ct_real)0.5, (ct_real)0.2);
+    for (int k = 2; k < 4; k++) {
+        c.node[k] = n2;
+        c.seg[k] = k - 2;
+        c.n1[k] = c.n1[k - 2], c.n2[k] = c.n2[k - 2], c.n3[k] = c.n3[k - 2],
+        c.n4[k] = c.n4[k - 2];
+    }
+    c.np = 4;
+    sel_narrow(&c, (ct_real)0.3, 0);
+    const ct_real p_prev[4] = {(ct_real)0.25, 0, (ct_real)0.1, 0};
+    int64_t active = 0;
+    cr_assert_eq(ct_select_pairs(c.np, c.node, c.x, c.y, c.z, 0, &c.g, p_prev, c.carry,
+                                 c.handoff, &active),
+                 CT_OK);
+    cr_assert_eq(active, 2);
+    cr_assert_eq(c.carry[1], 1);
+    cr_assert_eq(c.handoff[1], 0, "handoff %d", c.handoff[1]);
+    cr_assert_eq(c.handoff[0], -1);
+    /* Node 1 stays on quad 0, which carried already: no move. */
+    cr_assert_eq(c.carry[2], 1);
+    cr_assert_eq(c.handoff[2], -1);
+    cr_assert_eq(c.handoff[3], -1);
+    /* Had the new carrier carried last step too, it keeps its own. */
+    const ct_real p_both[4] = {(ct_real)0.25, (ct_real)0.05, 0, 0};
+    sel_narrow(&c, (ct_real)0.3, 0);
+    cr_assert_eq(ct_select_pairs(c.np, c.node, c.x, c.y, c.z, 0, &c.g, p_both, c.carry,
+                                 c.handoff, NULL),
+                 CT_OK);
+    cr_assert_eq(c.handoff[1], -1);
+}
+
+Test(select, bad_arguments)
+{
+    static sel_case c;
+    sel_init(&c, 0, 0, 1);
+    four_quads(&c);
+    cr_assert_eq(ct_select_pairs(-1, c.node, c.x, c.y, c.z, 0, &c.g, NULL, c.carry, NULL, NULL),
+                 CT_ERR_ARG);
+    cr_assert_eq(ct_select_pairs(4, NULL, c.x, c.y, c.z, 0, &c.g, NULL, c.carry, NULL, NULL),
+                 CT_ERR_ARG);
+    cr_assert_eq(ct_select_pairs(4, c.node, c.x, c.y, c.z, 0, &c.g, NULL, NULL, NULL, NULL),
+                 CT_ERR_ARG);
+    ct_contact_geo g = c.g;
+    g.flag = NULL;
+    cr_assert_eq(ct_select_pairs(4, c.node, c.x, c.y, c.z, 0, &g, NULL, c.carry, NULL, NULL),
+                 CT_ERR_ARG);
+    cr_assert_eq(ct_select_pairs(0, NULL, NULL, NULL, NULL, 0, NULL, NULL, NULL, NULL, NULL),
+                 CT_OK);
+}
