@@ -6,6 +6,7 @@
 #   make bench      build and run the benchmarks (Google Benchmark)
 #   make check      tests under ASan+UBSan, then under ThreadSanitizer
 #   make validation the validation cases with their plots (docs/VALIDATION.md)
+#   make install    libcontact, its headers and contact.pc under PREFIX
 #   make deps       install missing Debian packages (as root)
 #
 # Variables: CC=gcc|clang, PRECISION=double|single, ARCH=-march=native
@@ -117,6 +118,9 @@ TEST_OBJ := $(TEST_SRC:%.c=$(BUILD)/%.o)
 BENCH_OBJ := $(BENCH_C_SRC:%.c=$(BUILD)/%.o) $(BENCH_CXX_SRC:%.cc=$(BUILD)/%.o) \
              $(BENCH_PEER_SRC:%.cc=$(BUILD)/%.o)
 
+EXAMPLE_SRC := $(wildcard examples/*.c)
+EXAMPLES := $(EXAMPLE_SRC:examples/%.c=$(BUILD)/bin/example_%)
+
 LIBCONTACT := $(BUILD)/libcontact.a
 LIBDRIVER := $(BUILD)/libdriver.a
 CONTACT := $(BUILD)/bin/contact
@@ -131,13 +135,13 @@ DEB_PKGS += libnanoflann-dev libcgal-dev libbullet-dev
 endif
 
 .PHONY: all deps run test bench bench-full bench-test check check-asan check-tsan clean vecreport lib \
-        validation
+        validation install install-check examples
 
 all: deps
 	@$(MAKE) --no-print-directory build-all
 
 .PHONY: build-all
-build-all: $(LIBCONTACT) $(CONTACT) $(TESTS)
+build-all: $(LIBCONTACT) $(CONTACT) $(TESTS) $(EXAMPLES)
 
 lib: $(LIBCONTACT)
 
@@ -206,6 +210,18 @@ $(CONTACT): $(BUILD)/driver/main.o $(LIBDRIVER) $(LIBCONTACT)
 $(TESTS): $(TEST_OBJ) $(LIBDRIVER) $(LIBCONTACT)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_ALL) $^ -o $@ $(LIBS_CRIT) $(LDLIBS_ALL)
+
+# The examples use the public header alone (kernels/contact.h and the
+# ct_*.h it includes); tests/test_examples.c runs them.
+$(BUILD)/examples/%.o: examples/%.c
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_ALL) -Ikernels -MMD -MP -c $< -o $@
+
+$(BUILD)/bin/example_%: $(BUILD)/examples/%.o $(LIBCONTACT)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_ALL) $^ -o $@ -lm
+
+examples: $(EXAMPLES)
 
 $(BENCHBIN): $(BENCH_OBJ) $(LIBDRIVER) $(LIBCONTACT)
 	@mkdir -p $(dir $@)
@@ -300,6 +316,7 @@ check: deps
 	@$(MAKE) --no-print-directory check-asan
 	@$(MAKE) --no-print-directory check-tsan
 	@$(MAKE) --no-print-directory check-narrow-cc
+	@$(MAKE) --no-print-directory install-check
 
 # The narrow-phase block kernels compiled by NARROW_CC give the same bits as
 # compiled by CC: tests/bits/narrow_bits.c hashes every output of every
@@ -358,7 +375,7 @@ check-tsan:
 race-bin: $(RACE_BIN)
 
 .PHONY: build-tests run-tests
-build-tests: $(TESTS)
+build-tests: $(TESTS) $(EXAMPLES)
 run-tests:
 	$(TEST_ENV) CT_SHARED=$(abspath ../shared) $(TESTS) $(TEST_ARGS)
 
@@ -384,6 +401,38 @@ vecreport: deps
 	  $(call vec_cmd,$(f)) -c $(f) -o /dev/null > $(BUILD)/vecreport.log 2>&1 || \
 	    { cat $(BUILD)/vecreport.log; exit 1; }; \
 	  grep -o '$(call vec_match,$(f))' $(BUILD)/vecreport.log | sort -u;)
+
+# ---- Installation -------------------------------------------------------------
+# The static library, the public headers (in include/contact/) and a
+# pkg-config file whose flags carry the precision the library was built
+# with (a program compiled without -DCT_SINGLE against the single-precision
+# library would read floats as doubles). The library is built for this
+# machine's processor unless ARCH= (portable).
+PREFIX ?= /usr/local
+PUBLIC_HEADERS := kernels/contact.h kernels/ct_search.h kernels/ct_narrow.h kernels/ct_force.h \
+                  kernels/ct_friction.h kernels/ct_assemble.h kernels/ct_timestep.h
+install: deps
+	@$(MAKE) --no-print-directory $(LIBCONTACT)
+	install -d $(DESTDIR)$(PREFIX)/lib/pkgconfig $(DESTDIR)$(PREFIX)/include/contact
+	install -m 644 $(LIBCONTACT) $(DESTDIR)$(PREFIX)/lib/libcontact.a
+	install -m 644 $(PUBLIC_HEADERS) $(DESTDIR)$(PREFIX)/include/contact/
+	printf '%s\n' 'prefix=$(PREFIX)' 'libdir=$${prefix}/lib' 'includedir=$${prefix}/include' '' \
+	  'Name: contact' \
+	  'Description: penalty contact kernels for explicit finite-element dynamics ($(PRECISION) precision)' \
+	  'Version: $(GIT_COMMIT)' \
+	  'Cflags: -I$${includedir}/contact -fopenmp $(PREC_FLAGS)' \
+	  'Libs: -L$${libdir} -lcontact -fopenmp -lm' > $(DESTDIR)$(PREFIX)/lib/pkgconfig/contact.pc
+
+# What a user of the installed library does: the example compiled against
+# the installed headers and contact.pc alone, run, its verification passed.
+INSTALL_CHECK = $(abspath $(BUILD)/install-check)
+install-check:
+	@rm -rf $(INSTALL_CHECK)
+	@$(MAKE) --no-print-directory install PREFIX=$(INSTALL_CHECK) >/dev/null
+	PKG_CONFIG_PATH=$(INSTALL_CHECK)/lib/pkgconfig $(CC) -std=c11 -O2 -Wall -Wextra -Werror \
+	  examples/slide.c $$(PKG_CONFIG_PATH=$(INSTALL_CHECK)/lib/pkgconfig pkg-config --cflags --libs contact) \
+	  -o $(INSTALL_CHECK)/slide
+	$(INSTALL_CHECK)/slide
 
 clean:
 	rm -rf build
