@@ -433,6 +433,13 @@ install-check:
 	  examples/slide.c $$(PKG_CONFIG_PATH=$(INSTALL_CHECK)/lib/pkgconfig pkg-config --cflags --libs contact) \
 	  -o $(INSTALL_CHECK)/slide
 	$(INSTALL_CHECK)/slide
+	@if $(CC) -std=c11 examples/slide.c -I$(INSTALL_CHECK)/include/contact -fopenmp \
+	    $(if $(PREC_FLAGS),,-DCT_SINGLE) -L$(INSTALL_CHECK)/lib -lcontact -lm \
+	    -o $(INSTALL_CHECK)/other-precision 2>$(INSTALL_CHECK)/other-precision.log; then \
+	  echo "install-check: a program of the other precision linked against the library"; exit 1; \
+	fi; grep -q "undefined reference to .ct_library_is_" $(INSTALL_CHECK)/other-precision.log || \
+	  { cat $(INSTALL_CHECK)/other-precision.log; exit 1; }; \
+	echo "install-check: a program of the other precision is refused at link time"
 
 clean:
 	rm -rf build

@@ -87,6 +87,9 @@ int cti_grow(void **p, size_t *cap, size_t need, size_t size, size_t keep)
 #define CTI_COMPILER "unknown compiler"
 #endif
 
+/* See contact.h: the precision this library was built with, by name. */
+const int CT_PRECISION_GUARD = 1;
+
 const char *ct_build_info(void)
 {
     return "compiler=" CTI_COMPILER " flags=" CT_BUILD_CFLAGS

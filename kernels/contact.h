@@ -39,10 +39,24 @@ extern "C" {
 #ifdef CT_SINGLE
 typedef float ct_real;
 #define CT_PRECISION_NAME "single"
+#define CT_PRECISION_GUARD ct_library_is_single_precision
 #else
 typedef double ct_real;
 #define CT_PRECISION_NAME "double"
+#define CT_PRECISION_GUARD ct_library_is_double_precision
 #endif
+
+/* The library defines the one of these that names its precision, and every
+ * file that includes this header refers to the one that names the file's:
+ * a program compiled with -DCT_SINGLE against the double-precision library
+ * (which would read its float arrays as doubles), or the other way round,
+ * fails to link with "undefined reference to ct_library_is_..._precision"
+ * (pkg-config --cflags contact gives the library's flag). */
+extern const int CT_PRECISION_GUARD;
+#if defined(__GNUC__) || defined(__clang__)
+__attribute__((used))
+#endif
+static const int *const ct_precision_guard_ = &CT_PRECISION_GUARD;
 
 /* Indices inside one shared-memory domain. */
 typedef int32_t ct_idx;
