@@ -144,8 +144,8 @@ int ct_narrow_node_slots(ct_idx npair, const ct_idx *sel, const ct_idx *node, co
 
 /*
  * Which of each secondary node's candidate pairs carry its contact, after
- * the node-segment narrow phase; pairs grouped by node (a search's
- * canonical order). Without it a node over a vertex shared by four
+ * the node-segment narrow phase; pairs in ascending node order (a search's
+ * canonical order; CT_ERR_ARG otherwise, the results then unusable). Without it a node over a vertex shared by four
  * segments gets four penalty forces, and one in a dent none (select.c):
  *  - the pair with the smallest |dist| (skipping degenerate and non-finite
  *    ones; ties to the first in list order) carries the node; one-sided,

@@ -120,8 +120,11 @@ int ct_select_pairs(ct_idx npair, const ct_idx *node, const ct_real *x, const ct
                       !geo->cx || !geo->cy || !geo->cz || !geo->gap || !geo->flag))
         return CT_ERR_ARG;
     int64_t act = 0;
-    CTI_PAR_FOR(npair > CTI_SELECT_PAR_MIN, (schedule(static) reduction(+ : act)),
+    int unsorted = 0;
+    CTI_PAR_FOR(npair > CTI_SELECT_PAR_MIN,
+                (schedule(static) reduction(+ : act) reduction(| : unsorted)),
     for (ct_idx k = 0; k < npair; k++) {
+        unsorted |= k > 0 && node[k - 1] > node[k];
         if (k > 0 && node[k - 1] == node[k])
             continue; /* inside a run another iteration decides */
         ct_idx e = k + 1;
@@ -131,6 +134,7 @@ int ct_select_pairs(ct_idx npair, const ct_idx *node, const ct_real *x, const ct
         act += select_run(k, e, x[nd], y[nd], z[nd], two_sided, geo, p_prev, carry, handoff);
     });
     if (active)
-        *active = act;
-    return CT_OK;
+        *active = unsorted ? 0 : act;
+    /* A node in two runs would have been given a carrier in each. */
+    return unsorted ? CT_ERR_ARG : CT_OK;
 }

@@ -250,4 +250,12 @@ Test(select, bad_arguments)
                  CT_ERR_ARG);
     cr_assert_eq(ct_select_pairs(0, NULL, NULL, NULL, NULL, 0, NULL, NULL, NULL, NULL, NULL),
                  CT_OK);
+    /* Pairs not in ascending node order: a node in two runs would get two
+     * carriers. */
+    sel_narrow(&c, (ct_real)0.5, 0);
+    ct_idx nodes[4] = {0, 1, 0, 1};
+    int64_t active = -1;
+    cr_assert_eq(ct_select_pairs(4, nodes, c.x, c.y, c.z, 0, &c.g, NULL, c.carry, NULL, &active),
+                 CT_ERR_ARG);
+    cr_assert_eq(active, 0);
 }
