@@ -54,12 +54,10 @@ def print_cycle(cyc, out):
                "proved out of contact by the skip); × threads = total × threads, the "
                "per-thread figure of the target of issue 5 (≤ %s ns/node/cycle per thread); "
                "speed-up = total with 1 thread / "
-               "total with this row's threads. The cycle is DESIGN.md's section 4 "
-               "(driver/contact_cycle.h): every pair in contact applies its force; the "
-               "driver's interfaces also choose the pairs that carry each node "
-               "(ct_select_pairs, one per side), which this cycle does not, so its active "
-               "pairs include the duplicates at shared edges and vertices.\n"
-               % fmt_num(CYCLE_TARGET_NS))
+               "total with this row's threads. The cycle chooses the pairs that carry each "
+               "node (ct_select_pairs, one per side), as the driver's interfaces do: active = "
+               "the carrying pairs in contact; the selection's time is in the narrow phase's."
+               "\n" % fmt_num(CYCLE_TARGET_NS))
     present = sorted(set(r["prec"] for r in cyc), key=lambda p: (prec_rank(p), p))
     for p in present:
         rows = sorted((r for r in cyc if r["prec"] == p),

@@ -22,6 +22,7 @@ ctd_cycle_params ctd_cycle_default_params(double h)
     p.mu = (ct_real)0.2;
     p.kt = 1;
     p.skip = 1;
+    p.select = 1;
     return p;
 }
 
@@ -322,6 +323,16 @@ static int phase_search(ctd_cycle *cy, const ct_real *x, const ct_real *y, const
                           cy->s[1], cy->s[2], cy->s[3]);
     if (rc != CT_OK)
         return rc;
+    if (cy->p.select) { /* room to decide the longest run cut by a block end */
+        ct_idx mr = 0, run = 0;
+        for (ct_idx k = 0; k < n; k++) {
+            run = k > 0 && np->node[k] == np->node[k - 1] ? run + 1 : 1;
+            mr = run > mr ? run : mr;
+        }
+        cy->maxrun = mr;
+        if ((rc = cti_cycle_edge_grow(cy)) != CT_OK)
+            return rc;
+    }
     ct_asm_map map = ct_asm_map_nodeseg(n, np->node, cy->s[0], cy->s[1], cy->s[2], cy->s[3]);
     /* Fused: the colouring's blocks are the pass's (cti_cycle_fused). */
     rc = cti_cycle_fused(cy) ? ct_colour_pairs(&cy->ws, &map, cy->nnode, CY_BLOCK)

@@ -13,7 +13,12 @@
  *  2. narrow phase (ct_narrow_node_segment) of every candidate that may be
  *     in contact: with the skip on (the default, see below), a candidate
  *     whose last computed distance exceeds the gap by more than the motion
- *     since then cannot be in contact and keeps its last results;
+ *     since then cannot be in contact and keeps its last results; then the
+ *     pairs that carry each node (ct_select_pairs, one per side: over a
+ *     vertex shared by four segments one pair applies the force, not
+ *     four), the others' penetration set to 0. A node's pairs cut by a
+ *     block boundary are decided whole: each block evaluates the other
+ *     block's pairs of that node again, for the decision only;
  *  3. force, for the pairs in contact (p > 0; the others get zero force and
  *     zero friction history): the relative velocity at the contact point, the normal law
  *     (TYPE7, ct_penalty_type7, or linear), damping and the normal force
@@ -65,6 +70,9 @@ typedef struct ctd_cycle_params {
     ct_real kt;                 /* tangential (stick) stiffness */
     int skip;                   /* 1 (default): skip the narrow phase of the
                                    candidates that provably are out of contact */
+    int select;                 /* 1 (default): the pairs that carry each node,
+                                   one per side (ct_select_pairs); 0: every
+                                   pair in contact applies its force */
 } ctd_cycle_params;
 
 /*

@@ -63,11 +63,26 @@ enum { CS_H1, CS_H2, CS_H3, CS_H4, CS_NX, CS_NY, CS_NZ, CS_PEN, CS_GAP, CS_MS, C
        CS_T0, CS_T1, CS_T2, CS_VRX, CS_VRY, CS_VRZ, CS_VN, CS_FEL, CS_KTAN, CS_FN,
        CS_FX, CS_FY, CS_FZ, CS_NREAL };
 enum { CS_ACT, CS_NODE, CS_S1, CS_S2, CS_S3, CS_S4, CS_NIDX };
+/* The carrier selection of a node's run of pairs cut by a block boundary
+ * (contact_cycle_pairs.c): the run's pairs of the other block evaluated
+ * again and the block's own copied, side by side, for ct_select_pairs.
+ * Arrays of `cap` entries (the longest run of the pair list). */
+enum { CE_DIST, CE_PEN, CE_NX, CE_NY, CE_NZ, CE_CX, CE_CY, CE_CZ, CE_H1, CE_H2, CE_H3, CE_H4,
+       CE_GAP, CE_NREAL };
+typedef struct cy_edge {
+    ct_idx cap;
+    ct_real *v[CE_NREAL];
+    ct_idx *node;
+    uint8_t *flag, *carry;
+} cy_edge;
+
 typedef struct cy_scratch {
     ct_real *v[CS_NREAL];
     ct_idx *i[CS_NIDX];
     int32_t *flag7;
+    uint8_t *carry; /* CY_BLOCK: the selection's carry flags */
     void *mem; /* the one allocation the arrays live in */
+    cy_edge edge;
 } cy_scratch;
 
 struct ctd_cycle {
@@ -101,6 +116,7 @@ struct ctd_cycle {
     cy_block *blk; /* (cap + CY_BLOCK - 1) / CY_BLOCK records */
     cy_scratch *scr; /* per thread (nscr) */
     int nscr;
+    ct_idx maxrun; /* the longest run of one node's pairs in the current list */
     /* The skip (contact_cycle_skip.c): on, the previous cycle's positions
      * (valid when have_prev) in buffer pc, the other receiving this
      * cycle's, the motion sum since the last re-sort, the rounding slack
@@ -151,8 +167,10 @@ void cti_skip_expiry(ctd_cycle *cy, ct_idx k0, ct_idx ne, const ct_idx *act, con
                      const ct_real *gap, const uint8_t *flag);
 
 /* The per-thread scratch of the pass, for nthr threads (outside a parallel
- * region), and its release. */
+ * region), and its release; cti_cycle_edge_grow gives every thread's edge
+ * scratch room for the longest run of the current list (at a re-sort). */
 int cti_cycle_scratch_grow(ctd_cycle *cy, int nthr);
 void cti_cycle_scratch_free(ctd_cycle *cy);
+int cti_cycle_edge_grow(ctd_cycle *cy);
 
 #endif /* CTD_CONTACT_CYCLE_INTERNAL_H */

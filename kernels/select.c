@@ -56,27 +56,35 @@ static ct_real dot_normals(const ct_contact_geo *g, ct_idx a, ct_idx b)
 }
 
 /* The run of one node: pairs [a, b). Returns the carrying pairs that
- * penetrate. */
-static int select_run(ct_idx a, ct_idx b, ct_real px, ct_real py, ct_real pz, int two_sided,
-                      const ct_contact_geo *g, const ct_real *p_prev, uint8_t *carry,
-                      ct_idx *handoff)
+ * penetrate. The closest pair is found without a branch on the data (a
+ * node's pairs come in no useful order), and the search for a second
+ * carrier is left out when no other pair penetrates. */
+static inline int select_run(ct_idx a, ct_idx b, ct_real px, ct_real py, ct_real pz,
+                             int two_sided, const ct_contact_geo *g, const ct_real *p_prev,
+                             uint8_t *carry, ct_idx *handoff)
 {
     const uint8_t skip = CT_NARROW_DEGENERATE | CT_NARROW_NONFINITE;
     ct_idx best = -1, second = -1;
+    ct_real bd = 0;
+    int npen = 0;
     for (ct_idx k = a; k < b; k++) {
-        carry[k] = 0;
-        if (handoff)
-            handoff[k] = -1;
+        const ct_real d = CTI_FABS(g->dist[k]);
+        const int ok = !(g->flag[k] & skip);
+        const int take = ok & ((best < 0) | (d < bd));
+        best = take ? k : best;
+        bd = take ? d : bd;
+        npen += g->pen[k] > 0;
     }
-    for (ct_idx k = a; k < b; k++)
-        if (!(g->flag[k] & skip) && (best < 0 || CTI_FABS(g->dist[k]) < CTI_FABS(g->dist[best])))
-            best = k;
     if (best < 0) {
-        for (ct_idx k = a; k < b; k++)
+        for (ct_idx k = a; k < b; k++) {
             g->pen[k] = 0;
+            carry[k] = 0;
+            if (handoff)
+                handoff[k] = -1;
+        }
         return 0;
     }
-    if (two_sided)
+    if (two_sided && npen > (g->pen[best] > 0))
         for (ct_idx k = a; k < b; k++) {
             if (k == best || (g->flag[k] & skip) || !(g->pen[k] > 0))
                 continue;
@@ -89,16 +97,21 @@ static int select_run(ct_idx a, ct_idx b, ct_real px, ct_real py, ct_real pz, in
     /* A pair that carried the node last step and carries it no more hands
      * its states to the new carrier on its side, the first such pair in
      * list order, when that carrier did not carry last step itself. */
-    if (handoff && p_prev)
-        for (ct_idx k = a; k < b; k++) {
+    if (handoff) {
+        for (ct_idx k = a; k < b; k++)
+            handoff[k] = -1;
+        for (ct_idx k = a; k < b && p_prev; k++) {
             if (k == best || k == second || !(p_prev[k] > 0))
                 continue;
             const ct_idx to = second >= 0 && dot_normals(g, k, second) > 0 ? second : best;
             if (!(p_prev[to] > 0) && handoff[to] < 0)
                 handoff[to] = k;
         }
-    for (ct_idx k = a; k < b; k++)
+    }
+    for (ct_idx k = a; k < b; k++) {
         g->pen[k] = 0;
+        carry[k] = 0;
+    }
     g->pen[best] = pb;
     carry[best] = 1;
     if (second >= 0) {
@@ -131,6 +144,19 @@ int ct_select_pairs(ct_idx npair, const ct_idx *node, const ct_real *x, const ct
         while (e < npair && node[e] == node[k])
             e++;
         const ct_idx nd = node[k];
+        if (e == k + 1 && (two_sided || geo->pen[k] > 0)) {
+            /* A node with one pair (the common case): it carries unless
+             * skipped, and keeps its penetration (select_run's answer,
+             * without the calls; the dent rule needs one-sided pen 0). */
+            const int ok = !(geo->flag[k] & (CT_NARROW_DEGENERATE | CT_NARROW_NONFINITE));
+            carry[k] = (uint8_t)ok;
+            if (handoff)
+                handoff[k] = -1;
+            if (!ok)
+                geo->pen[k] = 0;
+            act += ok && geo->pen[k] > 0;
+            continue;
+        }
         act += select_run(k, e, x[nd], y[nd], z[nd], two_sided, geo, p_prev, carry, handoff);
     });
     if (active)

@@ -271,6 +271,14 @@ static void whole_list_reference(const crun *r, const ct_pairs *P, ct_real *cons
                                         r->pos[0], r->pos[1], r->pos[2], NULL, NULL, p.gap, 0,
                                         0, p.quad, p.two_sided, &g, NULL),
                  CT_OK);
+    /* The carrying pairs, decided on the whole list at once (the pass cuts
+     * a node's pairs at its block boundaries). */
+    uint8_t *carry = ct_calloc((size_t)n + 1, 1);
+    cr_assert(carry);
+    cr_assert_eq(ct_select_pairs(n, P->node, r->pos[0], r->pos[1], r->pos[2], p.two_sided, &g,
+                                 NULL, carry, NULL, NULL),
+                 CT_OK);
+    ct_free(carry);
     /* The narrow phase is per pair: the block pass must give its bytes for
      * what it keeps: p of every pair, the flag of every pair it evaluated,
      * the weights of every pair in contact. A pair the skip left out must
@@ -435,6 +443,46 @@ Test(cycle, fused_pass_equals_whole_list_kernels)
 Test(cycle, fused_pass_equals_whole_list_kernels_per_pair_forces)
 {
     fused_pass_check(CT_ASM_GATHER);
+}
+
+/* (e2) One carrier per side: with the selection (the default), no node of
+ * the folded sheet has more than two pairs in contact (one per side of
+ * it), and fewer pairs are in contact than without it, where a node near a
+ * segment's edge or vertex has one for each segment around it. */
+Test(cycle, selection_keeps_one_pair_per_side)
+{
+    ctt_threads(2);
+    int64_t active[2] = {0, 0};
+    int most[2] = {0, 0};
+    for (int sel = 0; sel < 2; sel++) {
+        crun r;
+        crun_make(&r, nodes_for_test(), 0.015);
+        ctd_cycle_destroy(r.cy);
+        ctd_cycle_params p = ctd_cycle_default_params(r.h);
+        cr_assert_eq(p.select, 1, "the selection must be the default");
+        p.select = sel;
+        cr_assert_eq(ctd_cycle_init(&r.cy, &p, r.n, r.m, r.c.sec.n, r.c.sec.node, r.c.sec.n,
+                                    r.c.sec.node, r.c.main.n, r.c.mn1, r.c.mn2, r.c.mn3,
+                                    r.c.mn4, 1),
+                     CT_OK);
+        for (int k = 0; k < 5; k++) {
+            crun_step(&r, k);
+            const ct_pairs *P = ctd_cycle_pairs(r.cy);
+            const ct_real *pen = ctd_cycle_geo(r.cy)->pen;
+            int run = 0;
+            for (ct_idx q = 0; q < P->n; q++) {
+                run = (q > 0 && P->node[q] == P->node[q - 1] ? run : 0) + (pen[q] > 0);
+                most[sel] = run > most[sel] ? run : most[sel];
+            }
+            active[sel] += ctd_cycle_get_stats(r.cy)->nactive;
+        }
+        crun_free(&r);
+    }
+    cr_assert_leq(most[1], 2, "a node has %d pairs in contact", most[1]);
+    cr_assert_gt(most[0], 2, "without the selection no node had more than 2: the test shows "
+                             "nothing");
+    cr_assert_lt(active[1], active[0], "%ld pairs in contact with the selection, %ld without",
+                 (long)active[1], (long)active[0]);
 }
 
 /* (f) A pair that leaves contact loses its friction history: a node pressed
