@@ -265,7 +265,9 @@ size_t ctd_cycle_memory(const ctd_cycle *cy)
                  2 + 3 * sizeof(ct_real);
     size_t b = cy->cap * per + (cy->capft[0] + cy->capft[1]) * 4 * sizeof(ct_real);
     b += (size_t)cy->nscr * CY_BLOCK *
-         (CS_NREAL * sizeof(ct_real) + CS_NIDX * sizeof(ct_idx) + sizeof(int32_t));
+         (CS_NREAL * sizeof(ct_real) + CS_NIDX * sizeof(ct_idx) + sizeof(int32_t) + 1);
+    for (int t = 0; t < cy->nscr; t++) /* the selection's scratch for cut runs */
+        b += (size_t)cy->scr[t].edge.cap * (CE_NREAL * sizeof(ct_real) + sizeof(ct_idx) + 2);
     b += (cy->cap + CY_BLOCK - 1) / CY_BLOCK * (sizeof(cy_block) + sizeof(ct_idx));
     b += ((size_t)cy->pairs[0].cap + (size_t)cy->pairs[1].cap) * 2 * sizeof(ct_idx);
     b += (cy->skip_on ? 9 : 3) * (size_t)cy->nnode * sizeof(ct_real);
