@@ -326,10 +326,17 @@ static int phase_search(ctd_cycle *cy, const ct_real *x, const ct_real *y, const
     if (rc != CT_OK)
         return rc;
     if (cy->p.select) { /* room to decide the longest run cut by a block end */
-        ct_idx mr = 0, run = 0;
+        const ct_idx *restrict nd = np->node;
+        ct_idx mr = 0;
+        /* Each run measured from its first pair (a reduction: any team). */
+#pragma omp parallel for schedule(static) reduction(max : mr)
         for (ct_idx k = 0; k < n; k++) {
-            run = k > 0 && np->node[k] == np->node[k - 1] ? run + 1 : 1;
-            mr = run > mr ? run : mr;
+            if (k > 0 && nd[k] == nd[k - 1])
+                continue;
+            ct_idx e = k + 1;
+            while (e < n && nd[e] == nd[k])
+                e++;
+            mr = e - k > mr ? e - k : mr;
         }
         cy->maxrun = mr;
         if ((rc = cti_cycle_edge_grow(cy)) != CT_OK)

@@ -36,6 +36,9 @@
  * team costs more than a few thousand runs). */
 #define CTI_SELECT_PAR_MIN 2048
 
+/* Pairs the narrow phase skipped: never carriers. */
+#define CTI_SELECT_SKIP (CT_NARROW_DEGENERATE | CT_NARROW_NONFINITE)
+
 /* The penetration the carrying pair k gets (one-sided dead zone included). */
 static ct_real carried_pen(const ct_contact_geo *g, ct_idx k, int two_sided, ct_real px,
                            ct_real py, ct_real pz)
@@ -63,7 +66,7 @@ static inline int select_run(ct_idx a, ct_idx b, ct_real px, ct_real py, ct_real
                              int two_sided, const ct_contact_geo *g, const ct_real *p_prev,
                              uint8_t *carry, ct_idx *handoff)
 {
-    const uint8_t skip = CT_NARROW_DEGENERATE | CT_NARROW_NONFINITE;
+    const uint8_t skip = CTI_SELECT_SKIP;
     ct_idx best = -1, second = -1;
     ct_real bd = 0;
     int npen = 0;
@@ -148,7 +151,7 @@ int ct_select_pairs(ct_idx npair, const ct_idx *node, const ct_real *x, const ct
             /* A node with one pair (the common case): it carries unless
              * skipped, and keeps its penetration (select_run's answer,
              * without the calls; the dent rule needs one-sided pen 0). */
-            const int ok = !(geo->flag[k] & (CT_NARROW_DEGENERATE | CT_NARROW_NONFINITE));
+            const int ok = !(geo->flag[k] & CTI_SELECT_SKIP);
             carry[k] = (uint8_t)ok;
             if (handoff)
                 handoff[k] = -1;
