@@ -203,8 +203,18 @@ static inline void bk_cands_batch(const bk_ctx *restrict k, ct_idx node, ct_idx 
             for (; e < ec; e++) {
                 const ct_idx j = ent[e];
                 sg[m] = j;
-                m += bk_pretest_box(k, pv, j) & bk_not_own(k, node, j);
+                m += bk_pretest_box(k, pv, j);
             }
+            /* The node's own segments are only among the entries that
+             * passed the box (a fraction on a sheet): tested there, their
+             * connectivity is read for those alone. */
+            int w = m0;
+            for (int q = m0; q < m; q++) {
+                const ct_idx j = sg[q];
+                sg[w] = j;
+                w += bk_not_own(k, node, j);
+            }
+            m = w;
         } else {
             for (; e < ec; e++) {
                 const ct_idx j = ent[e];
