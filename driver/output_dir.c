@@ -181,10 +181,16 @@ int ctd_output_check_dir(const char *dir, char *err, size_t errlen)
     } else if (access(dir, W_OK | X_OK) != 0) {
         return cti_out_fail(err, errlen, "cannot write to output directory", dir, errno);
     }
+    /* A filesystem with no blocks at all (proc, sysfs) stores no files,
+     * whatever access() tells root; the run's probe would fail there. */
     struct statvfs vfs;
     if (rc == CT_OK && statvfs(anc ? anc : dir, &vfs) == 0 &&
         (double)vfs.f_bavail * (double)vfs.f_frsize < 1048576.0)
-        rc = cti_out_fail(err, errlen, "output directory is on a full disk", dir, ENOSPC);
+        rc = cti_out_fail(err, errlen,
+                          vfs.f_blocks == 0
+                              ? "output directory is on a filesystem that stores no files"
+                              : "output directory is on a full disk",
+                          dir, ENOSPC);
     free(anc);
     return rc;
 }

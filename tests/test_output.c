@@ -443,6 +443,14 @@ Test(output, bad_directories)
     cr_assert_not_null(strstr(err, "cannot create output directory '/proc/x': "), "%s", err);
     cr_assert_neq(open_fails("/proc", err, sizeof err), CT_OK);
     cr_assert_not_null(strstr(err, "cannot write to output directory '/proc': "), "%s", err);
+    /* The check (contact check) creates nothing and refuses both too, even
+     * as root, to whom access() grants /proc: proc has no blocks. */
+    cr_assert_neq(ctd_output_check_dir("/proc/x/out", err, sizeof err), CT_OK);
+    if (geteuid() == 0) /* otherwise access() refuses first */
+        cr_assert_str_eq(err, "output directory is on a filesystem that stores no files "
+                              "'/proc/x/out': No space left on device");
+    cr_assert_neq(ctd_output_check_dir("/proc", err, sizeof err), CT_OK);
+    cr_assert_not_null(strstr(err, "'/proc': "), "%s", err);
     char *d = tmpdir(), p[256];
     snprintf(p, sizeof p, "%s/file", d);
     FILE *f = fopen(p, "w");
