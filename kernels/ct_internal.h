@@ -33,7 +33,9 @@ static inline int cti_team_size(void) { return 1; }
  * virtual machine. A small model ran about 70 such regions per cycle in its
  * contact and node loops (the showcase: a third of its contact time).
  * CTI_PAR_FOR runs the loop, written once, as a parallel loop when c holds
- * and as a plain loop (vectorised by the compiler as it can) otherwise;
+ * outside a parallel region (inside one, a team would be of one thread:
+ * the cycle's blocks call kernels on up to a few thousand pairs) and as a
+ * plain loop (vectorised by the compiler as it can) otherwise;
  * CTI_PAR_FOR_SIMD the same with `simd`, the plain loop under `omp simd`.
  * Each iteration does the same arithmetic on either branch, and the
  * reductions these loops use (min, max, |, integer +) are exact, so the
@@ -50,7 +52,7 @@ static inline int cti_team_size(void) { return 1; }
 #define CTI_UNPAREN(...) __VA_ARGS__
 #define CTI_PAR_FOR(cond, clauses, ...)                                                        \
     do {                                                                                       \
-        if (cond) {                                                                            \
+        if ((cond) && !cti_in_parallel()) {                                                    \
             CTI_PRAGMA(omp parallel for CTI_UNPAREN clauses)                                  \
             __VA_ARGS__                                                                        \
         } else {                                                                               \
@@ -59,7 +61,7 @@ static inline int cti_team_size(void) { return 1; }
     } while (0)
 #define CTI_PAR_FOR_SIMD(cond, clauses, ...)                                                   \
     do {                                                                                       \
-        if (cond) {                                                                            \
+        if ((cond) && !cti_in_parallel()) {                                                    \
             CTI_PRAGMA(omp parallel for simd CTI_UNPAREN clauses)                             \
             __VA_ARGS__                                                                        \
         } else {                                                                               \
