@@ -107,6 +107,7 @@ void ct_assemble_ws_destroy(ct_assemble_ws *ws)
     ct_free(ws->colour);
     ct_free(ws->col_off);
     ct_free(ws->bperm);
+    ct_free(ws->bstart);
     ct_free(ws->g_node);
     ct_free(ws->g_off);
     ct_free(ws->g_slot);
@@ -136,7 +137,7 @@ size_t ct_assemble_ws_memory(const ct_assemble_ws *ws)
     if (!ws)
         return 0;
     size_t b = (ws->cap_colour + ws->cap_off + ws->cap_bperm + ws->cap_todo + ws->cap_next +
-                ws->cap_full) *
+                ws->cap_full + ws->cap_bstart) *
                sizeof(ct_idx);
     b += ws->cap_mask * sizeof(uint64_t) + ws->cap_cnt * sizeof(int64_t);
     b += ws->cap_gnode * sizeof(ct_idx) + (ws->cap_goff + ws->cap_gslot) * sizeof(int64_t);

@@ -16,11 +16,19 @@
  */
 #include "assemble_body.h"
 
-/* The nodes of block b: pairs lo..hi-1, all slots. */
-static inline void cti_block_range(ct_idx b, ct_idx B, ct_idx npair, ct_idx *lo, ct_idx *hi)
+/* The pairs of block b, lo..hi-1: blocks of ws->block pairs, or the
+ * caller's (ws->block == 0, ct_colour_pair_blocks). */
+static inline void cti_block_range(const ct_assemble_ws *ws, ct_idx b, ct_idx npair, ct_idx *lo,
+                                   ct_idx *hi)
 {
-    *lo = b * B;
-    *hi = (npair - *lo > B) ? *lo + B : npair;
+    const ct_idx B = ws->block;
+    if (B > 0) {
+        *lo = b * B;
+        *hi = (npair - *lo > B) ? *lo + B : npair;
+    } else {
+        *lo = ws->bstart[b];
+        *hi = ws->bstart[b + 1];
+    }
 }
 
 static int cti_map_nodes_in_range(const ct_asm_map *map, ct_idx nnode)
@@ -50,8 +58,8 @@ static int cti_map_nodes_in_range(const ct_asm_map *map, ct_idx nnode)
  * full words, which no block containing it can use (a hub node's many
  * colours are skipped in O(1)).
  */
-static ct_idx cti_colour_pass(ct_assemble_ws *ws, const ct_asm_map *map, ct_idx B,
-                              const ct_idx *todo, ct_idx ntodo, ct_idx *next,
+static ct_idx cti_colour_pass(ct_assemble_ws *ws, const ct_asm_map *map, const ct_idx *todo,
+                              ct_idx ntodo, ct_idx *next,
                               const int64_t *local, int W, ct_idx base, ct_idx *maxc)
 {
     uint64_t *restrict mask = ws->mask;
@@ -62,7 +70,7 @@ static ct_idx cti_colour_pass(ct_assemble_ws *ws, const ct_asm_map *map, ct_idx 
 #define CTI_ROW(n) (local ? local[n] : (int64_t)(n))
     for (ct_idx i = 0; i < ntodo; i++) {
         ct_idx b = todo[i], lo, hi;
-        cti_block_range(b, B, npair, &lo, &hi);
+        cti_block_range(ws, b, npair, &lo, &hi);
         int start = 0;
         if (W > 1)
             for (int s = 0; s < ns; s++)
@@ -114,17 +122,12 @@ ct_idx ct_asm_default_block(ct_idx npair)
                            CTI_MAX((int64_t)CT_ASM_BLOCK_MIN, (int64_t)npair / 32));
 }
 
-int ct_colour_pairs(ct_assemble_ws *ws, const ct_asm_map *map, ct_idx nnode, ct_idx block)
+/* The colouring of ws->nblock blocks (ws->block and, when it is 0,
+ * ws->bstart already set). */
+static int cti_colour_blocks(ct_assemble_ws *ws, const ct_asm_map *map, ct_idx nnode)
 {
-    if (!ws || !cti_asm_map_ok(map) || nnode < 0)
-        return CT_ERR_ARG;
-    ws->col_npair = ws->col_nnode = -1; /* invalid until finished */
-    int rc = cti_map_nodes_in_range(map, nnode);
-    if (rc != CT_OK)
-        return rc;
-    const ct_idx npair = map->npair, B = block > 0 ? block : ct_asm_default_block(map->npair);
+    const ct_idx npair = map->npair, nblock = ws->nblock;
     const int ns = map->nslot;
-    const ct_idx nblock = (ct_idx)(((int64_t)npair + B - 1) / B);
     if (CTI_GROW(ws, colour, cap_colour, nblock) || CTI_GROW(ws, bperm, cap_bperm, nblock) ||
         CTI_GROW(ws, todo, cap_todo, nblock) || CTI_GROW(ws, next, cap_next, nblock) ||
         CTI_GROW(ws, mask, cap_mask, nnode))
@@ -134,7 +137,7 @@ int ct_colour_pairs(ct_assemble_ws *ws, const ct_asm_map *map, ct_idx nnode, ct_
     for (ct_idx b = 0; b < nblock; b++)
         todo[b] = b;
     /* Pass 0: one 64-bit mask per node (colours 0..63). */
-    ct_idx nnext = cti_colour_pass(ws, map, B, todo, nblock, next, NULL, 1, 0, &maxc);
+    ct_idx nnext = cti_colour_pass(ws, map, todo, nblock, next, NULL, 1, 0, &maxc);
     /* Later passes, for the blocks that found 64 colours taken: the nodes
      * of those blocks get compact local numbers and W-word masks. */
     for (ct_idx base = 64; nnext > 0;) {
@@ -151,7 +154,7 @@ int ct_colour_pairs(ct_assemble_ws *ws, const ct_asm_map *map, ct_idx nnode, ct_
             local[n] = -1;
         for (ct_idx i = 0; i < ntodo; i++) {
             ct_idx lo, hi;
-            cti_block_range(todo[i], B, npair, &lo, &hi);
+            cti_block_range(ws, todo[i], npair, &lo, &hi);
             for (int s = 0; s < ns; s++)
                 for (ct_idx k = lo; k < hi; k++)
                     if (local[map->slot[s][k]] < 0)
@@ -168,7 +171,7 @@ int ct_colour_pairs(ct_assemble_ws *ws, const ct_asm_map *map, ct_idx nnode, ct_
             return CT_ERR_NOMEM;
         memset(ws->mask, 0, (size_t)nloc * W * sizeof *ws->mask);
         memset(ws->full, 0, (size_t)nloc * sizeof *ws->full);
-        nnext = cti_colour_pass(ws, map, B, todo, ntodo, next, local, W, base, &maxc);
+        nnext = cti_colour_pass(ws, map, todo, ntodo, next, local, W, base, &maxc);
         base += 64 * (ct_idx)W;
     }
 
@@ -192,14 +195,68 @@ int ct_colour_pairs(ct_assemble_ws *ws, const ct_asm_map *map, ct_idx nnode, ct_
     for (ct_idx b = 0; b < nblock; b++)
         ws->bperm[cur[ws->colour[b]]++] = b;
 
-    ws->block = B;
-    ws->nblock = nblock;
     ws->ncolour = ncol;
     ws->col_nslot = ns;
     ws->col_npair = npair;
     ws->col_nnode = nnode;
     ws->max_degree = -1;
     return CT_OK;
+}
+
+int ct_colour_pairs(ct_assemble_ws *ws, const ct_asm_map *map, ct_idx nnode, ct_idx block)
+{
+    if (!ws || !cti_asm_map_ok(map) || nnode < 0)
+        return CT_ERR_ARG;
+    ws->col_npair = ws->col_nnode = -1; /* invalid until finished */
+    int rc = cti_map_nodes_in_range(map, nnode);
+    if (rc != CT_OK)
+        return rc;
+    const ct_idx B = block > 0 ? block : ct_asm_default_block(map->npair);
+    ws->block = B;
+    ws->nblock = (ct_idx)(((int64_t)map->npair + B - 1) / B);
+    return cti_colour_blocks(ws, map, nnode);
+}
+
+int ct_colour_pair_blocks(ct_assemble_ws *ws, const ct_asm_map *map, ct_idx nnode,
+                          ct_idx nblock, const ct_idx *bstart)
+{
+    if (!ws || !cti_asm_map_ok(map) || nnode < 0 || nblock < 0 || !bstart)
+        return CT_ERR_ARG;
+    ws->col_npair = ws->col_nnode = -1; /* invalid until finished */
+    const ct_idx npair = map->npair;
+    int bad = bstart[0] != 0 || bstart[nblock] != npair || (nblock == 0) != (npair == 0);
+    for (ct_idx b = 0; b < nblock && !bad; b++)
+        bad = !(bstart[b + 1] > bstart[b]);
+    if (bad)
+        return CT_ERR_ARG;
+    int rc = cti_map_nodes_in_range(map, nnode);
+    if (rc != CT_OK)
+        return rc;
+    if (CTI_GROW(ws, bstart, cap_bstart, (size_t)nblock + 1))
+        return CT_ERR_NOMEM;
+    memcpy(ws->bstart, bstart, ((size_t)nblock + 1) * sizeof *bstart);
+    ws->block = 0;
+    ws->nblock = nblock;
+    return cti_colour_blocks(ws, map, nnode);
+}
+
+ct_idx ct_pair_node_blocks(ct_idx npair, const ct_idx *node, ct_idx block, ct_idx *bstart)
+{
+    if (npair < 0 || block < 1 || !bstart || (npair > 0 && !node))
+        return CT_ERR_ARG;
+    for (ct_idx k = 1; k < npair; k++)
+        if (node[k] < node[k - 1])
+            return CT_ERR_ARG;
+    ct_idx nb = 0, k = 0;
+    while (k < npair) {
+        bstart[nb++] = k;
+        /* At least `block` pairs, then to the end of the last node's run. */
+        k = npair - k > block ? k + block : npair;
+        while (k < npair && node[k] == node[k - 1])
+            k++;
+    }
+    bstart[nb] = npair;
+    return nb;
 }
 
 ct_idx ct_colour_degree(ct_assemble_ws *ws, const ct_asm_map *map, ct_idx nnode)
@@ -213,10 +270,10 @@ ct_idx ct_colour_degree(ct_assemble_ws *ws, const ct_asm_map *map, ct_idx nnode)
         return -1;
     memset(ws->cnt, 0, (size_t)nnode * sizeof *ws->cnt);
     memset(ws->mask, 0, (size_t)nnode * sizeof *ws->mask);
-    const ct_idx B = ws->block, npair = map->npair;
+    const ct_idx npair = map->npair;
     for (ct_idx b = 0; b < ws->nblock; b++) {
         ct_idx lo, hi;
-        cti_block_range(b, B, npair, &lo, &hi);
+        cti_block_range(ws, b, npair, &lo, &hi);
         for (int s = 0; s < map->nslot; s++)
             for (ct_idx k = lo; k < hi; k++) {
                 ct_idx n = map->slot[s][k];
@@ -230,7 +287,7 @@ ct_idx ct_colour_degree(ct_assemble_ws *ws, const ct_asm_map *map, ct_idx nnode)
     int64_t best = 0;
     for (ct_idx b = 0; b < ws->nblock; b++) {
         ct_idx lo, hi;
-        cti_block_range(b, B, npair, &lo, &hi);
+        cti_block_range(ws, b, npair, &lo, &hi);
         int64_t d = 0;
         for (int s = 0; s < map->nslot; s++)
             for (ct_idx k = lo; k < hi; k++) {
@@ -249,13 +306,14 @@ ct_idx ct_colour_degree(ct_assemble_ws *ws, const ct_asm_map *map, ct_idx nnode)
 
 /* Block b's pairs onto the nodes, in order: all of them, or the first
  * count[b] when count is given. */
-static void colour_block(ct_idx b, ct_idx B, ct_idx npair, const ct_idx *count, int ns,
+static void colour_block(const ct_assemble_ws *ws, ct_idx b, ct_idx npair, const ct_idx *count,
+                         int ns,
                          int mode, const ct_idx *const slot[], const ct_real *const w[],
                          const ct_real *sign, const ct_real *fx, const ct_real *fy,
                          const ct_real *fz, ct_real *fxn, ct_real *fyn, ct_real *fzn)
 {
     ct_idx lo, hi;
-    cti_block_range(b, B, npair, &lo, &hi);
+    cti_block_range(ws, b, npair, &lo, &hi);
     if (count)
         hi = lo + CTI_MAX(0, CTI_MIN(count[b], hi - lo));
     cti_asm_range(lo, hi, ns, mode, slot, w, sign, fx, fy, fz, fxn, fyn, fzn);
@@ -313,7 +371,7 @@ int ct_assemble_coloured_prefix(const ct_assemble_ws *ws, const ct_asm_map *map,
         for (ct_idx c = 0; c < ncol; c++) {
 #pragma omp for schedule(static)
             for (ct_idx j = off[c]; j < off[c + 1]; j++)
-                colour_block(bperm[j], B, npair, count, ns, mode, slot, w, sign, fx, fy, fz,
+                colour_block(ws, bperm[j], npair, count, ns, mode, slot, w, sign, fx, fy, fz,
                              fxn, fyn, fzn);
         }
     } else {
@@ -322,7 +380,7 @@ int ct_assemble_coloured_prefix(const ct_assemble_ws *ws, const ct_asm_map *map,
          * receives its additions in the order the threads make them. */
         for (ct_idx c = 0; c < ncol; c++)
             for (ct_idx j = off[c]; j < off[c + 1]; j++)
-                colour_block(bperm[j], B, npair, count, ns, mode, slot, w, sign, fx, fy, fz,
+                colour_block(ws, bperm[j], npair, count, ns, mode, slot, w, sign, fx, fy, fz,
                              fxn, fyn, fzn);
     }
     return CT_OK;
@@ -340,12 +398,13 @@ static inline void scalar_pair(ct_idx k, int ns, const ct_idx *const slot[],
 }
 
 /* Block b's pairs, in order. */
-static void scalar_block(ct_idx b, ct_idx B, ct_idx npair, int ns, const ct_idx *const slot[],
+static void scalar_block(const ct_assemble_ws *ws, ct_idx b, ct_idx npair, int ns,
+                         const ct_idx *const slot[],
                          const ct_real *const w[], const ct_real *sign,
                          const ct_real *restrict f, ct_real *restrict fn)
 {
     ct_idx lo, hi;
-    cti_block_range(b, B, npair, &lo, &hi);
+    cti_block_range(ws, b, npair, &lo, &hi);
     for (ct_idx k = lo; k < hi; k++)
         scalar_pair(k, ns, slot, w, sign, f, fn);
 }
@@ -367,7 +426,7 @@ int ct_assemble_scalar(const ct_assemble_ws *ws, ct_assemble_variant variant,
     }
     if (!ws || ws->col_npair != npair || ws->col_nslot != ns || ws->col_nnode != nnode)
         return CT_ERR_ARG;
-    const ct_idx B = ws->block, ncol = ws->ncolour;
+    const ct_idx ncol = ws->ncolour;
     const ct_idx *restrict off = ws->col_off, *restrict bperm = ws->bperm;
     /* Colour by colour, the blocks of a colour in order: on one thread (a
      * small list: no team, see CTI_PAR_FOR) the additions to each node come
@@ -377,12 +436,12 @@ int ct_assemble_scalar(const ct_assemble_ws *ws, ct_assemble_variant variant,
         for (ct_idx c = 0; c < ncol; c++) {
 #pragma omp for schedule(static)
             for (ct_idx j = off[c]; j < off[c + 1]; j++)
-                scalar_block(bperm[j], B, npair, ns, slot, w, sign, f, fn);
+                scalar_block(ws, bperm[j], npair, ns, slot, w, sign, f, fn);
         }
     } else {
         for (ct_idx c = 0; c < ncol; c++)
             for (ct_idx j = off[c]; j < off[c + 1]; j++)
-                scalar_block(bperm[j], B, npair, ns, slot, w, sign, f, fn);
+                scalar_block(ws, bperm[j], npair, ns, slot, w, sign, f, fn);
     }
     return CT_OK;
 }

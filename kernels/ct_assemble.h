@@ -114,7 +114,9 @@ typedef struct ct_assemble_ws {
     /* Colouring (ct_colour_pairs). */
     ct_idx col_npair, col_nnode; /* the map it was made for (-1: none) */
     int col_nslot;
-    ct_idx block, nblock;
+    ct_idx block, nblock; /* block: 0 when the blocks were given
+                             (ct_colour_pair_blocks) */
+    ct_idx *bstart;       /* nblock + 1 block starts, when block == 0 */
     ct_idx ncolour;
     ct_idx *colour;  /* nblock */
     ct_idx *col_off; /* ncolour + 1 */
@@ -142,7 +144,7 @@ typedef struct ct_assemble_ws {
     ct_idx *todo, *next;   /* deferred blocks of the colouring passes */
     ct_idx *full;          /* leading full mask words per node (passes > 0) */
     size_t cap_full;
-    size_t cap_colour, cap_off, cap_bperm, cap_mask, cap_todo, cap_next;
+    size_t cap_colour, cap_off, cap_bperm, cap_mask, cap_todo, cap_next, cap_bstart;
     size_t cap_gnode, cap_goff, cap_gslot, cap_gc[3], cap_cnt;
     int64_t *cnt;          /* per node counts and cursors (gather build) */
     int tb_maxthr;
@@ -165,6 +167,30 @@ size_t ct_assemble_ws_memory(const ct_assemble_ws *ws);
  */
 int ct_colour_pairs(ct_assemble_ws *ws, const ct_asm_map *map, ct_idx nnode,
                     ct_idx block);
+
+/*
+ * The same colouring on blocks the caller chooses: block b holds pairs
+ * [bstart[b], bstart[b + 1]), b < nblock, with bstart[0] == 0,
+ * bstart[nblock] == npair and the starts strictly increasing (nblock == 0
+ * for no pair); CT_ERR_ARG otherwise. The starts are copied (ws->bstart;
+ * ws->block is 0 after it), and every coloured assembly then works on
+ * these blocks. For a caller whose per-block work needs all the pairs of a
+ * node in one block (which pairs carry the node, the hand-over of their
+ * states): ct_pair_node_blocks gives such starts.
+ */
+int ct_colour_pair_blocks(ct_assemble_ws *ws, const ct_asm_map *map, ct_idx nnode,
+                          ct_idx nblock, const ct_idx *bstart);
+
+/*
+ * Blocks of consecutive pairs that never split a node's run: pairs in
+ * ascending node order (node[k], a search's canonical order), each block
+ * at least `block` pairs (block >= 1; the last may be shorter), extended to
+ * the end of the run of its last pair's node. Writes the starts and the
+ * final npair to bstart, which has room for npair / block + 2 entries, and
+ * returns the number of blocks (0 for no pair), or CT_ERR_ARG for a NULL
+ * array, block < 1, a negative count or nodes out of ascending order.
+ */
+ct_idx ct_pair_node_blocks(ct_idx npair, const ct_idx *node, ct_idx block, ct_idx *bstart);
 
 /*
  * The default block of the colouring: npair / 32 pairs, at least

@@ -12,11 +12,15 @@
 /* ---- Colouring checks (brute force, independent of the library) ----------- */
 
 /* No two blocks of one colour share a node. stamp[n] holds (colour, block)
- * of the last block of that colour to touch n, per colour pass. */
-static void check_colouring(const ct_assemble_ws *ws, const tpairs *g)
+ * of the last block of that colour to touch n, per colour pass. Blocks of
+ * ws->block pairs, or (block 0) the given starts bstart. */
+void check_colouring_at(const ct_assemble_ws *ws, const tpairs *g, const ct_idx *bstart)
 {
     ct_idx B = ws->block, nb = ws->nblock;
-    cr_assert_eq(nb, (g->npair + B - 1) / B);
+    if (B > 0)
+        cr_assert_eq(nb, (g->npair + B - 1) / B);
+    else
+        cr_assert(bstart && bstart[0] == 0 && bstart[nb] == g->npair);
     cr_assert_eq(ws->col_off[0], 0);
     cr_assert_eq(ws->col_off[ws->ncolour], nb);
     int64_t *owner = malloc((size_t)g->nnode * sizeof *owner);
@@ -35,7 +39,9 @@ static void check_colouring(const ct_assemble_ws *ws, const tpairs *g)
             if (j > ws->col_off[c])
                 cr_assert(b > ws->bperm[j - 1], "blocks not increasing inside a colour");
             int64_t tag = (int64_t)c * nb + b;
-            for (ct_idx k = b * B; k < g->npair && k < (b + 1) * B; k++)
+            const ct_idx lo = B > 0 ? b * B : bstart[b];
+            const ct_idx hi = B > 0 ? (g->npair - lo > B ? lo + B : g->npair) : bstart[b + 1];
+            for (ct_idx k = lo; k < hi; k++)
                 for (int s = 0; s < 5; s++) {
                     ct_idx n = g->s[s][k];
                     if (owner[n] >= (int64_t)c * nb && owner[n] != tag)
@@ -47,6 +53,11 @@ static void check_colouring(const ct_assemble_ws *ws, const tpairs *g)
     cr_assert_eq(conflicts, 0, "%lld node conflicts inside colours", (long long)conflicts);
     free(owner);
     free(seen);
+}
+
+static void check_colouring(const ct_assemble_ws *ws, const tpairs *g)
+{
+    check_colouring_at(ws, g, NULL);
 }
 
 /* Pair colouring (block 1): greedy bound ncolour <= max degree + 1 and

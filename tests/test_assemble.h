@@ -150,6 +150,10 @@ static inline ct_asm_map tp_map(const tpairs *g)
     return ct_asm_map_nodeseg(g->npair, g->s[0], g->s[1], g->s[2], g->s[3], g->s[4]);
 }
 
+/* The brute-force colouring check of test_assemble.c (no two blocks of a
+ * colour share a node); bstart: the blocks' starts when ws->block is 0. */
+void check_colouring_at(const ct_assemble_ws *ws, const tpairs *g, const ct_idx *bstart);
+
 /* ---- The independent reference ------------------------------------------ */
 
 /* Plain loop: node-segment signs (+, -, -, -, -), slot 0 weight 1. scale[n]
