@@ -69,7 +69,7 @@ static inline int select_run(ct_idx a, ct_idx b, ct_real px, ct_real py, ct_real
     const uint8_t skip = CTI_SELECT_SKIP;
     ct_idx best = -1, second = -1;
     ct_real bd = 0;
-    int npen = 0;
+    int npen = 0, nprev = 0;
     for (ct_idx k = a; k < b; k++) {
         const ct_real d = CTI_FABS(g->dist[k]);
         const int ok = !(g->flag[k] & skip);
@@ -78,12 +78,15 @@ static inline int select_run(ct_idx a, ct_idx b, ct_real px, ct_real py, ct_real
         bd = take ? d : bd;
         npen += g->pen[k] > 0;
     }
+    if (handoff)
+        for (ct_idx k = a; k < b; k++) {
+            handoff[k] = -1;
+            nprev += p_prev && p_prev[k] > 0;
+        }
     if (best < 0) {
         for (ct_idx k = a; k < b; k++) {
             g->pen[k] = 0;
             carry[k] = 0;
-            if (handoff)
-                handoff[k] = -1;
         }
         return 0;
     }
@@ -99,11 +102,10 @@ static inline int select_run(ct_idx a, ct_idx b, ct_real px, ct_real py, ct_real
     const ct_real ps = second >= 0 ? g->pen[second] : 0;
     /* A pair that carried the node last step and carries it no more hands
      * its states to the new carrier on its side, the first such pair in
-     * list order, when that carrier did not carry last step itself. */
-    if (handoff) {
-        for (ct_idx k = a; k < b; k++)
-            handoff[k] = -1;
-        for (ct_idx k = a; k < b && p_prev; k++) {
+     * list order, when that carrier did not carry last step itself (none
+     * to look for when only the carriers carried last step). */
+    if (nprev > (p_prev && p_prev[best] > 0) + (second >= 0 && p_prev && p_prev[second] > 0)) {
+        for (ct_idx k = a; k < b; k++) {
             if (k == best || k == second || !(p_prev[k] > 0))
                 continue;
             const ct_idx to = second >= 0 && dot_normals(g, k, second) > 0 ? second : best;
