@@ -43,6 +43,8 @@ static void free_pair_arrays(ctd_cycle *cy)
     cy->blk = NULL;
     free(cy->nact);
     cy->nact = NULL;
+    free(cy->bst);
+    cy->bst = NULL;
     memset(cy->s, 0, sizeof cy->s);
     cy->old_of_new = NULL;
     memset(cy->g, 0, sizeof cy->g);
@@ -65,7 +67,7 @@ static int grow_pair_arrays(ctd_cycle *cy, size_t n, int exact)
     for (int i = 0; i < 4; i++)
         ok &= (cy->s[i] = ct_calloc(c, sizeof(ct_idx))) != NULL;
     ok &= (cy->old_of_new = ct_calloc(c, sizeof(ct_idx))) != NULL;
-    for (int i = 0; i < CY_NGEO; i++)
+    for (int i = 1; i < CY_NGEO; i++)
         ok &= (cy->g[i] = ct_calloc(c, sizeof(ct_real))) != NULL;
     ok &= (cy->flag = ct_calloc(c, 1)) != NULL;
     ok &= (cy->evald = ct_calloc(c, 1)) != NULL;
@@ -73,17 +75,22 @@ static int grow_pair_arrays(ctd_cycle *cy, size_t n, int exact)
         ok &= (cy->fp[i] = ct_calloc(c, sizeof(ct_real))) != NULL;
     for (int i = 0; i < 5 && cti_cycle_fused(cy); i++)
         ok &= (cy->cn[i] = ct_calloc(c, sizeof(ct_idx))) != NULL;
-    ok &= (cy->blk = calloc((c + CY_BLOCK - 1) / CY_BLOCK, sizeof *cy->blk)) != NULL;
-    ok &= (cy->nact = calloc((c + CY_BLOCK - 1) / CY_BLOCK, sizeof *cy->nact)) != NULL;
+    /* At most c / CY_BLOCK + 1 blocks (all but the last hold CY_BLOCK pairs
+     * or more), and their final start. */
+    const size_t nb = c / CY_BLOCK + 2;
+    ok &= (cy->blk = calloc(nb, sizeof *cy->blk)) != NULL;
+    ok &= (cy->nact = calloc(nb, sizeof *cy->nact)) != NULL;
+    ok &= (cy->bst = calloc(nb, sizeof *cy->bst)) != NULL;
     if (!ok) {
         free_pair_arrays(cy);
         return CT_ERR_NOMEM;
     }
     cy->cap = c;
-    /* The results the cycle keeps per pair (ctd_cycle_geo): p, the
-     * weights and the flag. */
+    /* The results the cycle keeps per pair (ctd_cycle_geo): p (pp[cur],
+     * double-buffered with the friction history), the weights and the
+     * flag. */
     memset(&cy->geo, 0, sizeof cy->geo);
-    cy->geo.pen = cy->g[0];
+    cy->geo.pen = cy->pp[cy->cur];
     if (!cti_cycle_fused(cy)) { /* fused: g[1..4] hold the compact lists */
         cy->geo.h1 = cy->g[1];
         cy->geo.h2 = cy->g[2];
@@ -94,8 +101,8 @@ static int grow_pair_arrays(ctd_cycle *cy, size_t n, int exact)
     return CT_OK;
 }
 
-/* Make friction history and skip expiry side b hold n pairs (contents not
- * kept). */
+/* Make friction history, skip expiry and last penetration side b hold n
+ * pairs (contents not kept). */
 static int grow_ft(ctd_cycle *cy, int b, size_t n, int exact)
 {
     if (n <= cy->capft[b] && cy->ft[b][0])
@@ -106,12 +113,16 @@ static int grow_ft(ctd_cycle *cy, int b, size_t n, int exact)
     }
     ct_free(cy->ex[b]);
     cy->ex[b] = NULL;
+    ct_free(cy->pp[b]);
+    cy->pp[b] = NULL;
     size_t c = exact ? n + 64 : n + n / 2 + 64;
     int ok = 1;
     for (int i = 0; i < 3; i++)
         ok &= (cy->ft[b][i] = ct_calloc(c, sizeof(ct_real))) != NULL;
     ok &= (cy->ex[b] = ct_calloc(c, sizeof(ct_real))) != NULL;
+    ok &= (cy->pp[b] = ct_calloc(c, sizeof(ct_real))) != NULL;
     cy->capft[b] = ok ? c : 0;
+    cy->geo.pen = cy->pp[cy->cur];
     return ok ? CT_OK : CT_ERR_NOMEM;
 }
 
@@ -174,7 +185,7 @@ int ctd_cycle_init(ctd_cycle **out, const ctd_cycle_params *p, ct_idx nnode, con
     if (rc == CT_OK)
         rc = grow_pair_arrays(cy, 0, 1);
     if (rc == CT_OK)
-        rc = cti_cycle_scratch_grow(cy, cti_cycle_max_threads());
+        rc = cti_cycle_scratch_grow(cy, cti_cycle_max_threads(), CY_BLOCK + CY_BLOCK / 8);
     if (rc == CT_OK) {
         rc = ct_assemble_ws_init(&cy->ws);
         cy->ws_ready = rc == CT_OK;
@@ -199,6 +210,7 @@ void ctd_cycle_destroy(ctd_cycle *cy)
         for (int i = 0; i < 3; i++)
             ct_free(cy->ft[b][i]);
         ct_free(cy->ex[b]);
+        ct_free(cy->pp[b]);
     }
     ct_free(cy->x0);
     for (int b = 0; b < 2; b++) {
@@ -261,14 +273,12 @@ const ct_real *ctd_cycle_friction(const ctd_cycle *cy, int axis)
 
 size_t ctd_cycle_memory(const ctd_cycle *cy)
 {
-    size_t per = (cti_cycle_fused(cy) ? 10 : 5) * sizeof(ct_idx) + CY_NGEO * sizeof(ct_real) +
-                 2 + 3 * sizeof(ct_real);
-    size_t b = cy->cap * per + (cy->capft[0] + cy->capft[1]) * 4 * sizeof(ct_real);
-    b += (size_t)cy->nscr * CY_BLOCK *
+    size_t per = (cti_cycle_fused(cy) ? 10 : 5) * sizeof(ct_idx) +
+                 (CY_NGEO - 1) * sizeof(ct_real) + 2 + 3 * sizeof(ct_real);
+    size_t b = cy->cap * per + (cy->capft[0] + cy->capft[1]) * 5 * sizeof(ct_real);
+    b += (size_t)cy->nscr * (size_t)cy->scrlen *
          (CS_NREAL * sizeof(ct_real) + CS_NIDX * sizeof(ct_idx) + sizeof(int32_t) + 1);
-    for (int t = 0; t < cy->nscr; t++) /* the selection's scratch for cut runs */
-        b += (size_t)cy->scr[t].edge.cap * (CE_NREAL * sizeof(ct_real) + sizeof(ct_idx) + 2);
-    b += (cy->cap + CY_BLOCK - 1) / CY_BLOCK * (sizeof(cy_block) + sizeof(ct_idx));
+    b += (cy->cap / CY_BLOCK + 2) * (sizeof(cy_block) + 2 * sizeof(ct_idx));
     b += ((size_t)cy->pairs[0].cap + (size_t)cy->pairs[1].cap) * 2 * sizeof(ct_idx);
     b += (cy->skip_on ? 9 : 3) * (size_t)cy->nnode * sizeof(ct_real);
     b += ct_search_memory(cy->search) + ct_assemble_ws_memory(&cy->ws);
@@ -325,27 +335,22 @@ static int phase_search(ctd_cycle *cy, const ct_real *x, const ct_real *y, const
                           cy->s[1], cy->s[2], cy->s[3]);
     if (rc != CT_OK)
         return rc;
-    if (cy->p.select) { /* room to decide the longest run cut by a block end */
-        const ct_idx *restrict nd = np->node;
-        ct_idx mr = 0;
-        /* Each run measured from its first pair (a reduction: any team). */
-#pragma omp parallel for schedule(static) reduction(max : mr)
-        for (ct_idx k = 0; k < n; k++) {
-            if (k > 0 && nd[k] == nd[k - 1])
-                continue;
-            ct_idx e = k + 1;
-            while (e < n && nd[e] == nd[k])
-                e++;
-            mr = e - k > mr ? e - k : mr;
-        }
-        cy->maxrun = mr;
-        if ((rc = cti_cycle_edge_grow(cy)) != CT_OK)
-            return rc;
-    }
+    /* The pass's blocks: a node's pairs in one block. */
+    const ct_idx nblk = ct_pair_node_blocks(n, np->node, CY_BLOCK, cy->bst);
+    if (nblk < 0)
+        return nblk;
+    ct_idx mb = 0;
+    for (ct_idx b = 0; b < nblk; b++)
+        mb = cy->bst[b + 1] - cy->bst[b] > mb ? cy->bst[b + 1] - cy->bst[b] : mb;
+    cy->nblk = nblk;
+    cy->maxblk = mb;
+    if ((rc = cti_cycle_scratch_grow(cy, cti_cycle_max_threads(), mb)) != CT_OK)
+        return rc;
     ct_asm_map map = ct_asm_map_nodeseg(n, np->node, cy->s[0], cy->s[1], cy->s[2], cy->s[3]);
     /* Fused: the colouring's blocks are the pass's (cti_cycle_fused). */
-    rc = cti_cycle_fused(cy) ? ct_colour_pairs(&cy->ws, &map, cy->nnode, CY_BLOCK)
-                             : ct_assemble_prepare(&cy->ws, cy->p.asm_variant, &map, cy->nnode);
+    rc = cti_cycle_fused(cy)
+             ? ct_colour_pair_blocks(&cy->ws, &map, cy->nnode, nblk, cy->bst)
+             : ct_assemble_prepare(&cy->ws, cy->p.asm_variant, &map, cy->nnode);
     if (rc != CT_OK)
         return rc;
     rc = ct_friction_remap(op->n, op->node, op->seg, cy->ft[old][0], cy->ft[old][1],
@@ -353,6 +358,18 @@ static int phase_search(ctd_cycle *cy, const ct_real *x, const ct_real *y, const
                            cy->ft[now][1], cy->ft[now][2], cy->old_of_new, NULL);
     if (rc != CT_OK)
         return rc;
+    /* The last penetration follows its pair (the carrier choice hands a
+     * node's states over when its contact moves to another pair). A pair
+     * the skip leaves out reads 0 here: it was out of contact when last
+     * evaluated, or it is new. */
+    {
+        const ct_idx *restrict o = cy->old_of_new;
+        const ct_real *restrict src = cy->pp[old];
+        ct_real *restrict dst = cy->pp[now];
+#pragma omp parallel for simd schedule(static)
+        for (ct_idx k = 0; k < n; k++)
+            dst[k] = o[k] >= 0 ? src[o[k]] : 0;
+    }
     if (cy->skip_on)
         cti_skip_remap(cy, n, old, now);
     /* Positions at this sort. */
@@ -365,6 +382,7 @@ static int phase_search(ctd_cycle *cy, const ct_real *x, const ct_real *y, const
         c[i] = z[i];
     }
     cy->cur = now;
+    cy->geo.pen = cy->pp[now];
     if (!cy->need_sort) { /* fired by the criterion */
         cy->st.natural_sorts++;
         cy->st.interval_sum += cy->st.life_cycles - cy->st.life_last_sort;

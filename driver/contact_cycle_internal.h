@@ -30,12 +30,13 @@ static inline double cti_cycle_wtime(void)
 }
 #endif
 
-/* Pairs per block of the fused narrow/force/step pass (phase_pairs): a
- * multiple of the kernels' own blocks (64 for the narrow phase, 2048 for
- * the normal force and friction), so each kernel sees the block boundaries
- * a whole-list call would. Measured on the folded sheet, 10^6 nodes: 2048,
- * 4096 and 8192 within 5 % of each other (4096 best by a little); 512 and
- * 256 slower, by the kernels' fixed cost per call. */
+/* Pairs per block of the fused narrow/force/step pass (phase_pairs), at
+ * least: a block ends at the end of its last node's run of pairs
+ * (ct_pair_node_blocks), so that which of a node's pairs carry it, and the
+ * hand-over of their states, are decided inside one block. Measured on the
+ * folded sheet, 10^6 nodes: 2048, 4096 and 8192 within 5 % of each other
+ * (4096 best by a little); 512 and 256 slower, by the kernels' fixed cost
+ * per call. */
 #define CY_BLOCK 4096
 
 /* Narrow-phase results kept per pair: p and the four weights. */
@@ -56,33 +57,21 @@ typedef struct cy_block {
  * contact (p > 0): the others have zero force, zero friction history and no
  * step limit, which is what the kernels give them, so they are skipped
  * (about two thirds of the candidates of the folded sheet). The block's
- * active pairs are packed into a per-thread scratch of CY_BLOCK entries:
- * their local indices (act), the gathered inputs and the kernels' outputs.
+ * active pairs are packed into a per-thread scratch of as many entries as
+ * the longest block (len): their local indices (act), the gathered inputs
+ * and the kernels' outputs; CS_PPREV and CS_HO hold the evaluated pairs'
+ * last penetrations and hand-overs (ct_select_pairs).
  */
 enum { CS_H1, CS_H2, CS_H3, CS_H4, CS_NX, CS_NY, CS_NZ, CS_PEN, CS_GAP, CS_MS, CS_K0,
        CS_T0, CS_T1, CS_T2, CS_VRX, CS_VRY, CS_VRZ, CS_VN, CS_FEL, CS_KTAN, CS_FN,
-       CS_FX, CS_FY, CS_FZ, CS_NREAL };
-enum { CS_ACT, CS_NODE, CS_S1, CS_S2, CS_S3, CS_S4, CS_NIDX };
-/* The carrier selection of a node's run of pairs cut by a block boundary
- * (contact_cycle_pairs.c): the run's pairs of the other block evaluated
- * again and the block's own copied, side by side, for ct_select_pairs.
- * Arrays of `cap` entries (the longest run of the pair list). */
-enum { CE_DIST, CE_PEN, CE_NX, CE_NY, CE_NZ, CE_CX, CE_CY, CE_CZ, CE_H1, CE_H2, CE_H3, CE_H4,
-       CE_GAP, CE_NREAL };
-typedef struct cy_edge {
-    ct_idx cap;
-    ct_real *v[CE_NREAL];
-    ct_idx *node;
-    uint8_t *flag, *carry;
-} cy_edge;
-
+       CS_FX, CS_FY, CS_FZ, CS_PPREV, CS_NREAL };
+enum { CS_ACT, CS_NODE, CS_S1, CS_S2, CS_S3, CS_S4, CS_HO, CS_NIDX };
 typedef struct cy_scratch {
     ct_real *v[CS_NREAL];
     ct_idx *i[CS_NIDX];
     int32_t *flag7;
-    uint8_t *carry; /* CY_BLOCK: the selection's carry flags */
+    uint8_t *carry; /* the selection's carry flags */
     void *mem; /* the one allocation the arrays live in */
-    cy_edge edge;
 } cy_scratch;
 
 struct ctd_cycle {
@@ -102,21 +91,26 @@ struct ctd_cycle {
     ct_pairs pairs[2];
     ct_real *ft[2][3];
     ct_real *ex[2]; /* the skip's expiry of each pair (contact_cycle_skip.c) */
+    ct_real *pp[2]; /* each pair's penetration of the last step (0 when not a
+                       carrier, or skipped); geo.pen is pp[cur] */
     size_t capft[2];
     /* Single-buffered per-pair arrays (capacity cap). */
     size_t cap;
     ct_idx *s[4], *old_of_new;
-    ct_real *g[CY_NGEO]; /* p, h1..h4 */
+    ct_real *g[CY_NGEO]; /* g[0] unused (p is pp[cur]), h1..h4 */
     uint8_t *flag;
     uint8_t *evald; /* 1: the pair's narrow phase ran this cycle */
     ct_real *fp[3]; /* the pair force on the secondary node (assembled) */
     ct_idx *cn[5];  /* fused assembly: the compact lists' nodes (node, s1..s4) */
     ct_idx *nact;   /* fused assembly: each block's list length (pairs in contact) */
     ct_contact_geo geo;
-    cy_block *blk; /* (cap + CY_BLOCK - 1) / CY_BLOCK records */
-    cy_scratch *scr; /* per thread (nscr) */
+    /* The pass's blocks of the current list (ct_pair_node_blocks): nblk,
+     * starting at bst[0..nblk], the longest maxblk pairs. */
+    ct_idx *bst, nblk, maxblk;
+    cy_block *blk; /* nblk records (room: cap / CY_BLOCK + 1) */
+    cy_scratch *scr; /* per thread (nscr), of scrlen entries per array */
     int nscr;
-    ct_idx maxrun; /* the longest run of one node's pairs in the current list */
+    ct_idx scrlen;
     /* The skip (contact_cycle_skip.c): on, the previous cycle's positions
      * (valid when have_prev) in buffer pc, the other receiving this
      * cycle's, the motion sum since the last re-sort, the rounding slack
@@ -167,10 +161,9 @@ void cti_skip_expiry(ctd_cycle *cy, ct_idx k0, ct_idx ne, const ct_idx *act, con
                      const ct_real *gap, const uint8_t *flag);
 
 /* The per-thread scratch of the pass, for nthr threads (outside a parallel
- * region), and its release; cti_cycle_edge_grow gives every thread's edge
- * scratch room for the longest run of the current list (at a re-sort). */
-int cti_cycle_scratch_grow(ctd_cycle *cy, int nthr);
+ * region), each array with room for len pairs (the longest block), and its
+ * release. */
+int cti_cycle_scratch_grow(ctd_cycle *cy, int nthr, ct_idx len);
 void cti_cycle_scratch_free(ctd_cycle *cy);
-int cti_cycle_edge_grow(ctd_cycle *cy);
 
 #endif /* CTD_CONTACT_CYCLE_INTERNAL_H */

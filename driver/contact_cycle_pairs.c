@@ -5,10 +5,12 @@
  * force and the time step of the pairs in contact, leaving, with the
  * default colouring, compact lists of their forces for the assembly.
  *
- * The pass runs in blocks of CY_BLOCK pairs so that a block's per-pair
+ * The pass runs in blocks of about CY_BLOCK pairs, each holding all the
+ * pairs of its nodes (ct_pair_node_blocks), so that a block's per-pair
  * arrays stay in cache from one kernel to the next (separate whole-list
  * passes streamed about 30 arrays of the size of the pair list through
- * memory). The narrow phase writes into the thread's scratch; p and the
+ * memory) and a node's carrying pairs and the hand-over of its pair states
+ * are decided inside its block. The narrow phase writes into the thread's scratch; p and the
  * flag go back to the per-pair arrays, and the pairs in contact (p > 0)
  * are packed in place; the force and step kernels run on them alone. A
  * pair out of contact gets from those kernels a zero force, a zero
@@ -23,73 +25,46 @@
  * sheets. The narrow phase reads the selected pairs in place, their corners
  * through the per-pair slots (ct_narrow_node_slots). Every kernel computes
  * each pair alone, so the packing changes no pair's result, and the blocks
- * are fixed by the pair count: the results are those of whole-list calls,
+ * are fixed by the pair list: the results are those of whole-list calls,
  * bit for bit, for any thread count (tests/test_cycle.c checks both).
  */
 #include "contact_cycle_internal.h"
 
-static void edge_free(cy_edge *e)
-{
-    for (int a = 0; a < CE_NREAL; a++)
-        ct_free(e->v[a]);
-    ct_free(e->node);
-    ct_free(e->flag);
-    ct_free(e->carry);
-    memset(e, 0, sizeof *e);
-}
-
 void cti_cycle_scratch_free(ctd_cycle *cy)
 {
-    for (int t = 0; t < cy->nscr; t++) {
+    for (int t = 0; t < cy->nscr; t++)
         ct_free(cy->scr[t].mem);
-        edge_free(&cy->scr[t].edge);
-    }
     free(cy->scr);
     cy->scr = NULL;
     cy->nscr = 0;
+    cy->scrlen = 0;
 }
 
-int cti_cycle_edge_grow(ctd_cycle *cy)
+int cti_cycle_scratch_grow(ctd_cycle *cy, int nthr, ct_idx len)
 {
-    const ct_idx need = cy->maxrun;
-    for (int t = 0; t < cy->nscr; t++) {
-        cy_edge *e = &cy->scr[t].edge;
-        if (need <= e->cap)
-            continue;
-        edge_free(e);
-        const size_t c = (size_t)need + (size_t)need / 2 + 16;
-        int ok = 1;
-        for (int a = 0; a < CE_NREAL; a++)
-            ok &= (e->v[a] = ct_calloc(c, sizeof(ct_real))) != NULL;
-        ok &= (e->node = ct_calloc(c, sizeof(ct_idx))) != NULL;
-        ok &= (e->flag = ct_calloc(c, 1)) != NULL;
-        ok &= (e->carry = ct_calloc(c, 1)) != NULL;
-        if (!ok) {
-            edge_free(e);
-            return CT_ERR_NOMEM;
-        }
-        e->cap = (ct_idx)c;
-    }
-    return CT_OK;
-}
-
-int cti_cycle_scratch_grow(ctd_cycle *cy, int nthr)
-{
-    if (nthr <= cy->nscr)
+    if (nthr <= cy->nscr && len <= cy->scrlen)
         return CT_OK;
+    /* Longer arrays: every thread's scratch made again (at a re-sort, and
+     * only when a block is longer than any before). */
+    if (len > cy->scrlen) {
+        const int keep = cy->nscr;
+        cti_cycle_scratch_free(cy);
+        nthr = nthr > keep ? nthr : keep;
+        cy->scrlen = len;
+    }
+    len = cy->scrlen;
     cy_scratch *s = realloc(cy->scr, (size_t)nthr * sizeof *s);
     if (!s)
         return CT_ERR_NOMEM;
     cy->scr = s;
-    /* Each array is a multiple of 64 bytes long, so all stay aligned. */
-    const size_t nr = CY_BLOCK * sizeof(ct_real), ni = CY_BLOCK * sizeof(ct_idx);
+    /* Each array a multiple of 64 bytes long, so all stay aligned. */
+    const size_t L = ((size_t)len + 63) & ~(size_t)63;
+    const size_t nr = L * sizeof(ct_real), ni = L * sizeof(ct_idx);
     for (int t = cy->nscr; t < nthr; t++) {
-        char *m = ct_calloc(CS_NREAL * nr + CS_NIDX * ni + CY_BLOCK * sizeof(int32_t) + CY_BLOCK,
-                            1);
+        char *m = ct_calloc(CS_NREAL * nr + CS_NIDX * ni + L * sizeof(int32_t) + L, 1);
         if (!m)
             return CT_ERR_NOMEM;
         s[t].mem = m;
-        memset(&s[t].edge, 0, sizeof s[t].edge);
         for (int a = 0; a < CS_NREAL; a++)
             s[t].v[a] = (ct_real *)(void *)(m + (size_t)a * nr);
         m += CS_NREAL * nr;
@@ -97,9 +72,9 @@ int cti_cycle_scratch_grow(ctd_cycle *cy, int nthr)
             s[t].i[a] = (ct_idx *)(void *)(m + (size_t)a * ni);
         m += CS_NIDX * ni;
         s[t].flag7 = (int32_t *)(void *)m;
-        s[t].carry = (uint8_t *)(m + CY_BLOCK * sizeof(int32_t));
+        s[t].carry = (uint8_t *)(m + L * sizeof(int32_t));
         /* The stiffness is uniform: the TYPE7 kernel reads it per pair. */
-        for (int k = 0; k < CY_BLOCK; k++)
+        for (size_t k = 0; k < L; k++)
             s[t].v[CS_K0][k] = cy->p.K0;
         cy->nscr = t + 1;
     }
@@ -142,120 +117,36 @@ static int block_narrow(ctd_cycle *cy, ct_idx k0, ct_idx k1, cy_scratch *s, cons
     return rc;
 }
 
-/* The geometry arrays of g from entry `off` on. */
-static ct_contact_geo geo_from(const ct_contact_geo *g, ct_idx off)
-{
-    ct_contact_geo o = {g->dist + off, g->pen + off, g->nx + off, g->ny + off, g->nz + off,
-                        g->cx + off,   g->cy + off,  g->cz + off, g->h1 + off, g->h2 + off,
-                        g->h3 + off,   g->h4 + off,  g->gap + off, g->flag + off};
-    return o;
-}
-
-/* The run of node q whose evaluated pairs are entries [p0, p1) of the
- * block's results (g), cut by the block's start (its pairs [e0, k0) lie in
- * the block before) and/or its end (pairs [k1, e1) in the block after):
- * the other block's pairs of the run are evaluated again, all of them, the
- * block's own copied beside them in pair order, and the run decided whole;
- * the block's penetrations get the decision. Both blocks decide the run on
- * the same pairs in contact: a pair the other block's skip leaves out is
- * out of contact (its penetration 0 here too), and a pair's narrow phase
- * gives the same bytes wherever it runs; so the carriers agree. */
-static int select_cut_run(const ctd_cycle *cy, ct_idx q, ct_idx p0, ct_idx p1, ct_idx e0,
-                          ct_idx k0, ct_idx k1, ct_idx e1, const ct_contact_geo *g,
-                          cy_edge *E, const ct_real *x, const ct_real *y, const ct_real *z)
-{
-    const ct_pairs *pp = &cy->pairs[cy->cur];
-    const ct_contact_geo eg = {E->v[CE_DIST], E->v[CE_PEN], E->v[CE_NX], E->v[CE_NY],
-                               E->v[CE_NZ],   E->v[CE_CX],  E->v[CE_CY], E->v[CE_CZ],
-                               E->v[CE_H1],   E->v[CE_H2],  E->v[CE_H3], E->v[CE_H4],
-                               E->v[CE_GAP],  E->flag};
-    ct_idx m = 0;
-    int rc = CT_OK;
-    if (e0 < k0) {
-        const ct_contact_geo o = geo_from(&eg, 0);
-        rc = ct_narrow_node_segment(k0 - e0, pp->node + e0, pp->seg + e0, cy->n1, cy->n2,
-                                    cy->n3, cy->n4, x, y, z, NULL, NULL, cy->p.gap, 0, 0,
-                                    cy->p.quad, cy->p.two_sided, &o, NULL);
-        m = k0 - e0;
-    }
-    const ct_idx mine = m, own = p1 - p0;
-    {
-        const ct_real *const from[] = {g->dist, g->pen, g->nx, g->ny, g->nz,
-                                       g->cx,   g->cy,  g->cz, g->gap};
-        ct_real *const to[] = {eg.dist, eg.pen, eg.nx, eg.ny, eg.nz,
-                               eg.cx,   eg.cy,  eg.cz, eg.gap};
-        for (int a = 0; a < 9; a++)
-            memcpy(to[a] + m, from[a] + p0, sizeof(ct_real) * (size_t)own);
-        memcpy(eg.flag + m, g->flag + p0, (size_t)own);
-        m += own;
-    }
-    if (rc == CT_OK && k1 < e1) {
-        const ct_contact_geo o = geo_from(&eg, m);
-        rc = ct_narrow_node_segment(e1 - k1, pp->node + k1, pp->seg + k1, cy->n1, cy->n2,
-                                    cy->n3, cy->n4, x, y, z, NULL, NULL, cy->p.gap, 0, 0,
-                                    cy->p.quad, cy->p.two_sided, &o, NULL);
-        m += e1 - k1;
-    }
-    if (rc != CT_OK)
-        return rc;
-    for (ct_idx j = 0; j < m; j++)
-        E->node[j] = q;
-    rc = ct_select_pairs(m, E->node, x, y, z, cy->p.two_sided, &eg, NULL, E->carry, NULL,
-                         NULL);
-    if (rc == CT_OK)
-        memcpy(g->pen + p0, eg.pen + mine, sizeof(ct_real) * (size_t)own);
-    return rc;
-}
-
 /* After block_narrow: the pairs that carry each node (ct_select_pairs, one
  * per side) among the block's ne evaluated pairs, the others' penetration
- * set to 0 (they then get no force, as out of contact). The runs inside
- * the block are decided on its results; a run cut by a block boundary by
- * select_cut_run. */
-static int block_select(const ctd_cycle *cy, ct_idx k0, ct_idx k1, ct_idx ne, cy_scratch *s,
+ * set to 0 (they then get no force, as out of contact), and the hand-overs
+ * (s->i[CS_HO], evaluated indices): a node's new carrier on a side takes
+ * the friction history of the pair that carried it there last step. The
+ * block holds all its nodes' pairs, and a pair the skip leaves out was out
+ * of contact at its last evaluation (last penetration 0): the evaluated
+ * pairs decide each node whole. */
+static int block_select(const ctd_cycle *cy, ct_idx k0, ct_idx ne, cy_scratch *s,
                         const ct_real *x, const ct_real *y, const ct_real *z)
 {
     if (ne == 0)
         return CT_OK;
-    const ct_pairs *pp = &cy->pairs[cy->cur];
-    const ct_idx *node = pp->node, *act = s->i[CS_ACT];
+    const ct_idx *restrict node = cy->pairs[cy->cur].node + k0;
+    const ct_real *restrict pen = cy->geo.pen + k0;
+    const ct_idx *restrict act = s->i[CS_ACT];
     ct_real *const *v = s->v;
     const ct_contact_geo g = {v[CS_VRX], v[CS_PEN], v[CS_NX], v[CS_NY], v[CS_NZ],
                               v[CS_VRY], v[CS_VRZ], v[CS_VN], v[CS_H1], v[CS_H2],
                               v[CS_H3],  v[CS_H4],  v[CS_GAP], (uint8_t *)(void *)s->flag7};
-    ct_idx *restrict nd = s->i[CS_NODE]; /* the evaluated pairs' nodes */
-    for (ct_idx j = 0; j < ne; j++)
-        nd[j] = node[k0 + act[j]];
-    const ct_idx qa = nd[0], qb = nd[ne - 1];
-    /* A run is cut when its node has pairs beyond the block's ends. */
-    ct_idx e0 = k0, e1 = k1;
-    while (e0 > 0 && node[e0 - 1] == qa)
-        e0--;
-    while (e1 < pp->n && node[e1] == qb)
-        e1++;
-    ct_idx a = 0, b = ne; /* the first run is [0, a), the last [b, ne) */
-    while (a < ne && nd[a] == qa)
-        a++;
-    while (b > 0 && nd[b - 1] == qb)
-        b--;
-    if (qa == qb) /* one node: one run, cut on either side or none */
-        return select_cut_run(cy, qa, 0, ne, e0, k0, k1, e1, &g, &s->edge, x, y, z);
-    int rc = CT_OK;
-    ct_idx lo = 0, hi = ne;
-    if (e0 < k0) {
-        rc = select_cut_run(cy, qa, 0, a, e0, k0, k0, k0, &g, &s->edge, x, y, z);
-        lo = a;
+    /* The evaluated pairs' nodes and last penetrations (this step's are
+     * written back after the selection, by block_pack). */
+    ct_idx *restrict nd = s->i[CS_NODE];
+    ct_real *restrict pv = v[CS_PPREV];
+    for (ct_idx j = 0; j < ne; j++) {
+        nd[j] = node[act[j]];
+        pv[j] = pen[act[j]];
     }
-    if (rc == CT_OK && e1 > k1) {
-        rc = select_cut_run(cy, qb, b, ne, k1, k1, k1, e1, &g, &s->edge, x, y, z);
-        hi = b;
-    }
-    if (rc == CT_OK && hi > lo) {
-        const ct_contact_geo o = geo_from(&g, lo);
-        rc = ct_select_pairs(hi - lo, nd + lo, x, y, z, cy->p.two_sided, &o, NULL,
-                             s->carry + lo, NULL, NULL);
-    }
-    return rc;
+    return ct_select_pairs(ne, nd, x, y, z, cy->p.two_sided, &g, pv, s->carry, s->i[CS_HO],
+                           NULL);
 }
 
 /* After block_narrow: write the results back into the interface's arrays
@@ -303,6 +194,17 @@ static ct_idx block_pack(const ctd_cycle *cy, ct_idx k0, ct_idx ne, cy_scratch *
             for (ct_idx i = 0; i < na; i++)
                 t[act[pk[i]]] = f[pk[i]];
         }
+        /* The pair (index in the block) whose friction history each pair
+         * in contact takes: its own, or the one its node's contact moved
+         * from (block_select's hand-over, an evaluated index), which then
+         * loses it (block_unpack: it is out of contact). In place: pk[i]
+         * >= i. */
+        ct_idx *restrict hs = s->i[CS_HO];
+        const int handover = cy->p.select;
+        for (ct_idx i = 0; i < na; i++) {
+            const ct_idx j = pk[i], from = handover ? hs[j] : -1;
+            hs[i] = act[from >= 0 ? from : j];
+        }
         /* Compact the force kernels' geometry and the indices in place
          * (pk[i] >= i: a slot is read before it is overwritten). */
         _Static_assert(CS_GAP == CS_H1 + 8, "the geometry scratch arrays must be consecutive");
@@ -343,8 +245,9 @@ static ct_idx block_pack(const ctd_cycle *cy, ct_idx k0, ct_idx ne, cy_scratch *
             const ct_real *restrict f2 = ft[2] + k0;
             ct_real *restrict t0 = v[CS_T0], *restrict t1 = v[CS_T0 + 1];
             ct_real *restrict t2 = v[CS_T0 + 2];
+            const ct_idx *restrict hs = s->i[CS_HO];
             for (ct_idx i = 0; i < na; i++) {
-                const ct_idx k = ac[i];
+                const ct_idx k = hs[i];
                 t0[i] = f0[k];
                 t1[i] = f1[k];
                 t2[i] = f2[k];
@@ -486,23 +389,22 @@ int cti_cycle_pairs(ctd_cycle *cy, ct_idx n, const ct_real *x, const ct_real *y,
                     ct_real dt, int64_t *active, int64_t *neval, double tph[3])
 {
     /* A team larger than any before gets its scratch here, once. */
-    int rc = cti_cycle_scratch_grow(cy, cti_cycle_max_threads());
-    if (rc == CT_OK && cy->p.select)
-        rc = cti_cycle_edge_grow(cy); /* threads new to this list */
+    int rc = cti_cycle_scratch_grow(cy, cti_cycle_max_threads(), cy->maxblk);
     if (rc != CT_OK)
         return rc;
-    const ct_idx nblk = (n + CY_BLOCK - 1) / CY_BLOCK;
+    const ct_idx nblk = n > 0 ? cy->nblk : 0;
+    const ct_idx *bst = cy->bst;
     cy_block *blk = cy->blk;
 #pragma omp parallel for schedule(static)
     for (ct_idx bi = 0; bi < nblk; bi++) {
-        const ct_idx k0 = bi * CY_BLOCK, k1 = n - k0 < CY_BLOCK ? n : k0 + CY_BLOCK;
+        const ct_idx k0 = bst[bi], k1 = bst[bi + 1];
         cy_block *b = &blk[bi];
         cy_scratch *s = &cy->scr[cti_cycle_thread()];
         double t0 = cti_cycle_wtime();
         ct_idx ne = 0;
         b->rc = block_narrow(cy, k0, k1, s, x, y, z, &ne);
         if (b->rc == CT_OK && cy->p.select)
-            b->rc = block_select(cy, k0, k1, ne, s, x, y, z);
+            b->rc = block_select(cy, k0, ne, s, x, y, z);
         b->neval = ne;
         double t1 = cti_cycle_wtime();
         ct_idx na = 0;

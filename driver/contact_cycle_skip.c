@@ -50,16 +50,13 @@ void cti_skip_remap(ctd_cycle *cy, ct_idx n, int old, int now)
 {
     const ct_idx *restrict o = cy->old_of_new;
     const ct_real *restrict src = cy->ex[old];
-    ct_real *restrict dst = cy->ex[now], *restrict pen = cy->geo.pen;
+    ct_real *restrict dst = cy->ex[now];
     const double M = cy->motion;
-    /* The narrow-phase results are indexed by pair and not carried: a pair
-     * the skip leaves out would find another pair's there. Its penetration
-     * must read 0 (the force pass packs the pairs with p > 0). */
+    /* (The penetrations were remapped before: a pair the skip leaves out
+     * reads 0, as the force pass needs.) */
 #pragma omp parallel for schedule(static)
-    for (ct_idx k = 0; k < n; k++) {
+    for (ct_idx k = 0; k < n; k++)
         dst[k] = o[k] >= 0 ? (ct_real)((double)src[o[k]] - M) : (ct_real)-1;
-        pen[k] = 0;
-    }
     cy->motion = 0;
 }
 

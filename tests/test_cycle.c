@@ -247,10 +247,15 @@ Test(cycle, threads_bit_identical)
 /* One pair list through the public kernels called once on the whole list
  * (the composition the cycle's fused block pass must reproduce), assembled
  * by a plain serial loop: nodal forces into f, the two step limits into
- * dkin and dnod. ft is the friction history (updated). */
+ * dkin and dnod. ft is the friction history and pprev the last step's
+ * penetrations (both updated); a node's new carrier takes the history of
+ * the pair that carried it on that side last step, which loses it (the
+ * driver's pair_select.c, written here for the list at once). *handed
+ * counts the hand-overs. */
 static void whole_list_reference(const crun *r, const ct_pairs *P, ct_real *const ft[3],
-                                 ct_real *const f[3], ct_real *dkin, ct_real *dnod,
-                                 const ct_contact_geo *geo_out, const uint8_t *ev)
+                                 ct_real *pprev, ct_real *const f[3], ct_real *dkin,
+                                 ct_real *dnod, const ct_contact_geo *geo_out,
+                                 const uint8_t *ev, int64_t *handed)
 {
     const ct_idx n = P->n;
     const ctd_cycle_params p = ctd_cycle_default_params(r->h);
@@ -274,11 +279,23 @@ static void whole_list_reference(const crun *r, const ct_pairs *P, ct_real *cons
     /* The carrying pairs, decided on the whole list at once (the pass cuts
      * a node's pairs at its block boundaries). */
     uint8_t *carry = ct_calloc((size_t)n + 1, 1);
-    cr_assert(carry);
+    ct_idx *from = ct_calloc((size_t)n + 1, sizeof(ct_idx));
+    cr_assert(carry && from);
     cr_assert_eq(ct_select_pairs(n, P->node, r->pos[0], r->pos[1], r->pos[2], p.two_sided, &g,
-                                 NULL, carry, NULL, NULL),
+                                 pprev, carry, from, NULL),
                  CT_OK);
+    for (ct_idx k = 0; k < n; k++) {
+        pprev[k] = a[PEN][k];
+        if (from[k] < 0)
+            continue;
+        for (int d = 0; d < 3; d++) {
+            ft[d][k] = ft[d][from[k]];
+            ft[d][from[k]] = 0;
+        }
+        ++*handed;
+    }
     ct_free(carry);
+    ct_free(from);
     /* The narrow phase is per pair: the block pass must give its bytes for
      * what it keeps: p of every pair, the flag of every pair it evaluated,
      * the weights of every pair in contact. A pair the skip left out must
@@ -361,7 +378,8 @@ static void fused_pass_check(ct_assemble_variant variant)
      * per-pair weights; the other variants keep them (and the reference
      * checks them). */
     cr_assert_eq(ctd_cycle_geo(r.cy)->h1 == NULL, variant == CT_ASM_COLOUR);
-    ct_real *ft[3] = {NULL, NULL, NULL}, *f[3];
+    ct_real *ft[3] = {NULL, NULL, NULL}, *f[3], *pprev = NULL;
+    int64_t handed = 0;
     for (int d = 0; d < 3; d++) {
         f[d] = ct_calloc((size_t)r.n, sizeof(ct_real));
         cr_assert(f[d]);
@@ -378,12 +396,15 @@ static void fused_pass_check(ct_assemble_variant variant)
                 ft[d] = ct_calloc((size_t)P->n, sizeof(ct_real));
                 cr_assert(ft[d]);
             }
+            pprev = ct_calloc((size_t)P->n, sizeof(ct_real));
+            cr_assert(pprev);
         } else if (s->resorts > 1) {
             break; /* the pairs moved: the reference's history no longer applies */
         }
         ct_real dkin, dnod;
         const uint8_t *ev = ctd_cycle_evaluated(r.cy);
-        whole_list_reference(&r, P, ft, f, &dkin, &dnod, ctd_cycle_geo(r.cy), ev);
+        whole_list_reference(&r, P, ft, pprev, f, &dkin, &dnod, ctd_cycle_geo(r.cy), ev,
+                             &handed);
         for (ct_idx q = 0; q < P->n; q++)
             skipped += !ev[q];
         /* The friction history, pair by pair: the whole list's within
@@ -424,10 +445,12 @@ static void fused_pass_check(ct_assemble_variant variant)
     }
     cr_assert_geq(checked, 2, "only %d cycles before the first re-sort", checked);
     cr_assert_gt(skipped, 0, "the skip left no pair out: the test does not exercise it");
+    cr_assert_gt(handed, 0, "no node's contact moved to another pair: the hand-over untested");
     for (int d = 0; d < 3; d++) {
         ct_free(ft[d]);
         ct_free(f[d]);
     }
+    ct_free(pprev);
     crun_free(&r);
 }
 
