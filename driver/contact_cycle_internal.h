@@ -60,20 +60,17 @@ typedef struct cy_block {
  * active pairs are packed into a per-thread scratch of as many entries as
  * the longest block (len): their local indices (act), the gathered inputs
  * and the kernels' outputs; CS_PPREV and CS_HO hold the evaluated pairs'
- * last penetrations and hand-overs (ct_select_pairs), CS_OLD the block's
- * pairs that were in contact last step (nold of them: the only ones whose
- * friction history may be nonzero).
+ * last penetrations and hand-overs (ct_select_pairs).
  */
 enum { CS_H1, CS_H2, CS_H3, CS_H4, CS_NX, CS_NY, CS_NZ, CS_PEN, CS_GAP, CS_MS, CS_K0,
        CS_T0, CS_T1, CS_T2, CS_VRX, CS_VRY, CS_VRZ, CS_VN, CS_FEL, CS_KTAN, CS_FN,
        CS_FX, CS_FY, CS_FZ, CS_PPREV, CS_NREAL };
-enum { CS_ACT, CS_NODE, CS_S1, CS_S2, CS_S3, CS_S4, CS_HO, CS_OLD, CS_NIDX };
+enum { CS_ACT, CS_NODE, CS_S1, CS_S2, CS_S3, CS_S4, CS_HO, CS_NIDX };
 typedef struct cy_scratch {
     ct_real *v[CS_NREAL];
     ct_idx *i[CS_NIDX];
     int32_t *flag7;
     uint8_t *carry; /* the selection's carry flags */
-    ct_idx nold;    /* entries of i[CS_OLD] */
     void *mem; /* the one allocation the arrays live in */
 } cy_scratch;
 

@@ -10,12 +10,12 @@
  * arrays stay in cache from one kernel to the next (separate whole-list
  * passes streamed about 30 arrays of the size of the pair list through
  * memory) and a node's carrying pairs and the hand-over of its pair states
- * are decided inside its block. The narrow phase writes into the thread's
- * scratch; p and the flag go back to the per-pair arrays, and the pairs in
- * contact (p > 0) are packed in place; the force and step kernels run on
- * them alone. A pair out of contact gets from those kernels a zero force, a
- * zero friction force and no step limit, so the pass writes exactly that
- * for it without calling them: on the folded sheet about two candidates in three
+ * are decided inside its block. The narrow phase writes into the thread's scratch; p and the
+ * flag go back to the per-pair arrays, and the pairs in contact (p > 0)
+ * are packed in place; the force and step kernels run on them alone. A
+ * pair out of contact gets from those kernels a zero force, a zero
+ * friction force and no step limit, so the pass writes exactly that for it
+ * without calling them: on the folded sheet about two candidates in three
  * are out of contact. With the colouring, the pair forces of a block stay
  * packed (a compact list: force, weights, nodes of its pairs in contact, at
  * the block's first positions), and the assembly reads those lists alone:
@@ -162,20 +162,13 @@ static ct_idx block_pack(const ctd_cycle *cy, ct_idx k0, ct_idx ne, cy_scratch *
     const uint8_t *restrict fl = (const uint8_t *)(const void *)s->flag7;
     const ct_real *restrict pen = v[CS_PEN];
     {
-        /* A pair's friction history is nonzero only if it was in contact
-         * last step (p > 0 then; a pair the skip leaves out was not): those
-         * are listed (old) for block_unpack to clear, not the whole block. */
         ct_real *restrict gp = g->pen + k0;
         uint8_t *restrict gf = g->flag + k0;
         const ct_idx *restrict a = act;
-        ct_idx *restrict old = s->i[CS_OLD], nold = 0;
         for (ct_idx j = 0; j < ne; j++) {
-            old[nold] = a[j];
-            nold += gp[a[j]] > 0;
             gp[a[j]] = pen[j];
             gf[a[j]] = fl[j];
         }
-        s->nold = nold;
     }
     /* The evaluated pairs in contact (positions in the scratch, pk). Every
      * index is written, the count advances by the test: no branch. The
@@ -304,12 +297,12 @@ static int packed_force(const ctd_cycle *cy, ct_idx na, cy_scratch *s, const ct_
 }
 
 /* Write block [k0, k1)'s friction histories (the packed pairs' results,
- * zero for the others: those of last step's pairs in contact cleared) and
- * its pair forces (normal plus tangential). With the fused assembly
- * (cti_cycle_fused), the forces go to the block's compact list: its pairs
- * in contact at [k0, k0 + na) of the per-pair arrays, in order, with their
- * nodes and weights, which the assembly then reads alone; otherwise into
- * the per-pair arrays fp, zero for the pairs out of contact. */
+ * zero for the others) and its pair forces (normal plus tangential). With
+ * the fused assembly (cti_cycle_fused), the forces go to the block's
+ * compact list: its pairs in contact at [k0, k0 + na) of the per-pair
+ * arrays, in order, with their nodes and weights, which the assembly then
+ * reads alone; otherwise into the per-pair arrays fp, zero for the pairs
+ * out of contact. */
 static void block_unpack(const ctd_cycle *cy, ct_idx k0, ct_idx k1, ct_idx na,
                          const cy_scratch *s)
 {
@@ -331,9 +324,8 @@ static void block_unpack(const ctd_cycle *cy, ct_idx k0, ct_idx k1, ct_idx na,
             for (ct_idx i = 0; fric && i < na; i++)
                 f[act[i]] = fn[i] + fh[i];
         }
-        const ct_idx *restrict old = s->i[CS_OLD];
-        for (ct_idx i = 0; fric && i < s->nold; i++)
-            h[old[i]] = 0;
+        if (fric)
+            memset(h, 0, sizeof(ct_real) * (size_t)(k1 - k0));
     }
     if (fric) {
         /* The histories of the pairs in contact, the three components in
