@@ -55,8 +55,9 @@ def print_cycle(cyc, out):
                "per-thread figure of the target of issue 5 (≤ %s ns/node/cycle per thread); "
                "speed-up = total with 1 thread / "
                "total with this row's threads. The cycle chooses the pairs that carry each "
-               "node (ct_select_pairs, one per side), as the driver's interfaces do: active = "
-               "the carrying pairs in contact; the selection's time is in the narrow phase's."
+               "node (ct_select_pairs, one per side) and hands a node's friction history to "
+               "its new carrier, as the driver's interfaces do: active = the carrying pairs "
+               "in contact; the selection's time is in the narrow phase's."
                "\n" % fmt_num(CYCLE_TARGET_NS))
     present = sorted(set(r["prec"] for r in cyc), key=lambda p: (prec_rank(p), p))
     for p in present:
