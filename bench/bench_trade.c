@@ -420,6 +420,7 @@ static void bm_trade(gb_state *st, void *arg)
         break;
     case K_RENUM:
     case K_DENSE:
+    case K_CELL:
         ctbt_bm_static_search(st, d);
         break;
     case K_QUAD:
@@ -491,6 +492,12 @@ int ctb_trade_register(const ctb_search_config *c)
         snprintf(name, sizeof name, "dense/%s@graded", ctbt_dense_name(v));
         ADD(K_DENSE, 0, v);
     }
+    for (int f = 0; f < CL_NFAMILY; f++)
+        for (int v = 0; v < CL_NFACTOR; v++) {
+            snprintf(name, sizeof name, "cells/%g@%s", ctbt_cell_factors[v],
+                     ctbt_cell_families[f]);
+            ADD(K_CELL, f, v);
+        }
     for (int v = 0; v < 2; v++)
         for (int q = 0; q < CT_QUAD_NMETHOD; q++) {
             snprintf(name, sizeof name, "quad/%s@%s", ct_quad_method_name((ct_quad_method)q),

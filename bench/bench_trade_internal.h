@@ -25,9 +25,17 @@
 #define WQ_PAIRS 100000
 #define RN_TARGET 1000000 /* secondaries of the renumbering knob's shuffled plates */
 #define DN_TARGET 100000  /* secondaries of the dense-leaf knob's graded mesh */
+#define CL_TARGET 100000  /* secondaries of the cell-size knob's meshes */
+/* The cell-size knob: the bucket grid's cell_factor settings, and the
+ * families it is measured on (bench_trade_search.c). */
+#define CL_NFACTOR 5
+#define CL_NFAMILY 4
+extern const double ctbt_cell_factors[CL_NFACTOR];
+extern const char *const ctbt_cell_families[CL_NFAMILY];
 #define SAFETY_PHASES 32
 
-enum { K_SEARCH, K_FILTER, K_MARGIN, K_RENUM, K_DENSE, K_QUAD, K_PREC, K_ASM, K_STIFF, K_SAFETY };
+enum { K_SEARCH, K_FILTER, K_MARGIN, K_RENUM, K_DENSE, K_CELL, K_QUAD, K_PREC, K_ASM, K_STIFF,
+       K_SAFETY };
 enum { ASM_COLOUR, ASM_COLOUR_B1, ASM_ATOMIC, ASM_THREADBUF, ASM_GATHER, ASM_SERIAL, ASM_N };
 
 /* MV_SHEET: the crumpled sheet in self contact (every knob of the moving

@@ -264,14 +264,21 @@ void ctbt_bm_margin(gb_state *st, const tdesc *d)
                "pairs within the gap missing from the candidates (summed over the steps)", note);
 }
 
-/* ---- Knobs on one static search case: renumbering, dense bsp leaves ------ */
+/* ---- Knobs on one static search case: renumbering, dense bsp leaves, cells */
 
-/* The two cases, built on first use with their reference pairs:
+/* The cases, built on first use with their reference pairs:
  *  SK_RENUM  shuffled plates (RN_TARGET secondaries), reference the bucket
  *            search with renumbering off;
  *  SK_DENSE  the graded mesh (DN_TARGET secondaries, natural numbering),
- *            reference the bsp search with no dense leaf (the batch path). */
-enum { SK_RENUM, SK_DENSE, SK_N };
+ *            reference the bsp search with no dense leaf (the batch path);
+ *  SK_CELL + f  family ctbt_cell_families[f] (CL_TARGET secondaries,
+ *            natural numbering), reference the bucket search with its
+ *            default grid. The grid's size changes the cost only: the rows
+ *            show how far the default sizing (Radioss's, from the bounding
+ *            box's faces) is from the best on each kind of mesh. */
+enum { SK_RENUM, SK_DENSE, SK_CELL, SK_N = SK_CELL + CL_NFAMILY };
+const double ctbt_cell_factors[CL_NFACTOR] = {0.35, 0.5, 0.7, 1.0, 1.4};
+const char *const ctbt_cell_families[CL_NFAMILY] = {"crumpled", "folded", "soup", "graded"};
 static struct skcase {
     int state; /* 0: not built, 1: ready, -1: failed */
     char err[256];
@@ -291,14 +298,16 @@ void ctbt_rn_free(void)
     }
 }
 
-/* A search of algorithm a with renumber, renumber_keep and dense set. */
-static int sk_run(ct_search_algo a, int renumber, int keep, int dense, const ct_search_input *in,
-                  ct_search **s, ct_pairs *out)
+/* A search of algorithm a with renumber, renumber_keep, dense and
+ * cell_factor (0: the default) set. */
+static int sk_run(ct_search_algo a, int renumber, int keep, int dense, double cell,
+                  const ct_search_input *in, ct_search **s, ct_pairs *out)
 {
     ct_search_params p = ct_search_default_params(a);
     p.renumber = renumber;
     p.renumber_keep = keep;
     p.dense = dense;
+    p.cell_factor = cell;
     int rc = ct_search_init(s, &p);
     return rc == CT_OK ? ct_search_run(*s, in, out) : rc;
 }
@@ -334,22 +343,26 @@ static struct skcase *sk_get(int which)
     k->state = -1;
     int rc = which == SK_RENUM
                  ? ctd_case_make(&k->c, "plates", RN_TARGET, CTD_NUM_SHUFFLED, 3, &dg)
-                 : ctd_case_make(&k->c, "graded", DN_TARGET, CTD_NUM_NATURAL, 3, &dg);
+             : which == SK_DENSE
+                 ? ctd_case_make(&k->c, "graded", DN_TARGET, CTD_NUM_NATURAL, 3, &dg)
+                 : ctd_case_make(&k->c, ctbt_cell_families[which - SK_CELL], CL_TARGET,
+                                 CTD_NUM_NATURAL, 3, &dg);
     ct_search *s = NULL;
     if (rc == CT_OK) {
         ctd_case_input(&k->c, (ct_real)(TR_GAP * k->c.h_mean), (ct_real)(TR_MARGIN * k->c.h_mean),
                        &k->in);
         rc = ct_pairs_init(&k->ref, 0);
         if (rc == CT_OK)
-            rc = which == SK_RENUM ? sk_run(CT_SEARCH_BUCKET, -1, 0, 0, &k->in, &s, &k->ref)
-                                   : sk_run(CT_SEARCH_BSP, 0, 0, -1, &k->in, &s, &k->ref);
+            rc = which == SK_RENUM   ? sk_run(CT_SEARCH_BUCKET, -1, 0, 0, 0, &k->in, &s, &k->ref)
+                 : which == SK_DENSE ? sk_run(CT_SEARCH_BSP, 0, 0, -1, 0, &k->in, &s, &k->ref)
+                                     : sk_run(CT_SEARCH_BUCKET, 0, 0, 0, 0, &k->in, &s, &k->ref);
         ct_search_destroy(s);
     }
     if (rc == CT_OK)
         k->state = 1;
     else
         snprintf(k->err, sizeof k->err, "%s case: %.200s",
-                 which == SK_RENUM ? "renumbering" : "dense-leaf",
+                 which == SK_RENUM ? "renumbering" : which == SK_DENSE ? "dense-leaf" : "cell-size",
                  dg.msg[0] ? dg.msg : ct_strerror(rc));
     return k;
 }
@@ -361,31 +374,38 @@ const char *ctbt_renum_name(int variant)
 
 /* renumber: d->sub the algorithm, d->variant 0 off, 1 auto, 2 fresh (auto,
  * a new numbering every search). dense: bsp, d->variant -1 off, 0 auto,
- * 1 on. */
+ * 1 on. cell: bucket, d->sub the family, d->variant the factor's index. */
 void ctbt_bm_static_search(gb_state *st, const tdesc *d)
 {
     ctb_bind_threads(ctbt_cfg.bind, ctbt_cfg.max_threads, NULL, 0);
-    const int which = d->knob == K_DENSE ? SK_DENSE : SK_RENUM;
+    const int which = d->knob == K_DENSE ? SK_DENSE
+                      : d->knob == K_CELL ? SK_CELL + d->sub
+                                          : SK_RENUM;
     struct skcase *k = sk_get(which);
     if (k->state < 0) {
         gb_skip_with_error(st, k->err);
         return;
     }
-    const ct_search_algo a = which == SK_RENUM ? (ct_search_algo)d->sub : CT_SEARCH_BSP;
+    const ct_search_algo a = which == SK_RENUM   ? (ct_search_algo)d->sub
+                             : which == SK_DENSE ? CT_SEARCH_BSP
+                                                 : CT_SEARCH_BUCKET;
     const int renumber = which == SK_RENUM ? (d->variant ? 0 : -1) : 0;
     const int keep = which == SK_RENUM && d->variant == 2 ? -1 : 0;
     const int dense = which == SK_DENSE ? d->variant : 0;
+    const double cell = which >= SK_CELL ? ctbt_cell_factors[d->variant] : 0;
     char name[64];
     if (which == SK_RENUM)
         snprintf(name, sizeof name, "%s@%s", ctbt_renum_name(d->variant), ct_search_algo_name(a));
-    else
+    else if (which == SK_DENSE)
         snprintf(name, sizeof name, "%s@graded", ctbt_dense_name(dense));
+    else
+        snprintf(name, sizeof name, "%g@%s", cell, ctbt_cell_families[d->sub]);
     ct_search *s = NULL;
     ct_pairs out;
     memset(&out, 0, sizeof out);
     int rc = ct_pairs_init(&out, 0);
     if (rc == CT_OK)
-        rc = sk_run(a, renumber, keep, dense, &k->in, &s, &out); /* also the untimed warm-up */
+        rc = sk_run(a, renumber, keep, dense, cell, &k->in, &s, &out); /* the untimed warm-up */
     const int64_t differ = rc == CT_OK ? sk_differ(&out, &k->ref) : 0;
     const double mem = (double)ct_search_memory(s);
     int64_t it = 0;
@@ -404,17 +424,25 @@ void ctbt_bm_static_search(gb_state *st, const tdesc *d)
     const double nsec = k->c.sec.n;
     ctbt_cost_accuracy(st, dt, it, (double)nsec, (double)differ);
     gb_set_counter(st, "x_bytes_per_node", mem / nsec, GB_PLAIN);
-    char note[300];
+    char note[300], mesh[96];
+    if (which >= SK_CELL)
+        snprintf(mesh, sizeof mesh, "%s, natural numbering", ctbt_cell_families[d->sub]);
     snprintf(note, sizeof note,
              "%s, %ld secondary nodes, gap 0.3 h + margin 0.2 h, %d threads",
-             which == SK_RENUM ? "plates, shuffled numbering" : "graded mesh, natural numbering",
+             which == SK_RENUM   ? "plates, shuffled numbering"
+             : which == SK_DENSE ? "graded mesh, natural numbering"
+                                 : mesh,
              (long)k->c.sec.n, ctbt_cfg.max_threads);
     if (which == SK_RENUM)
         ctbt_label(st, "renumber", name, "ns/node per search",
                    "pairs differing from the bucket search with renumbering off", note);
-    else
+    else if (which == SK_DENSE)
         ctbt_label(st, "dense", name, "ns/node per search",
                    "pairs differing from the bsp search without dense leaves", note);
+    else
+        ctbt_label(st, "bucket cells", name, "ns/node per search",
+                   "pairs differing from the bucket search with its default grid (cell_factor 1)",
+                   note);
 }
 
 const char *ctbt_dense_name(int dense)

@@ -14,7 +14,7 @@ from benchjson import NAME_TAIL, split_named
 
 TRADE_RE = re.compile(r"^trade/(?P<knob>[^/]+)/(?P<setting>[^/]+)" + NAME_TAIL)
 # The knobs in the order of the table; any other after them.
-TRADE_KNOBS = ["search", "filter", "margin", "renumber", "dense", "quad", "precision",
+TRADE_KNOBS = ["search", "filter", "margin", "renumber", "dense", "cells", "quad", "precision",
                "assembly", "skip", "stiffness", "safety"]
 
 
