@@ -362,14 +362,8 @@ static int phase_search(ctd_cycle *cy, const ct_real *x, const ct_real *y, const
      * node's states over when its contact moves to another pair). A pair
      * the skip leaves out reads 0 here: it was out of contact when last
      * evaluated, or it is new. */
-    {
-        const ct_idx *restrict o = cy->old_of_new;
-        const ct_real *restrict src = cy->pp[old];
-        ct_real *restrict dst = cy->pp[now];
-#pragma omp parallel for simd schedule(static)
-        for (ct_idx k = 0; k < n; k++)
-            dst[k] = o[k] >= 0 ? src[o[k]] : 0;
-    }
+    if ((rc = ct_pair_remap(n, cy->old_of_new, cy->pp[old], 0, cy->pp[now])) != CT_OK)
+        return rc;
     if (cy->skip_on)
         cti_skip_remap(cy, n, old, now);
     /* Positions at this sort. */
