@@ -76,8 +76,13 @@ typedef struct ct_search_params {
      * the same pairs. */
     int variant;
     /* bucket: cells per unit length = cell_factor * 0.75 *
-     * sqrt(nseg / (LxLy + LyLz + LzLx)) (Radioss sizing; 0 -> 1.0), total
-     * cells capped at max_cells (0 -> 2 * (nsec + nseg) + 1024). */
+     * sqrt(nseg / (LxLy + LyLz + LzLx)) (cell_factor 1: the Radioss
+     * sizing), total cells capped at max_cells (0 -> 2 * (nsec + nseg) +
+     * 1024). cell_factor 0 (default): chosen per input among 0.1 to 3, by
+     * the cost of binning and testing counted on a sample of the input,
+     * kept for up to 16 searches while the input's counts and extent stay
+     * (kernels/search_bucket_auto.c). The pairs are the same for any
+     * factor; variant 0 takes 0 as 1. */
     double cell_factor;
     int64_t max_cells;
     /* bsp: a box becomes a leaf, tested all against all, when it holds no

@@ -31,7 +31,7 @@ ct_search_params ct_search_default_params(ct_search_algo algo)
     memset(&p, 0, sizeof p);
     p.algo = algo;
     p.variant = 1;
-    p.cell_factor = 1.0;
+    p.cell_factor = 0; /* chosen per input */
     p.max_cells = 0;
     p.leaf_size = 32;
     p.min_box = 0;

@@ -79,6 +79,8 @@ static void bk_free(void *v)
     ct_free(st->ncl);
     ct_free(st->ord);
     ct_free(st->ordc);
+    ct_free(st->hist);
+    ct_free(st->auto_scr);
     for (int b = 0; b < st->maxblk; b++) {
         ct_free(st->buf[b].node);
         ct_free(st->buf[b].seg);
@@ -94,7 +96,8 @@ static size_t bk_memory(const void *v)
     b += st->box_cap * sizeof(ct_real) + st->fbox_cap * sizeof(float);
     b += st->rng_cap * sizeof(uint64_t) + (st->srec_cap + st->xyzw_cap) * sizeof(ct_real);
     b += (st->cnt_cap + st->start_cap + st->ent_cap) * sizeof(ct_idx);
-    b += (st->ncl_cap + st->ord_cap + st->ordc_cap) * sizeof(ct_idx);
+    b += (st->ncl_cap + st->ord_cap + st->ordc_cap + st->hist_cap) * sizeof(ct_idx);
+    b += st->auto_scr_cap * sizeof(ct_real);
     for (int k = 0; k < st->maxblk; k++)
         b += 2 * st->buf[k].cap * sizeof(ct_idx);
     return b;
@@ -293,6 +296,36 @@ static void bk_place(bk_state *st, const ct_search_input *in, const bk_grid *g, 
     }
 }
 
+/* The cell factor when cell_factor is 0: the one chosen before, unless it
+ * is BK_AUTO_EVERY searches old or the input changed (counts, or a side
+ * of the region by more than BK_AUTO_DRIFT); then a new choice. */
+static int bk_auto(bk_state *st, const ct_search_input *in, const bk_grid *g, int64_t maxc,
+                   int64_t limit, int nb)
+{
+    int fresh = st->auto_f > 0 && st->auto_age < BK_AUTO_EVERY && st->auto_nsec == in->nsec &&
+                st->auto_nseg == in->nseg;
+    for (int k = 0; k < 3 && fresh; k++) {
+        const ct_real len = g->hi[k] - g->lo[k], was = st->auto_len[k];
+        fresh = !(len - was > BK_AUTO_DRIFT * was || was - len > BK_AUTO_DRIFT * was);
+    }
+    if (fresh) {
+        st->auto_age++;
+        return CT_OK;
+    }
+    if (bk_grow(&st->hist, &st->hist_cap, (size_t)maxc, sizeof(ct_idx)) ||
+        bk_grow(&st->auto_scr, &st->auto_scr_cap,
+                cti_bucket_auto_scratch() / sizeof(ct_real) + 1, sizeof(ct_real)))
+        return CT_ERR_NOMEM;
+    st->auto_f = cti_bucket_auto_factor(in, st->fbox, g->lo, g->hi, maxc, limit, nb, st->hist,
+                                        st->auto_scr, NULL);
+    st->auto_age = 1;
+    st->auto_nsec = in->nsec;
+    st->auto_nseg = in->nseg;
+    for (int k = 0; k < 3; k++)
+        st->auto_len[k] = g->hi[k] - g->lo[k];
+    return CT_OK;
+}
+
 /* Variant: 1 (default) this file's design, 0 the baseline of
  * search_bucket_v0.c, chosen by ct_search_params.variant. */
 int cti_search_bucket_v0(ct_search *s, const ct_search_input *in, ct_pairs *out);
@@ -366,7 +399,13 @@ int cti_search_bucket(ct_search *s, const ct_search_input *in, ct_pairs *out)
     maxc = CTI_MIN(maxc, (int64_t)(INT32_MAX / 4) / nb);
     const int64_t limit =
         CTI_MIN((int64_t)INT32_MAX - 1, 32 * ((int64_t)in->nsec + in->nseg) + (1 << 20));
-    double factor = s->p.cell_factor > 0 ? s->p.cell_factor : BK_CELL_FACTOR;
+    double factor = s->p.cell_factor;
+    if (!(factor > 0)) {
+        rc = bk_auto(st, in, &g, maxc, limit, nb);
+        if (rc)
+            return rc;
+        factor = st->auto_f;
+    }
     for (;;) {
         cti_bucket_size(g.lo, g.hi, in->nseg, factor, maxc, g.n, g.inv);
         g.ncell = (int64_t)g.n[0] * g.n[1] * g.n[2];

@@ -43,10 +43,55 @@ typedef struct bk_state {
     size_t ncl_cap, ord_cap, ordc_cap;
     bk_out *buf; /* per block; buf[0] is unused (block 0 writes the output) */
     int srec_on;  /* srec holds this call's corners */
+    /* The chosen cell factor (cell_factor 0): search_bucket_auto.c's
+     * histogram (all zero between calls), the factor, the searches since
+     * it was chosen, and the input it was chosen on. */
+    ct_idx *hist;
+    size_t hist_cap;
+    ct_real *auto_scr; /* cti_bucket_auto_scratch() bytes */
+    size_t auto_scr_cap;
+    double auto_f;
+    int auto_age;
+    ct_idx auto_nsec, auto_nseg;
+    ct_real auto_len[3];
 } bk_state;
 
-/* The default cell_factor (ct_search_params.cell_factor == 0). */
-#define BK_CELL_FACTOR 1.0
+/* The candidate cell factors, coarse to fine, and the cost weights per
+ * entry binned (BK_AUTO_E) and per cell per counting block (BK_AUTO_C), a
+ * node's test of one entry weighing 1 (search_bucket_auto.c). */
+#define BK_AUTO_NF 10
+extern const double cti_bucket_auto_factors[BK_AUTO_NF];
+#define BK_AUTO_E 2.0
+#define BK_AUTO_C 6.0
+/* Segments and secondary nodes sampled, at most (all when fewer). */
+#define BK_AUTO_SEGS 4096
+#define BK_AUTO_NODES 8192
+
+/* A choice of cell factor, for tests and reports: the factor, the
+ * estimated entries binned and entries tested and the cells of its grid,
+ * and the number of grids priced. */
+typedef struct cti_bucket_auto_info {
+    double factor, entries, tests, cells;
+    int priced;
+} cti_bucket_auto_info;
+
+/* The cell factor for this input (search_bucket_auto.c): fbox the
+ * segments' float boxes (pass 1), lo/hi the grid's region, maxc the cap on
+ * cells, limit the entries beyond which the search coarsens the grid, nb
+ * the counting blocks, hist maxc zeros (zeros again on return); info may
+ * be NULL; scratch cti_bucket_auto_scratch() bytes, ct_real-aligned. */
+double cti_bucket_auto_factor(const ct_search_input *in, const float *fbox,
+                              const ct_real lo[3], const ct_real hi[3], int64_t maxc,
+                              int64_t limit, int nb, ct_idx *hist, void *scratch,
+                              cti_bucket_auto_info *info);
+/* The bytes of cti_bucket_auto_factor's scratch (the gathered samples). */
+size_t cti_bucket_auto_scratch(void);
+
+/* The chosen factor is kept for this many searches at most, and while the
+ * counts stay the same and no side of the region changes by more than
+ * BK_AUTO_DRIFT (relative). */
+#define BK_AUTO_EVERY 16
+#define BK_AUTO_DRIFT 0.1
 
 /* The grid: the region where a node may pair at all, cells per axis and
  * per unit length. */

@@ -1,0 +1,199 @@
+/*
+ * search_bucket_auto.c -- the bucket grid's cell size chosen per input
+ * (ct_search_params.cell_factor == 0, the default).
+ *
+ * The Radioss sizing (cells per unit length from the number of segments
+ * over the faces of the bounding box) suits a surface spread over its box:
+ * two plates, a tube. It is too fine where the segments fill a volume (a
+ * soup of small plates, a crumpled sheet): a segment's box then covers
+ * tens of cells, and the binning writes tens of entries per segment. It is
+ * too coarse where element sizes vary (a graded mesh): a node's cell then
+ * holds hundreds of segments to test. The best factor measured on the
+ * synthetic families ranged from 0.25 to 2 times the Radioss sizing, and
+ * the search at the Radioss sizing was up to 2.3x slower than at the best.
+ *
+ * The chooser prices every candidate grid with what the search will do on
+ * it, counted on a sample of the input:
+ *   E  the entries the binning writes (cells covered, per segment);
+ *   T  the entries the nodes test (the entries of a node's cell);
+ *   C  the cells, whose counters every block clears and scans;
+ * cost = BK_AUTO_E E + T + BK_AUTO_C nb C, nb the counting blocks (one per
+ * thread, each with counters of its own). The weights are fitted to the
+ * searches' times on ten families (1 thread, 10^5 and 10^6 nodes, factors
+ * 0.1 to 3; docs/DESIGN-CHANGES.md section 5): with them the chosen grid
+ * was within 4 % of the best of the ten factors on every family, and over
+ * a range of 1.5 to 3 for the entry weight and 4 to 10 for the cell weight
+ * the choice moves by less than 2 % in total. The pairs are the same on
+ * every grid (search_bucket.c): the choice changes the cost, never the
+ * result.
+ *
+ * Sampling: up to BK_AUTO_SEGS segments and BK_AUTO_NODES secondary nodes,
+ * drawn over the numbering (auto_pick) and gathered once into a compact
+ * scratch (the passes over the candidates then stay in cache). E =
+ * (nseg / segments sampled) x
+ * the sampled segments' spans. For T, the sampled nodes are counted into a
+ * histogram of cells and every sampled segment sums the counts over its
+ * range: the sampled (node, entry) couples, scaled by both sampling
+ * ratios; both estimates are unbiased. The candidates go from coarse to
+ * fine; once the part of a candidate's cost that only grows with finer
+ * grids (entries and cells) exceeds the best cost so far, the finer ones
+ * are not priced. The histogram is emptied by walking the node sample
+ * again, so its cost follows the sample, not the cells.
+ * Serial and in a fixed order: the choice is the same on every run.
+ */
+#include <string.h>
+
+#include "ct_internal.h"
+#include "search_bucket_internal.h"
+
+const double cti_bucket_auto_factors[BK_AUTO_NF] = {0.1, 0.15, 0.25, 0.35, 0.5,
+                                                   0.7, 1.0,  1.4,  2.0,  3.0};
+
+
+/* The m-th of s samples out of n, stream `seed`: m itself when all are
+ * taken, otherwise a position drawn by a 64-bit mix (SplitMix64's
+ * finaliser; drawn with replacement, which keeps the estimates unbiased).
+ * Node and segment samples draw from different streams: a stride, or one
+ * multiplier for both, aliases on a regular mesh (two plates numbered
+ * alike put the k-th sampled node over the k-th sampled segment, which
+ * doubled T in a first version). */
+static inline ct_idx auto_pick(ct_idx m, ct_idx s, ct_idx n, uint64_t seed)
+{
+    if (s == n)
+        return m;
+    uint64_t z = seed + (uint64_t)m * UINT64_C(0x9e3779b97f4a7c15);
+    z = (z ^ (z >> 30)) * UINT64_C(0xbf58476d1ce4e5b9);
+    z = (z ^ (z >> 27)) * UINT64_C(0x94d049bb133111eb);
+    z ^= z >> 31;
+    return (ct_idx)(z % (uint64_t)n);
+}
+
+/* Sampled segment box f's cell range on grid g (as bk_ranges computes
+ * it); 0 when it misses the grid. */
+static int auto_range(const float *restrict f, const bk_grid *g, ct_idx a[3], ct_idx b[3])
+{
+    for (int k = 0; k < 3; k++) {
+        const ct_real l = f[k], h = -(ct_real)f[4 + k];
+        if (h < g->lo[k] || l > g->hi[k])
+            return 0;
+        a[k] = bk_cell1(l, g->lo[k], g->inv[k], g->n[k] - 1);
+        b[k] = bk_cell1(h, g->lo[k], g->inv[k], g->n[k] - 1);
+    }
+    return 1;
+}
+
+/* Add v to the histogram at the cells of the nv sampled nodes (xyz). */
+static void auto_nodes(const ct_real *restrict xyz, ct_idx nv, const bk_grid *g,
+                       ct_idx *restrict hist, ct_idx v)
+{
+    const size_t nx = (size_t)g->n[0], ny = (size_t)g->n[1];
+    for (ct_idx m = 0; m < nv; m++) {
+        const ct_real *p = xyz + (size_t)3 * m;
+        const size_t cx = (size_t)bk_cell1(p[0], g->lo[0], g->inv[0], g->n[0] - 1);
+        const size_t cy = (size_t)bk_cell1(p[1], g->lo[1], g->inv[1], g->n[1] - 1);
+        const size_t cz = (size_t)bk_cell1(p[2], g->lo[2], g->inv[2], g->n[2] - 1);
+        hist[(cz * ny + cy) * nx + cx] += v;
+    }
+}
+
+size_t cti_bucket_auto_scratch(void)
+{
+    return (size_t)3 * BK_AUTO_NODES * sizeof(ct_real) + (size_t)8 * BK_AUTO_SEGS * sizeof(float);
+}
+
+double cti_bucket_auto_factor(const ct_search_input *in, const float *fbox,
+                              const ct_real lo[3], const ct_real hi[3], int64_t maxc,
+                              int64_t limit, int nb, ct_idx *hist, void *scratch,
+                              cti_bucket_auto_info *info)
+{
+    const ct_idx nseg = in->nseg, nsec = in->nsec;
+    const ct_idx ss = CTI_MIN(nseg, BK_AUTO_SEGS), sn = CTI_MIN(nsec, BK_AUTO_NODES);
+    const double ks = (double)nseg / (double)ss, kn = (double)nsec / (double)sn;
+    /* The samples, gathered once: the nodes the query would look up (a
+     * node out of range, refused there, or out of the region tests
+     * nothing), and the segments' float boxes. */
+    ct_real *restrict xyz = scratch;
+    float *restrict sbox = (float *)(xyz + (size_t)3 * BK_AUTO_NODES);
+    ct_idx nv = 0;
+    for (ct_idx m = 0; m < sn; m++) {
+        const ct_idx p = in->sec[auto_pick(m, sn, nsec, 1)];
+        if ((uint32_t)p >= (uint32_t)in->nnode)
+            continue;
+        const ct_real X = in->x[p], Y = in->y[p], Z = in->z[p];
+        if (!(X >= lo[0] && X <= hi[0] && Y >= lo[1] && Y <= hi[1] && Z >= lo[2] && Z <= hi[2]))
+            continue;
+        xyz[3 * (size_t)nv] = X;
+        xyz[3 * (size_t)nv + 1] = Y;
+        xyz[3 * (size_t)nv + 2] = Z;
+        nv++;
+    }
+    for (ct_idx m = 0; m < ss; m++)
+        memcpy(sbox + (size_t)8 * m, fbox + (size_t)8 * auto_pick(m, ss, nseg, 2),
+               8 * sizeof(float));
+    double best = -1, best_f = 1.0;
+    ct_idx prev[3] = {0, 0, 0};
+    int priced = 0;
+    for (int c = 0; c < BK_AUTO_NF; c++) {
+        bk_grid g;
+        for (int k = 0; k < 3; k++) {
+            g.lo[k] = lo[k];
+            g.hi[k] = hi[k];
+        }
+        cti_bucket_size(lo, hi, nseg, cti_bucket_auto_factors[c], maxc, g.n, g.inv);
+        if (g.n[0] == prev[0] && g.n[1] == prev[1] && g.n[2] == prev[2])
+            continue; /* the same grid as the coarser candidate (the cap) */
+        for (int k = 0; k < 3; k++)
+            prev[k] = g.n[k];
+        g.ncell = (int64_t)g.n[0] * g.n[1] * g.n[2];
+        /* Entries: the sampled spans, scaled. */
+        double e = 0;
+        for (ct_idx m = 0; m < ss; m++) {
+            ct_idx a[3], b[3];
+            if (auto_range(sbox + (size_t)8 * m, &g, a, b))
+                e += (double)(b[0] - a[0] + 1) * (double)(b[1] - a[1] + 1) *
+                     (double)(b[2] - a[2] + 1);
+        }
+        e *= ks;
+        if (e > (double)limit)
+            break; /* the search would coarsen it; finer ones too */
+        const double floor_cost = BK_AUTO_E * e + BK_AUTO_C * nb * (double)g.ncell;
+        if (best >= 0 && floor_cost >= best)
+            break;
+        /* Tests: the sampled nodes in the cells of the sampled segments'
+         * ranges, counted from the segments' side (reads only). */
+        auto_nodes(xyz, nv, &g, hist, 1);
+        const size_t nx = (size_t)g.n[0], ny = (size_t)g.n[1];
+        double t = 0;
+        for (ct_idx m = 0; m < ss; m++) {
+            ct_idx a[3], b[3];
+            if (!auto_range(sbox + (size_t)8 * m, &g, a, b))
+                continue;
+            ct_idx sum = 0;
+            for (ct_idx iz = a[2]; iz <= b[2]; iz++)
+                for (ct_idx iy = a[1]; iy <= b[1]; iy++) {
+                    const ct_idx *restrict row = hist + ((size_t)iz * ny + (size_t)iy) * nx;
+                    for (ct_idx ix = a[0]; ix <= b[0]; ix++)
+                        sum += row[ix];
+                }
+            t += (double)sum;
+        }
+        auto_nodes(xyz, nv, &g, hist, -1);
+        t *= ks * kn;
+        const double cost = floor_cost + t;
+        priced++;
+        if (best < 0 || cost < best) {
+            best = cost;
+            best_f = cti_bucket_auto_factors[c];
+            if (info) {
+                info->entries = e;
+                info->tests = t;
+                info->cells = (double)g.ncell;
+            }
+        }
+    }
+    if (info) {
+        info->factor = best_f;
+        info->priced = priced;
+    }
+    return best_f;
+}
