@@ -494,7 +494,7 @@ int ctb_trade_register(const ctb_search_config *c)
     }
     for (int f = 0; f < CL_NFAMILY; f++)
         for (int v = 0; v < CL_NFACTOR; v++) {
-            snprintf(name, sizeof name, "cells/%g@%s", ctbt_cell_factors[v],
+            snprintf(name, sizeof name, "cells/%s@%s", ctbt_cell_name(v),
                      ctbt_cell_families[f]);
             ADD(K_CELL, f, v);
         }

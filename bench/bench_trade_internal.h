@@ -28,9 +28,11 @@
 #define CL_TARGET 100000  /* secondaries of the cell-size knob's meshes */
 /* The cell-size knob: the bucket grid's cell_factor settings, and the
  * families it is measured on (bench_trade_search.c). */
-#define CL_NFACTOR 5
+#define CL_NFACTOR 7
 #define CL_NFAMILY 4
 extern const double ctbt_cell_factors[CL_NFACTOR];
+/* Row name of cell factor v: "auto" (0, the chosen grid) or the factor. */
+const char *ctbt_cell_name(int v);
 extern const char *const ctbt_cell_families[CL_NFAMILY];
 #define SAFETY_PHASES 32
 

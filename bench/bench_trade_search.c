@@ -273,11 +273,13 @@ void ctbt_bm_margin(gb_state *st, const tdesc *d)
  *            reference the bsp search with no dense leaf (the batch path);
  *  SK_CELL + f  family ctbt_cell_families[f] (CL_TARGET secondaries,
  *            natural numbering), reference the bucket search with its
- *            default grid. The grid's size changes the cost only: the rows
- *            show how far the default sizing (Radioss's, from the bounding
- *            box's faces) is from the best on each kind of mesh. */
+ *            default grid (chosen per input). The grid's size changes the
+ *            cost only: the rows show how far the chosen grid ("auto") and
+ *            the Radioss sizing (factor 1, from the bounding box's faces)
+ *            are from the best factor on each kind of mesh. */
 enum { SK_RENUM, SK_DENSE, SK_CELL, SK_N = SK_CELL + CL_NFAMILY };
-const double ctbt_cell_factors[CL_NFACTOR] = {0.35, 0.5, 0.7, 1.0, 1.4};
+/* 0: the grid the search chooses (the default); 1: the Radioss sizing. */
+const double ctbt_cell_factors[CL_NFACTOR] = {0, 0.25, 0.35, 0.5, 0.7, 1.0, 2.0};
 const char *const ctbt_cell_families[CL_NFAMILY] = {"crumpled", "folded", "soup", "graded"};
 static struct skcase {
     int state; /* 0: not built, 1: ready, -1: failed */
@@ -399,7 +401,8 @@ void ctbt_bm_static_search(gb_state *st, const tdesc *d)
     else if (which == SK_DENSE)
         snprintf(name, sizeof name, "%s@graded", ctbt_dense_name(dense));
     else
-        snprintf(name, sizeof name, "%g@%s", cell, ctbt_cell_families[d->sub]);
+        snprintf(name, sizeof name, "%s@%s", ctbt_cell_name(d->variant),
+                 ctbt_cell_families[d->sub]);
     ct_search *s = NULL;
     ct_pairs out;
     memset(&out, 0, sizeof out);
@@ -441,8 +444,17 @@ void ctbt_bm_static_search(gb_state *st, const tdesc *d)
                    "pairs differing from the bsp search without dense leaves", note);
     else
         ctbt_label(st, "bucket cells", name, "ns/node per search",
-                   "pairs differing from the bucket search with its default grid (cell_factor 1)",
+                   "pairs differing from the bucket search with its chosen grid (the default)",
                    note);
+}
+
+const char *ctbt_cell_name(int v)
+{
+    static char names[CL_NFACTOR][16];
+    if (ctbt_cell_factors[v] == 0)
+        return "auto";
+    snprintf(names[v], sizeof names[v], "%g", ctbt_cell_factors[v]);
+    return names[v];
 }
 
 const char *ctbt_dense_name(int dense)
