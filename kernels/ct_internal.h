@@ -463,6 +463,13 @@ int cti_search_renumbered(ct_search *s, const ct_search_input *in, ct_pairs *out
                           int (*run)(ct_search *, const ct_search_input *, ct_pairs *),
                           int *done);
 int cti_bucket_scattered(const ct_search_input *in);
+/* 1 when the numbering is local only in short pieces scattered in space
+ * (a soup of small parts, each numbered in order): of 256 sampled
+ * consecutive segments, more than 16 (1 in 16) whose first corners lie
+ * farther apart than an eighth of the samples' box diagonal. A structured
+ * mesh jumps that far once per row, a space-filling curve at its few
+ * coarsest levels. Indices must have been checked (search_bucket_grid.c). */
+int cti_search_pieces(const ct_search_input *in);
 /* 1 when the node arrays are much larger than what the interface uses
  * (more than 4 x (secondaries + 4 x segments)): passes over all nodes would
  * then cost more than the search (search.c). */

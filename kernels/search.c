@@ -92,6 +92,9 @@ size_t ct_search_memory(const ct_search *s)
 /* Nodes from which "auto" renumbers a scattered input for the bucket
  * search (see ct_search_run). */
 #define CTI_RN_BUCKET_MIN (1 << 19)
+/* Nodes from which "auto" renumbers a numbering local in short pieces
+ * only (cti_search_pieces) for the bucket search. */
+#define CTI_RN_PIECES_MIN (1 << 16)
 
 int cti_search_small_share(const ct_search_input *in)
 {
@@ -176,8 +179,15 @@ int ct_search_run(ct_search *s, const ct_search_input *in, ct_pairs *out)
      * 10^5 secondaries, 147-158 against 129-139 at 3 10^5), so "auto"
      * renumbers its input from CTI_RN_BUCKET_MIN nodes only. */
     const int big = s->p.algo != CT_SEARCH_BUCKET || in->nnode >= CTI_RN_BUCKET_MIN;
-    if (s->p.renumber > 0 || (s->p.renumber == 0 && big && !cti_search_small_share(in) &&
-                              cti_bucket_scattered(in))) {
+    /* A numbering local only in short pieces scattered in space (a soup of
+     * small parts) gets the bucket's secondary-order query, whose lists
+     * then hold segments from everywhere in the arrays: the renumbered
+     * copy is faster from CTI_RN_PIECES_MIN nodes (soup, 1 thread: 1.18x
+     * at 10^5 nodes, 1.45x at 3 10^5, 2.6x at 10^6). */
+    const int pieces = s->p.algo == CT_SEARCH_BUCKET && in->nnode >= CTI_RN_PIECES_MIN;
+    if (s->p.renumber > 0 ||
+        (s->p.renumber == 0 && !cti_search_small_share(in) &&
+         ((big && cti_bucket_scattered(in)) || (pieces && cti_search_pieces(in))))) {
         int done = 0;
         rc = cti_search_renumbered(s, in, out, run, &done);
         if (rc || done)

@@ -210,6 +210,40 @@ int cti_bucket_scattered(const ct_search_input *in)
     return far > 128;
 }
 
+int cti_search_pieces(const ct_search_input *in)
+{
+    const ct_idx nseg = in->nseg;
+    if (nseg <= 4096)
+        return 0;
+    const ct_real *restrict x = in->x, *restrict y = in->y, *restrict z = in->z;
+    ct_real d2[256], lo[3], hi[3];
+    for (int q = 0; q < 256; q++) {
+        /* Positions drawn by a 64-bit mix (SplitMix64's finaliser): a
+         * regular stride aliases with a structured mesh's rows (the
+         * folded sheet's stride of nseg / 256 fell on every fourth row's
+         * end). */
+        uint64_t h = (uint64_t)(q + 1) * UINT64_C(0x9e3779b97f4a7c15);
+        h = (h ^ (h >> 30)) * UINT64_C(0xbf58476d1ce4e5b9);
+        h = (h ^ (h >> 27)) * UINT64_C(0x94d049bb133111eb);
+        h ^= h >> 31;
+        const ct_idx j = (ct_idx)(h % (uint64_t)(nseg - 1));
+        const ct_idx a = in->n1[j], b = in->n1[j + 1];
+        const ct_real p[3] = {x[a], y[a], z[a]};
+        const ct_real dx = x[b] - p[0], dy = y[b] - p[1], dz = z[b] - p[2];
+        d2[q] = dx * dx + dy * dy + dz * dz;
+        for (int k = 0; k < 3; k++) {
+            lo[k] = q ? CTI_MIN(lo[k], p[k]) : p[k];
+            hi[k] = q ? CTI_MAX(hi[k], p[k]) : p[k];
+        }
+    }
+    const ct_real ex = hi[0] - lo[0], ey = hi[1] - lo[1], ez = hi[2] - lo[2];
+    const ct_real far2 = (ex * ex + ey * ey + ez * ez) / 64;
+    int jumps = 0;
+    for (int q = 0; q < 256; q++)
+        jumps += d2[q] > far2;
+    return jumps > 16;
+}
+
 /* The secondaries' index and finiteness checks alone (the query does them
  * otherwise), for the calls that skip the query. */
 int cti_bucket_check_sec(const ct_search_input *in)

@@ -4,7 +4,8 @@
  * bucket and bsp searches return exactly the direct search's pairs on every
  * family, natural and shuffled, self contact included, with the same bytes
  * for 1 and 2 threads; "auto" renumbers a large shuffled case and not an
- * ordered one; a secondary list out of order and a secondary listed twice
+ * ordered one, and for the bucket a numbering local only in short pieces
+ * (told from rows and space-filling curves); a secondary list out of order and a secondary listed twice
  * give what the plain search gives; every algorithm reports an index out of
  * range and a non-finite node it uses with the same code.
  */
@@ -112,6 +113,66 @@ Test(search_renumber, auto_renumbers_scattered_only, .timeout = 120)
             cr_assert(renumbered((ct_search_algo)a, 1, &in, &ref));
             cr_assert(!renumbered((ct_search_algo)a, -1, &in, &ref));
         }
+        ct_pairs_destroy(&ref);
+        ctd_case_destroy(&c);
+    }
+}
+
+/* A numbering local only in short pieces scattered in space (the soup: 9
+ * quads per plate, plates in random places) is told from ordered ones,
+ * whose rows jump back once per row (the folded sheet's rows of 1532
+ * segments, which a sampling stride of nseg / 256 hit every fourth time)
+ * and from a space-filling curve's, which jumps far only at its coarsest
+ * levels. */
+Test(search_renumber, pieces_told_from_rows_and_curves, .timeout = 120)
+{
+    const struct {
+        const char *family;
+        ctd_numbering num;
+        int pieces;
+    } cases[] = {{"soup", CTD_NUM_NATURAL, 1},    {"soup", CTD_NUM_SHUFFLED, 1},
+                 {"plates", CTD_NUM_SHUFFLED, 1}, {"plates", CTD_NUM_NATURAL, 0},
+                 {"plates", CTD_NUM_SFC, 0},      {"folded", CTD_NUM_NATURAL, 0},
+                 {"folded", CTD_NUM_SFC, 0},      {"crumpled", CTD_NUM_SFC, 0},
+                 {"tube", CTD_NUM_NATURAL, 0},    {"sphere", CTD_NUM_SFC, 0},
+                 {"graded", CTD_NUM_NATURAL, 0},  {"block", CTD_NUM_SFC, 0}};
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        ctd_case c;
+        ct_diag d = {0};
+        cr_assert_eq(ctd_case_make(&c, cases[k].family, 100000, cases[k].num, 5, &d), CT_OK,
+                     "%s", d.msg);
+        ct_search_input in;
+        ctd_case_input(&c, (ct_real)(0.3 * c.h_mean), (ct_real)(0.2 * c.h_mean), &in);
+        cr_assert_eq(cti_search_pieces(&in), cases[k].pieces, "%s, %s numbering",
+                     cases[k].family, ctd_numbering_name(cases[k].num));
+        ctd_case_destroy(&c);
+    }
+}
+
+/* "auto" renumbers the soup's pieces for the bucket search from 2^16 nodes
+ * (not below, nor for bsp, where it was not measured), with the plain
+ * search's pairs. */
+Test(search_renumber, auto_renumbers_pieces_for_bucket, .timeout = 120)
+{
+    const int64_t sizes[2] = {30000, 70000};
+    for (int k = 0; k < 2; k++) {
+        ctd_case c;
+        ct_diag d = {0};
+        cr_assert_eq(ctd_case_make(&c, "soup", sizes[k], CTD_NUM_NATURAL, 5, &d), CT_OK, "%s",
+                     d.msg);
+        ct_search_input in;
+        ctd_case_input(&c, (ct_real)(0.3 * c.h_mean), (ct_real)(0.2 * c.h_mean), &in);
+        cr_assert(cti_search_pieces(&in));
+        ct_pairs ref;
+        ct_pairs_init(&ref, 0);
+        search_rn(CT_SEARCH_BUCKET, -1, &in, &ref);
+        cr_assert_gt(ref.n, 0);
+        const int big = in.nnode >= (1 << 16);
+        cr_assert_eq(big, k == 1);
+        cr_assert_eq(renumbered(CT_SEARCH_BUCKET, 0, &in, &ref), big, "bucket, auto, %d nodes",
+                     (int)in.nnode);
+        cr_assert(!renumbered(CT_SEARCH_BSP, 0, &in, &ref), "bsp, auto, %d nodes",
+                  (int)in.nnode);
         ct_pairs_destroy(&ref);
         ctd_case_destroy(&c);
     }
