@@ -104,9 +104,10 @@ typedef struct ct_search_params {
      * in number) and the interface uses a fair share of the node arrays
      * (nnode <= 4 x (nsec + 4 nseg): the copy's cost grows with nnode), for
      * the bucket only from 2^19 nodes (below, its own scattered path is as
-     * fast), and for the bucket also from 2^16 nodes when the numbering is
-     * local only in short pieces scattered in space (a soup of small
-     * parts: consecutive segments often far apart); 1 always, -1 never. The search then runs on a renumbered copy (nodes by grid cell, segments
+     * fast); also when the numbering is local only in short pieces
+     * scattered in space (a soup of small parts: consecutive segments
+     * often far apart), for the bucket from 2^16 nodes and the topological
+     * search from 2^17; 1 always, -1 never. The search then runs on a renumbered copy (nodes by grid cell, segments
      * by their first corner, secondaries by number) and its pairs are
      * mapped back: the same canonical list, bit for bit, for about 260
      * bytes of workspace per secondary on two plates. The topological

@@ -150,12 +150,12 @@ Test(search_renumber, pieces_told_from_rows_and_curves, .timeout = 120)
 }
 
 /* "auto" renumbers the soup's pieces for the bucket search from 2^16 nodes
- * (not below, nor for bsp, where it was not measured), with the plain
- * search's pairs. */
-Test(search_renumber, auto_renumbers_pieces_for_bucket, .timeout = 120)
+ * and the topological one from 2^17 (not below; never for bsp, which
+ * sorts space itself), with the plain search's pairs. */
+Test(search_renumber, auto_renumbers_pieces_for_bucket_and_topo, .timeout = 120)
 {
-    const int64_t sizes[2] = {30000, 70000};
-    for (int k = 0; k < 2; k++) {
+    const int64_t sizes[3] = {30000, 70000, 140000};
+    for (int k = 0; k < 3; k++) {
         ctd_case c;
         ct_diag d = {0};
         cr_assert_eq(ctd_case_make(&c, "soup", sizes[k], CTD_NUM_NATURAL, 5, &d), CT_OK, "%s",
@@ -167,10 +167,18 @@ Test(search_renumber, auto_renumbers_pieces_for_bucket, .timeout = 120)
         ct_pairs_init(&ref, 0);
         search_rn(CT_SEARCH_BUCKET, -1, &in, &ref);
         cr_assert_gt(ref.n, 0);
-        const int big = in.nnode >= (1 << 16);
-        cr_assert_eq(big, k == 1);
+        const int big = in.nnode >= (1 << 16), bigger = in.nnode >= (1 << 17);
+        cr_assert_eq(big, k >= 1);
+        cr_assert_eq(bigger, k == 2);
         cr_assert_eq(renumbered(CT_SEARCH_BUCKET, 0, &in, &ref), big, "bucket, auto, %d nodes",
                      (int)in.nnode);
+        /* The topological search's own pairs, without renumbering. */
+        ct_pairs topo;
+        ct_pairs_init(&topo, 0);
+        search_rn(CT_SEARCH_TOPO, -1, &in, &topo);
+        cr_assert_eq(renumbered(CT_SEARCH_TOPO, 0, &in, &topo), bigger,
+                     "topological, auto, %d nodes", (int)in.nnode);
+        ct_pairs_destroy(&topo);
         cr_assert(!renumbered(CT_SEARCH_BSP, 0, &in, &ref), "bsp, auto, %d nodes",
                   (int)in.nnode);
         ct_pairs_destroy(&ref);
