@@ -375,7 +375,7 @@ check-tsan:
 race-bin: $(RACE_BIN)
 
 .PHONY: build-tests run-tests
-build-tests: $(TESTS) $(EXAMPLES)
+build-tests: $(TESTS) $(EXAMPLES) $(CONTACT)
 run-tests:
 	$(TEST_ENV) CT_SHARED=$(abspath ../shared) $(TESTS) $(TEST_ARGS)
 

@@ -50,6 +50,7 @@ typedef struct search_opts {
     int renumber; /* ct_search_params.renumber: 0 auto, 1 on, -1 off */
     int renumber_keep; /* ct_search_params.renumber_keep: 0 default, -1 fresh */
     int dense;    /* ct_search_params.dense: 0 auto, 1 on, -1 off */
+    double cells; /* ct_search_params.cell_factor: 0 chosen per input */
 } search_opts;
 
 static void usage_search(FILE *f)
@@ -59,6 +60,7 @@ static void usage_search(FILE *f)
                "                      [--filter hull|box] [--repeat R] [--seed S] [--threads T]\n"
                "                      [--check auto|off] [--renumber auto|on|off]\n"
                "                      [--renumber-keep K|fresh] [--dense auto|on|off]\n"
+               "                      [--cells auto|F]\n"
                "Runs each search on a synthetic case, checks its pair set against the direct\n"
                "search (when affordable; --check off skips it, for timing runs) and prints\n"
                "the median time per secondary node.\n"
@@ -72,7 +74,10 @@ static void usage_search(FILE *f)
                "(hull: exact distance to the segment's corners' hull; box: distance to its\n"
                "bounding box, looser and cheaper). A renumbered search (scattered numbering)\n"
                "reuses its numbering for --renumber-keep searches of the same topology\n"
-               "(default 64; fresh: a new numbering every search).\n");
+               "(default 64; fresh: a new numbering every search). The bucket grid's cells:\n"
+               "auto (chosen per input by the cost of binning and testing, counted on a\n"
+               "sample) or F times the Radioss sizing (1: Radioss's, from the bounding box's\n"
+               "faces); the line shows the factor used and whether the input was renumbered.\n");
 }
 
 static int cmp_double(const void *a, const void *b)
@@ -158,6 +163,7 @@ static int run_search(const search_opts *o)
         p.renumber = o->renumber;
         p.renumber_keep = o->renumber_keep;
         p.dense = o->dense;
+        p.cell_factor = o->cells;
         ct_search *s;
         if ((rc = ct_search_init(&s, &p)) != CT_OK)
             goto done;
@@ -181,6 +187,13 @@ static int run_search(const search_opts *o)
         printf("  %-12s %10.2f ns/node  %10d pairs  %8.1f B/node", ct_search_algo_name(a),
                1e9 * ts[reps / 2] / (c.sec.n ? c.sec.n : 1), got.n,
                (double)ct_search_memory(s) / (c.sec.n ? c.sec.n : 1));
+        ct_search_info si;
+        if (ct_search_get_info(s, &si) == CT_OK) {
+            if (si.cell_factor > 0)
+                printf("  cells x%g", si.cell_factor);
+            if (si.renumbered)
+                printf("  renumbered");
+        }
         if (have_ref) {
             int64_t miss = count_missing(&ref, &got, secpos);
             int64_t extra = count_missing(&got, &ref, secpos);
@@ -235,7 +248,7 @@ static int parse_dbl(const char *s, double *v)
 
 static int cmd_search(int argc, char **argv)
 {
-    search_opts o = {"plates", 100000, -1, CTD_NUM_NATURAL, -1, -1, 5, 1, CT_FILTER_HULL, 1, 0, 0, 0};
+    search_opts o = {"plates", 100000, -1, CTD_NUM_NATURAL, -1, -1, 5, 1, CT_FILTER_HULL, 1, 0, 0, 0, 0};
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         int64_t iv;
@@ -302,6 +315,14 @@ static int cmd_search(int argc, char **argv)
                 return EXIT_USAGE;
             }
             o.dense = !strcmp(v, "on") ? 1 : !strcmp(v, "off") ? -1 : 0;
+        } else if (!strcmp(a, "--cells")) {
+            if (!strcmp(v, "auto"))
+                o.cells = 0;
+            else if (parse_dbl(v, &o.cells) || !(o.cells > 0) || o.cells > 100) {
+                fprintf(stderr, "contact search: --cells expects auto or a factor in (0, 100], got '%s'\n",
+                        v);
+                return EXIT_USAGE;
+            }
         } else if (!strcmp(a, "--renumber-keep")) {
             if (!strcmp(v, "fresh"))
                 o.renumber_keep = -1;
@@ -347,10 +368,10 @@ static int cmd_demo(void)
     printf("\nContact search comparison: every search is checked pair for pair against\n"
            "the direct (all pairs) search; times are medians of 5 runs.\n\n");
     search_opts cases[] = {
-        {"folded", 20000, -1, CTD_NUM_NATURAL, -1, -1, 5, 1, CT_FILTER_HULL, 1, 0, 0, 0},
-        {"plates", 100000, -1, CTD_NUM_NATURAL, -1, -1, 5, 1, CT_FILTER_HULL, 1, 0, 0, 0},
-        {"plates", 100000, -1, CTD_NUM_SHUFFLED, -1, -1, 5, 1, CT_FILTER_HULL, 1, 0, 0, 0},
-        {"graded", 50000, -1, CTD_NUM_NATURAL, -1, -1, 5, 1, CT_FILTER_HULL, 1, 0, 0, 0},
+        {"folded", 20000, -1, CTD_NUM_NATURAL, -1, -1, 5, 1, CT_FILTER_HULL, 1, 0, 0, 0, 0},
+        {"plates", 100000, -1, CTD_NUM_NATURAL, -1, -1, 5, 1, CT_FILTER_HULL, 1, 0, 0, 0, 0},
+        {"plates", 100000, -1, CTD_NUM_SHUFFLED, -1, -1, 5, 1, CT_FILTER_HULL, 1, 0, 0, 0, 0},
+        {"graded", 50000, -1, CTD_NUM_NATURAL, -1, -1, 5, 1, CT_FILTER_HULL, 1, 0, 0, 0, 0},
     };
     int worst = 0;
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {

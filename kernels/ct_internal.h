@@ -425,6 +425,9 @@ struct ct_search {
      * node of the copy, by which the topological search breaks ties (NULL
      * otherwise). */
     const ct_idx *tie;
+    /* What the last search chose (ct_search_get_info). */
+    int last_renumbered;
+    double last_cell_factor;
     void *algo_state; /* owned by the algorithm */
     void (*algo_free)(void *state);
     size_t (*algo_memory)(const void *state);

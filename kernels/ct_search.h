@@ -158,6 +158,17 @@ void ct_search_reset(ct_search *s);
 /* Bytes of scratch currently held by the workspace. */
 size_t ct_search_memory(const ct_search *s);
 
+/* What the last successful ct_search_run on s chose by itself: whether it
+ * ran on a renumbered copy (ct_search_params.renumber), and for the bucket
+ * search the cell factor of its grid (the chosen one when cell_factor is
+ * 0; 0 for the other algorithms). For reports: the pairs do not depend on
+ * either. CT_ERR_ARG when s or info is NULL. */
+typedef struct ct_search_info {
+    int renumbered;
+    double cell_factor;
+} ct_search_info;
+int ct_search_get_info(const ct_search *s, ct_search_info *info);
+
 /* The shared predicates (see the top of this file): 1 when the point p may
  * be within d of the segment a b c dd (dd == c for a triangle): by the
  * distance to the corners' convex hull (CT_FILTER_HULL), or by the distance

@@ -89,6 +89,15 @@ size_t ct_search_memory(const ct_search *s)
     return b;
 }
 
+int ct_search_get_info(const ct_search *s, ct_search_info *info)
+{
+    if (!s || !info)
+        return CT_ERR_ARG;
+    info->renumbered = s->last_renumbered;
+    info->cell_factor = s->last_cell_factor;
+    return CT_OK;
+}
+
 /* Nodes from which "auto" renumbers a scattered input for the bucket
  * search (see ct_search_run). */
 #define CTI_RN_BUCKET_MIN (1 << 19)
@@ -164,6 +173,8 @@ int ct_search_run(ct_search *s, const ct_search_input *in, ct_pairs *out)
     if (rc)
         return rc;
     s->col.max = cti_search_max_pairs(s);
+    s->last_renumbered = 0;
+    s->last_cell_factor = 0;
     int (*run)(ct_search *, const ct_search_input *, ct_pairs *) = NULL;
     switch (s->p.algo) {
     case CT_SEARCH_DIRECT: return cti_search_direct(s, in, out);
@@ -197,6 +208,7 @@ int ct_search_run(ct_search *s, const ct_search_input *in, ct_pairs *out)
          ((big && cti_bucket_scattered(in)) || (pieces && cti_search_pieces(in))))) {
         int done = 0;
         rc = cti_search_renumbered(s, in, out, run, &done);
+        s->last_renumbered = done && rc == CT_OK;
         if (rc || done)
             return rc;
     }

@@ -406,6 +406,7 @@ int cti_search_bucket(ct_search *s, const ct_search_input *in, ct_pairs *out)
             return rc;
         factor = st->auto_f;
     }
+    s->last_cell_factor = factor;
     for (;;) {
         cti_bucket_size(g.lo, g.hi, in->nseg, factor, maxc, g.n, g.inv);
         g.ncell = (int64_t)g.n[0] * g.n[1] * g.n[2];

@@ -574,7 +574,8 @@ int cti_search_bucket_v0(ct_search *s, const ct_search_input *in, ct_pairs *out)
                                        : 2 * ((int64_t)in->nsec + in->nseg) + 1024;
     /* Offsets per (cell, block) must fit a ct_idx. */
     maxc = CTI_MIN(maxc, (int64_t)(INT32_MAX / 2) / nt);
-    v0_size(g.lo, g.hi, in->nseg, s->p.cell_factor > 0 ? s->p.cell_factor : 1.0, maxc,
+    s->last_cell_factor = s->p.cell_factor > 0 ? s->p.cell_factor : 1.0;
+    v0_size(g.lo, g.hi, in->nseg, s->last_cell_factor, maxc,
                     g.n, g.inv, &g.tol);
     int64_t ncell = (int64_t)g.n[0] * g.n[1] * g.n[2];
     if ((int64_t)in->nsec * nt >= INT32_MAX)

@@ -1,12 +1,17 @@
 /*
  * test_search_bucket_auto.c -- the bucket grid's cell size chosen per input
  * (kernels/search_bucket_auto.c): its counts against brute force, its
- * choice against pricing every candidate, the pairs it gives, and when it
- * chooses again.
+ * choice against pricing every candidate, the pairs it gives, when it
+ * chooses again, what ct_search_get_info reports, and `contact search
+ * --cells`.
  */
+#include <libgen.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include "test_search_scene.h"
 
@@ -290,4 +295,98 @@ Test(search_bucket_auto, chosen_again_when_the_input_changes)
     ct_pairs_destroy(&out);
     ct_search_destroy(s);
     auto_case_free(&a);
+}
+
+/* ct_search_get_info reports the grid's factor the last bucket search used
+ * (the chosen one, or the one set) and whether it ran on a renumbered copy;
+ * 0 for the other algorithms. */
+Test(search_bucket_auto, info_reports_the_choice)
+{
+    auto_case a;
+    auto_case_make(&a, "soup", 70000); /* pieces, above 2^16 nodes: renumbered */
+    cr_assert_geq(a.in.nnode, 1 << 16);
+    ct_pairs out;
+    ct_pairs_init(&out, 0);
+    for (int c = -1; c < 2; c++) {
+        ct_search_params p = ct_search_default_params(CT_SEARCH_BUCKET);
+        if (c >= 0)
+            p.cell_factor = c ? 1.4 : 0.5;
+        p.renumber = c == 1 ? -1 : 0;
+        ct_search *s;
+        cr_assert_eq(ct_search_init(&s, &p), CT_OK);
+        cr_assert_eq(ct_search_run(s, &a.in, &out), CT_OK);
+        ct_search_info info;
+        cr_assert_eq(ct_search_get_info(s, &info), CT_OK);
+        if (c < 0) {
+            /* The factor the workspace chose (on the renumbered copy). */
+            cr_assert_gt(info.cell_factor, 0);
+            cr_assert_eq(info.cell_factor, ((const bk_state *)s->algo_state)->auto_f);
+        } else {
+            cr_assert_eq(info.cell_factor, p.cell_factor);
+        }
+        cr_assert_eq(info.renumbered, c != 1, "renumber %d", p.renumber);
+        cr_assert_eq(ct_search_get_info(s, NULL), CT_ERR_ARG);
+        ct_search_destroy(s);
+    }
+    ct_search_info info;
+    cr_assert_eq(ct_search_get_info(NULL, &info), CT_ERR_ARG);
+    ct_search_params p = ct_search_default_params(CT_SEARCH_BSP);
+    ct_search *s;
+    cr_assert_eq(ct_search_init(&s, &p), CT_OK);
+    cr_assert_eq(ct_search_run(s, &a.in, &out), CT_OK);
+    cr_assert_eq(ct_search_get_info(s, &info), CT_OK);
+    cr_assert_eq(info.cell_factor, 0);
+    cr_assert_eq(info.renumbered, 0);
+    ct_search_destroy(s);
+    ct_pairs_destroy(&out);
+    auto_case_free(&a);
+}
+
+/* `contact search --cells`: a factor is used and printed, auto prints the
+ * chosen one, and a factor out of (0, 100] is refused naming the option. */
+Test(search_bucket_auto, cli_cells_option)
+{
+    char self[1024], cmd[1400], line[512];
+    ssize_t len = readlink("/proc/self/exe", self, sizeof self - 1);
+    cr_assert(len > 0);
+    self[len] = '\0';
+    const char *dir = dirname(self);
+    const char *vals[] = {"0.5", "auto"};
+    for (int k = 0; k < 2; k++) {
+        snprintf(cmd, sizeof cmd,
+                 "OMP_NUM_THREADS=2 '%s/contact' search --family soup --n 3000 --algo bucket "
+                 "--repeat 1 --cells %s",
+                 dir, vals[k]);
+        FILE *f = popen(cmd, "r");
+        cr_assert_not_null(f);
+        int seen = 0;
+        while (fgets(line, sizeof line, f)) {
+            if (strncmp(line, "  bucket", 8))
+                continue;
+            const char *c = strstr(line, "cells x");
+            cr_assert_not_null(c, "no factor in: %s", line);
+            double fct = atof(c + 7);
+            if (k == 0)
+                cr_assert_eq(fct, 0.5, "%s", line);
+            else
+                cr_assert_gt(fct, 0, "%s", line);
+            cr_assert_not_null(strstr(line, "identical to direct"), "%s", line);
+            seen++;
+        }
+        int st = pclose(f);
+        cr_assert(WIFEXITED(st) && WEXITSTATUS(st) == 0, "status %d for --cells %s", st, vals[k]);
+        cr_assert_eq(seen, 1);
+    }
+    const char *bad[] = {"0", "-1", "nan", "101", "x"};
+    for (int k = 0; k < 5; k++) {
+        snprintf(cmd, sizeof cmd, "'%s/contact' search --cells %s 2>&1", dir, bad[k]);
+        FILE *f = popen(cmd, "r");
+        cr_assert_not_null(f);
+        int named = 0;
+        while (fgets(line, sizeof line, f))
+            named |= strstr(line, "--cells expects auto or a factor") != NULL;
+        int st = pclose(f);
+        cr_assert(WIFEXITED(st) && WEXITSTATUS(st) == 1, "--cells %s: status %d", bad[k], st);
+        cr_assert(named, "--cells %s: no message naming the option", bad[k]);
+    }
 }
