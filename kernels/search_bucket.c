@@ -79,7 +79,6 @@ static void bk_free(void *v)
     ct_free(st->ncl);
     ct_free(st->ord);
     ct_free(st->ordc);
-    ct_free(st->hist);
     ct_free(st->auto_scr);
     for (int b = 0; b < st->maxblk; b++) {
         ct_free(st->buf[b].node);
@@ -96,7 +95,7 @@ static size_t bk_memory(const void *v)
     b += st->box_cap * sizeof(ct_real) + st->fbox_cap * sizeof(float);
     b += st->rng_cap * sizeof(uint64_t) + (st->srec_cap + st->xyzw_cap) * sizeof(ct_real);
     b += (st->cnt_cap + st->start_cap + st->ent_cap) * sizeof(ct_idx);
-    b += (st->ncl_cap + st->ord_cap + st->ordc_cap + st->hist_cap) * sizeof(ct_idx);
+    b += (st->ncl_cap + st->ord_cap + st->ordc_cap ) * sizeof(ct_idx);
     b += st->auto_scr_cap * sizeof(ct_real);
     for (int k = 0; k < st->maxblk; k++)
         b += 2 * st->buf[k].cap * sizeof(ct_idx);
@@ -312,12 +311,11 @@ static int bk_auto(bk_state *st, const ct_search_input *in, const bk_grid *g, in
         st->auto_age++;
         return CT_OK;
     }
-    if (bk_grow(&st->hist, &st->hist_cap, (size_t)maxc, sizeof(ct_idx)) ||
-        bk_grow(&st->auto_scr, &st->auto_scr_cap,
+    if (bk_grow(&st->auto_scr, &st->auto_scr_cap,
                 cti_bucket_auto_scratch() / sizeof(ct_real) + 1, sizeof(ct_real)))
         return CT_ERR_NOMEM;
-    st->auto_f = cti_bucket_auto_factor(in, st->fbox, g->lo, g->hi, maxc, limit, nb, st->hist,
-                                        st->auto_scr, NULL);
+    st->auto_f =
+        cti_bucket_auto_factor(in, st->fbox, g->lo, g->hi, maxc, limit, nb, st->auto_scr, NULL);
     st->auto_age = 1;
     st->auto_nsec = in->nsec;
     st->auto_nseg = in->nseg;

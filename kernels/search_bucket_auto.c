@@ -29,16 +29,15 @@
  *
  * Sampling: up to BK_AUTO_SEGS segments and BK_AUTO_NODES secondary nodes,
  * drawn over the numbering (auto_pick) and gathered once into a compact
- * scratch (the passes over the candidates then stay in cache). E =
- * (nseg / segments sampled) x
- * the sampled segments' spans. For T, the sampled nodes are counted into a
- * histogram of cells and every sampled segment sums the counts over its
- * range: the sampled (node, entry) couples, scaled by both sampling
- * ratios; both estimates are unbiased. The candidates go from coarse to
- * fine; once the part of a candidate's cost that only grows with finer
- * grids (entries and cells) exceeds the best cost so far, the finer ones
- * are not priced. The histogram is emptied by walking the node sample
- * again, so its cost follows the sample, not the cells.
+ * scratch, with a small hash table (the passes over the candidates then
+ * stay in cache, and the memory does not grow with the grid). E = (nseg /
+ * segments sampled) x the sampled segments' spans. For T, the sampled
+ * nodes are counted by cell in the table and every sampled segment sums
+ * the counts over its range: the sampled (node, entry) couples, scaled by
+ * both sampling ratios; both estimates are unbiased. The candidates go
+ * from coarse to fine; once the part of a candidate's cost that only grows
+ * with finer grids (entries and cells) exceeds the best cost so far, the
+ * finer ones are not priced.
  * Serial and in a fixed order: the choice is the same on every run.
  */
 #include <string.h>
@@ -82,28 +81,65 @@ static int auto_range(const float *restrict f, const bk_grid *g, ct_idx a[3], ct
     return 1;
 }
 
-/* Add v to the histogram at the cells of the nv sampled nodes (xyz). */
-static void auto_nodes(const ct_real *restrict xyz, ct_idx nv, const bk_grid *g,
-                       ct_idx *restrict hist, ct_idx v)
+/* The sampled nodes' cells, counted in an open-addressing table of
+ * BK_AUTO_SLOTS slots (at most half full: BK_AUTO_NODES distinct cells):
+ * per slot the cell number plus one (0: empty) and its count. A table the
+ * size of the grid would cost 4 bytes per cell, held for one choice every
+ * few searches, and its sparse lookups would miss the caches. */
+#define BK_AUTO_SLOTS (2 * BK_AUTO_NODES)
+typedef struct auto_slot {
+    uint32_t cell1, count;
+} auto_slot;
+
+static inline uint32_t auto_hash(uint32_t cell1)
 {
+    return (uint32_t)(cell1 * UINT32_C(0x9e3779b1)) & (BK_AUTO_SLOTS - 1);
+}
+
+static void auto_count(auto_slot *restrict tab, uint32_t cell1)
+{
+    uint32_t h = auto_hash(cell1);
+    while (tab[h].cell1 && tab[h].cell1 != cell1)
+        h = (h + 1) & (BK_AUTO_SLOTS - 1);
+    tab[h].cell1 = cell1;
+    tab[h].count++;
+}
+
+static uint32_t auto_lookup(const auto_slot *restrict tab, uint32_t cell1)
+{
+    uint32_t h = auto_hash(cell1);
+    while (tab[h].cell1) {
+        if (tab[h].cell1 == cell1)
+            return tab[h].count;
+        h = (h + 1) & (BK_AUTO_SLOTS - 1);
+    }
+    return 0;
+}
+
+/* Count the nv sampled nodes (xyz) by their cell of grid g. */
+static void auto_nodes(const ct_real *restrict xyz, ct_idx nv, const bk_grid *g,
+                       auto_slot *restrict tab)
+{
+    memset(tab, 0, BK_AUTO_SLOTS * sizeof *tab);
     const size_t nx = (size_t)g->n[0], ny = (size_t)g->n[1];
     for (ct_idx m = 0; m < nv; m++) {
         const ct_real *p = xyz + (size_t)3 * m;
         const size_t cx = (size_t)bk_cell1(p[0], g->lo[0], g->inv[0], g->n[0] - 1);
         const size_t cy = (size_t)bk_cell1(p[1], g->lo[1], g->inv[1], g->n[1] - 1);
         const size_t cz = (size_t)bk_cell1(p[2], g->lo[2], g->inv[2], g->n[2] - 1);
-        hist[(cz * ny + cy) * nx + cx] += v;
+        auto_count(tab, (uint32_t)((cz * ny + cy) * nx + cx) + 1);
     }
 }
 
 size_t cti_bucket_auto_scratch(void)
 {
-    return (size_t)3 * BK_AUTO_NODES * sizeof(ct_real) + (size_t)8 * BK_AUTO_SEGS * sizeof(float);
+    return (size_t)3 * BK_AUTO_NODES * sizeof(ct_real) + (size_t)8 * BK_AUTO_SEGS * sizeof(float) +
+           (size_t)BK_AUTO_SLOTS * sizeof(auto_slot);
 }
 
 double cti_bucket_auto_factor(const ct_search_input *in, const float *fbox,
                               const ct_real lo[3], const ct_real hi[3], int64_t maxc,
-                              int64_t limit, int nb, ct_idx *hist, void *scratch,
+                              int64_t limit, int nb, void *scratch,
                               cti_bucket_auto_info *info)
 {
     const ct_idx nseg = in->nseg, nsec = in->nsec;
@@ -114,6 +150,7 @@ double cti_bucket_auto_factor(const ct_search_input *in, const float *fbox,
      * nothing), and the segments' float boxes. */
     ct_real *restrict xyz = scratch;
     float *restrict sbox = (float *)(xyz + (size_t)3 * BK_AUTO_NODES);
+    auto_slot *restrict tab = (auto_slot *)(sbox + (size_t)8 * BK_AUTO_SEGS);
     ct_idx nv = 0;
     for (ct_idx m = 0; m < sn; m++) {
         const ct_idx p = in->sec[auto_pick(m, sn, nsec, 1)];
@@ -161,23 +198,22 @@ double cti_bucket_auto_factor(const ct_search_input *in, const float *fbox,
             break;
         /* Tests: the sampled nodes in the cells of the sampled segments'
          * ranges, counted from the segments' side (reads only). */
-        auto_nodes(xyz, nv, &g, hist, 1);
+        auto_nodes(xyz, nv, &g, tab);
         const size_t nx = (size_t)g.n[0], ny = (size_t)g.n[1];
         double t = 0;
         for (ct_idx m = 0; m < ss; m++) {
             ct_idx a[3], b[3];
             if (!auto_range(sbox + (size_t)8 * m, &g, a, b))
                 continue;
-            ct_idx sum = 0;
+            uint64_t sum = 0;
             for (ct_idx iz = a[2]; iz <= b[2]; iz++)
                 for (ct_idx iy = a[1]; iy <= b[1]; iy++) {
-                    const ct_idx *restrict row = hist + ((size_t)iz * ny + (size_t)iy) * nx;
+                    const size_t row = ((size_t)iz * ny + (size_t)iy) * nx;
                     for (ct_idx ix = a[0]; ix <= b[0]; ix++)
-                        sum += row[ix];
+                        sum += auto_lookup(tab, (uint32_t)(row + (size_t)ix) + 1);
                 }
             t += (double)sum;
         }
-        auto_nodes(xyz, nv, &g, hist, -1);
         t *= ks * kn;
         const double cost = floor_cost + t;
         priced++;

@@ -44,10 +44,8 @@ typedef struct bk_state {
     bk_out *buf; /* per block; buf[0] is unused (block 0 writes the output) */
     int srec_on;  /* srec holds this call's corners */
     /* The chosen cell factor (cell_factor 0): search_bucket_auto.c's
-     * histogram (all zero between calls), the factor, the searches since
-     * it was chosen, and the input it was chosen on. */
-    ct_idx *hist;
-    size_t hist_cap;
+     * scratch, the factor, the searches since it was chosen, and the input
+     * it was chosen on. */
     ct_real *auto_scr; /* cti_bucket_auto_scratch() bytes */
     size_t auto_scr_cap;
     double auto_f;
@@ -78,11 +76,11 @@ typedef struct cti_bucket_auto_info {
 /* The cell factor for this input (search_bucket_auto.c): fbox the
  * segments' float boxes (pass 1), lo/hi the grid's region, maxc the cap on
  * cells, limit the entries beyond which the search coarsens the grid, nb
- * the counting blocks, hist maxc zeros (zeros again on return); info may
- * be NULL; scratch cti_bucket_auto_scratch() bytes, ct_real-aligned. */
+ * the counting blocks, scratch cti_bucket_auto_scratch() bytes,
+ * ct_real-aligned; info may be NULL. */
 double cti_bucket_auto_factor(const ct_search_input *in, const float *fbox,
                               const ct_real lo[3], const ct_real hi[3], int64_t maxc,
-                              int64_t limit, int nb, ct_idx *hist, void *scratch,
+                              int64_t limit, int nb, void *scratch,
                               cti_bucket_auto_info *info);
 /* The bytes of cti_bucket_auto_factor's scratch (the gathered samples). */
 size_t cti_bucket_auto_scratch(void);
