@@ -21,9 +21,10 @@
  * thread, each with counters of its own). The weights are fitted to the
  * searches' times on ten families (1 thread, 10^5 and 10^6 nodes, factors
  * 0.1 to 3; docs/DESIGN-CHANGES.md section 5): with them the chosen grid
- * was within 4 % of the best of the ten factors on every family, and over
- * a range of 1.5 to 3 for the entry weight and 4 to 10 for the cell weight
- * the choice moves by less than 2 % in total. The pairs are the same on
+ * was within 7 % of the best of the ten factors on every family but one
+ * (the soup at 10^6 nodes, 14 %, measured before such inputs were
+ * renumbered), and entry weights of 1.5 to 4 with cell weights of 4 to 10
+ * did no better beyond the noise of the times. The pairs are the same on
  * every grid (search_bucket.c): the choice changes the cost, never the
  * result.
  *
@@ -38,7 +39,8 @@
  * from coarse to fine; once the part of a candidate's cost that only grows
  * with finer grids (entries and cells) exceeds the best cost so far, the
  * finer ones are not priced.
- * Serial and in a fixed order: the choice is the same on every run.
+ * Serial and in a fixed order: the choice depends on the input and the
+ * number of counting blocks only.
  */
 #include <string.h>
 
@@ -47,7 +49,6 @@
 
 const double cti_bucket_auto_factors[BK_AUTO_NF] = {0.1, 0.15, 0.25, 0.35, 0.5,
                                                    0.7, 1.0,  1.4,  2.0,  3.0};
-
 
 /* The m-th of s samples out of n, stream `seed`: m itself when all are
  * taken, otherwise a position drawn by a 64-bit mix (SplitMix64's
