@@ -264,6 +264,14 @@ void ctb_search_bench(gb_state *st, ctb_mesh *m, const ctb_search_config *cfg,
         gb_set_counter(st, "bytes_per_node", (double)ct_search_memory(s) / (double)in->nsec,
                        GB_PLAIN);
         gb_set_counter(st, "threads", (double)threads, GB_PLAIN);
+        /* What the search chose by itself (the bucket grid's cell factor,
+         * a renumbered copy), for the tables' notes. */
+        ct_search_info si;
+        if (ct_search_get_info(s, &si) == CT_OK) {
+            if (si.cell_factor > 0)
+                gb_set_counter(st, "cell_factor", si.cell_factor, GB_PLAIN);
+            gb_set_counter(st, "renumbered", (double)si.renumbered, GB_PLAIN);
+        }
         gb_set_items_processed(st, iters * (int64_t)in->nsec);
         char mis[96] = "";
         if (algo == CT_SEARCH_TOPO && ref) {

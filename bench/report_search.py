@@ -165,6 +165,10 @@ def print_family(fam, search, out):
         note = note[note.find("misses_vs="):] if note else ""
         if "extra" in c:
             note += " %s pairs not in the reference" % fmt_num(c["extra"])
+        if c.get("cell_factor"):
+            note += " cells ×%g" % c["cell_factor"]
+        if c.get("renumbered"):
+            note += " renumbered"
         out.append(head + "| %s | %s | %s | %s | %s | %s | %s |" % (
             fmt_time(r["time_ns"]), fmt_ns(v), ratio, fmt_num(c.get("pairs")),
             fmt_num(c.get("bytes_per_node")), misses, note.strip()))
