@@ -106,6 +106,20 @@ static inline float cti_next_down_f(float f)
 /* The float next above f (f not NaN): nextafterf(f, INFINITY). */
 static inline float cti_next_up_f(float f) { return -cti_next_down_f(-f); }
 
+/* The m-th position of a sample of [0, n), stream `stream`, n > 0: drawn
+ * by a 64-bit mix (SplitMix64's finaliser), with replacement. The samples
+ * that decide how to search use it rather than a regular stride, which
+ * aliases with a structured mesh's rows (a stride of nseg / 256 fell on
+ * every fourth row end of the folded sheet). */
+static inline ct_idx cti_sample_index(uint64_t m, uint64_t stream, ct_idx n)
+{
+    uint64_t z = (stream << 32) + (m + 1) * UINT64_C(0x9e3779b97f4a7c15);
+    z = (z ^ (z >> 30)) * UINT64_C(0xbf58476d1ce4e5b9);
+    z = (z ^ (z >> 27)) * UINT64_C(0x94d049bb133111eb);
+    z ^= z >> 31;
+    return (ct_idx)(z % (uint64_t)n);
+}
+
 /* ---- Precision-generic maths ------------------------------------------ */
 
 #ifdef CT_SINGLE

@@ -51,21 +51,14 @@ const double cti_bucket_auto_factors[BK_AUTO_NF] = {0.1, 0.15, 0.25, 0.35, 0.5,
                                                    0.7, 1.0,  1.4,  2.0,  3.0};
 
 /* The m-th of s samples out of n, stream `seed`: m itself when all are
- * taken, otherwise a position drawn by a 64-bit mix (SplitMix64's
- * finaliser; drawn with replacement, which keeps the estimates unbiased).
- * Node and segment samples draw from different streams: a stride, or one
- * multiplier for both, aliases on a regular mesh (two plates numbered
- * alike put the k-th sampled node over the k-th sampled segment, which
- * doubled T in a first version). */
+ * taken, otherwise cti_sample_index's draw (with replacement, which keeps
+ * the estimates unbiased). Node and segment samples draw from different
+ * streams: one sequence for both aliases on a regular mesh (two plates
+ * numbered alike put the k-th sampled node over the k-th sampled segment,
+ * which doubled T in a first version). */
 static inline ct_idx auto_pick(ct_idx m, ct_idx s, ct_idx n, uint64_t seed)
 {
-    if (s == n)
-        return m;
-    uint64_t z = seed + (uint64_t)m * UINT64_C(0x9e3779b97f4a7c15);
-    z = (z ^ (z >> 30)) * UINT64_C(0xbf58476d1ce4e5b9);
-    z = (z ^ (z >> 27)) * UINT64_C(0x94d049bb133111eb);
-    z ^= z >> 31;
-    return (ct_idx)(z % (uint64_t)n);
+    return s == n ? m : cti_sample_index((uint64_t)m, seed, n);
 }
 
 /* Sampled segment box f's cell range on grid g (as bk_ranges computes

@@ -196,7 +196,8 @@ int cti_bucket_boxes(const ct_search_input *in, ct_real *restrict xyzw, ct_real 
 }
 
 /* Whether the segments' numbering is scattered: consecutive segments'
- * first nodes far apart in memory in most of 256 samples. Corner gathers
+ * first nodes far apart in memory in most of 256 samples (drawn at random
+ * positions, cti_sample_index). Corner gathers
  * are then random accesses (prefetched, or replaced by corner records);
  * only speed depends on this. */
 int cti_bucket_scattered(const ct_search_input *in)
@@ -204,7 +205,7 @@ int cti_bucket_scattered(const ct_search_input *in)
     const ct_idx nseg = in->nseg;
     int far = 0;
     for (int q = 0; nseg > 4096 && q < 256; q++) {
-        ct_idx j = (ct_idx)((int64_t)(nseg - 1) * q / 256);
+        const ct_idx j = cti_sample_index((uint64_t)q, 1, nseg - 1);
         far += abs(in->n1[j + 1] - in->n1[j]) > 4096;
     }
     return far > 128;
@@ -218,15 +219,7 @@ int cti_search_pieces(const ct_search_input *in)
     const ct_real *restrict x = in->x, *restrict y = in->y, *restrict z = in->z;
     ct_real d2[256], lo[3], hi[3];
     for (int q = 0; q < 256; q++) {
-        /* Positions drawn by a 64-bit mix (SplitMix64's finaliser): a
-         * regular stride aliases with a structured mesh's rows (the
-         * folded sheet's stride of nseg / 256 fell on every fourth row's
-         * end). */
-        uint64_t h = (uint64_t)(q + 1) * UINT64_C(0x9e3779b97f4a7c15);
-        h = (h ^ (h >> 30)) * UINT64_C(0xbf58476d1ce4e5b9);
-        h = (h ^ (h >> 27)) * UINT64_C(0x94d049bb133111eb);
-        h ^= h >> 31;
-        const ct_idx j = (ct_idx)(h % (uint64_t)(nseg - 1));
+        const ct_idx j = cti_sample_index((uint64_t)q, 0, nseg - 1);
         const ct_idx a = in->n1[j], b = in->n1[j + 1];
         const ct_real p[3] = {x[a], y[a], z[a]};
         const ct_real dx = x[b] - p[0], dy = y[b] - p[1], dz = z[b] - p[2];
