@@ -40,10 +40,14 @@ void *ct_calloc(size_t count, size_t size)
 {
     if (size == 0)
         size = 1;
+    /* The roundings up below must not wrap: a count near SIZE_MAX (a
+     * negative int count converted) is an overflow, not a small buffer. */
+    if (count > SIZE_MAX - CT_PAD)
+        return NULL;
     size_t padded = (count + CT_PAD - 1) / CT_PAD * CT_PAD;
     if (padded == 0)
         padded = CT_PAD;
-    if (padded > SIZE_MAX / size)
+    if (padded > (SIZE_MAX - CT_ALIGN) / size)
         return NULL;
     size_t bytes = padded * size;
     bytes = (bytes + CT_ALIGN - 1) / CT_ALIGN * CT_ALIGN;
@@ -59,6 +63,10 @@ int cti_grow(void **p, size_t *cap, size_t need, size_t size, size_t keep)
 {
     if (need <= *cap && *p)
         return CT_OK;
+    /* Room beyond a quarter of the address space is not there (and the
+     * growth below would wrap). */
+    if (need > (SIZE_MAX / 4) / (size ? size : 1))
+        return CT_ERR_NOMEM;
     size_t ncap = *cap ? *cap : 64;
     while (ncap < need)
         ncap = ncap + ncap / 2 + 64;
