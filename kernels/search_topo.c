@@ -207,6 +207,15 @@ static inline int topo_excluded(const ct_search_input *in, const ct_idx *restric
     return 0;
 }
 
+/* The cell of coordinate v along one axis, clamped to [0, nmax] (a NaN
+ * product, 0 * inf on a single cell, to 0). */
+static inline int64_t topo_cell1(double v, double lo, double inv, int64_t nmax)
+{
+    double t = (v - lo) * inv;
+    t = t > 0 ? t : 0;
+    return t < (double)nmax ? (int64_t)t : nmax;
+}
+
 static int topo_full(topo_state *st, const ct_search_input *in, const ct_idx *tie)
 {
     const ct_real *restrict x = in->x, *restrict y = in->y, *restrict z = in->z;
@@ -232,27 +241,46 @@ static int topo_full(topo_state *st, const ct_search_input *in, const ct_idx *ti
             st->closest[i] = -1;
         return CT_OK;
     }
-    /* Cubic cells, about one per main node, at most 4 per main node. */
-    double L[3], h;
-    for (int k = 0; k < 3; k++)
+    /* Cubic cells, about one per main node, at most 4 per main node,
+     * sized relative to the longest side of the main nodes' box (its
+     * products with the other sides overflow for coordinates near 1e300
+     * and underflow for a subnormal extent, and a cell count from them
+     * overflowed an int64_t). An extent too small for a finite 1 / h (or
+     * zero, or overflowing) gets one cell: the rings then try every main
+     * node. */
+    double L[3], Lmax = 0;
+    for (int k = 0; k < 3; k++) {
         L[k] = (double)hi[k] - (double)lo[k];
-    double S = L[0] * L[1] + L[1] * L[2] + L[2] * L[0], V = L[0] * L[1] * L[2];
-    h = CTI_MAX(cbrt(V / nm), sqrt(S / nm));
-    h = CTI_MAX(h, CTI_MAX(L[0], CTI_MAX(L[1], L[2])) / nm);
-    if (!(h > 0) || !isfinite(h))
-        h = 1;
-    int64_t dim[3], ncell;
-    for (;;) {
-        ncell = 1;
-        for (int k = 0; k < 3; k++) {
-            dim[k] = (int64_t)(L[k] / h) + 1;
-            ncell *= dim[k];
-        }
-        if (ncell <= 4 * (int64_t)nm + 64)
-            break;
-        h *= 1.26;
+        Lmax = CTI_MAX(Lmax, L[k]);
     }
-    const double inv = 1.0 / h;
+    int64_t dim[3] = {1, 1, 1}, ncell = 1;
+    double h = 1, inv = 0;
+    if (Lmax > 0 && isfinite(Lmax)) {
+        double l[3];
+        for (int k = 0; k < 3; k++)
+            l[k] = L[k] / Lmax;
+        const double S = l[0] * l[1] + l[1] * l[2] + l[2] * l[0], V = l[0] * l[1] * l[2];
+        /* hr >= 1 / nm, so no side has more than nm + 1 cells. */
+        double hr = CTI_MAX(CTI_MAX(cbrt(V / nm), sqrt(S / nm)), 1.0 / nm);
+        for (;;) {
+            ncell = 1;
+            for (int k = 0; k < 3; k++) {
+                dim[k] = (int64_t)(l[k] / hr) + 1;
+                ncell *= dim[k];
+            }
+            if (ncell <= 4 * (int64_t)nm + 64)
+                break;
+            hr *= 1.26;
+        }
+        h = hr * Lmax;
+        inv = 1.0 / h;
+        if (!(h > 0) || !isfinite(inv) || !isfinite(inv * Lmax)) {
+            dim[0] = dim[1] = dim[2] = 1;
+            ncell = 1;
+            h = 1;
+            inv = 0;
+        }
+    }
     ct_idx *cnt = calloc((size_t)ncell + 1, sizeof *cnt);
     ct_idx *item = malloc((size_t)nm * sizeof *item);
     if (!cnt || !item) {
@@ -260,8 +288,7 @@ static int topo_full(topo_state *st, const ct_search_input *in, const ct_idx *ti
         free(item);
         return CT_ERR_NOMEM;
     }
-#define TOPO_CELL(v, k)                                                                    \
-    ((int64_t)CTI_MIN((double)(dim[k] - 1), CTI_MAX(0.0, ((double)(v) - (double)lo[k]) * inv)))
+#define TOPO_CELL(v, k) topo_cell1((double)(v), (double)lo[k], inv, dim[k] - 1)
     for (int pass = 0; pass < 2; pass++) {
         for (ct_idx i = 0; i < nn; i++) {
             if (off[i + 1] == off[i] || !isfinite((double)x[i]) || !isfinite((double)y[i]) ||
