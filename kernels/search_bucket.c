@@ -390,8 +390,7 @@ int cti_search_bucket(ct_search *s, const ct_search_input *in, ct_pairs *out)
         g.lo[k] = mb[k] - d;
         g.hi[k] = mb[3 + k] + d;
     }
-    int64_t maxc = s->p.max_cells > 0 ? s->p.max_cells
-                                       : 2 * ((int64_t)in->nsec + in->nseg) + 1024;
+    int64_t maxc = cti_bucket_max_cells(s->p.max_cells, in);
     /* Entries, and counters per (cell, block), must fit a ct_idx; entries
      * beyond a bound linear in the input coarsen the grid. */
     maxc = CTI_MIN(maxc, (int64_t)(INT32_MAX / 4) / nb);

@@ -24,6 +24,18 @@
 #define BK_PAR_FOR_SIMD(clauses) CTI_PRAGMA(omp parallel for simd CTI_UNPAREN clauses)
 #endif
 
+/* The cap on a bucket grid's cells: ct_search_params.max_cells, 0 for
+ * 2 (nsec + nseg) + 1024, and never above 32 (nsec + nseg) + 2^20: more
+ * cells than that only cost memory (a cap such as INT64_MAX on a
+ * degenerate extent took a billion cells, 8 GB). */
+static inline int64_t cti_bucket_max_cells(int64_t max_cells, const ct_search_input *in)
+{
+    const int64_t items = (int64_t)in->nsec + (int64_t)in->nseg;
+    const int64_t top = 32 * items + (INT64_C(1) << 20);
+    const int64_t m = max_cells > 0 ? max_cells : 2 * items + 1024;
+    return m < top ? m : top;
+}
+
 int cti_bucket_boxes(const ct_search_input *in, ct_real *restrict xyzw, ct_real *restrict box,
                      float *restrict fbox, ct_real *restrict srec, ct_real mb[6]);
 int cti_bucket_scattered(const ct_search_input *in);

@@ -570,8 +570,7 @@ int cti_search_bucket_v0(ct_search *s, const ct_search_input *in, ct_pairs *out)
         if (g.lo[k] > g.hi[k])
             return CT_OK;
     }
-    int64_t maxc = s->p.max_cells > 0 ? s->p.max_cells
-                                       : 2 * ((int64_t)in->nsec + in->nseg) + 1024;
+    int64_t maxc = cti_bucket_max_cells(s->p.max_cells, in);
     /* Offsets per (cell, block) must fit a ct_idx. */
     maxc = CTI_MIN(maxc, (int64_t)(INT32_MAX / 2) / nt);
     s->last_cell_factor = s->p.cell_factor > 0 ? s->p.cell_factor : 1.0;
