@@ -140,6 +140,11 @@ ct_search_params ct_search_default_params(ct_search_algo algo);
  * the topological search's history (closest main node per secondary). */
 typedef struct ct_search ct_search;
 
+/* A workspace for the searches of params p (NULL: the bucket search's
+ * defaults). CT_ERR_ARG for a parameter out of its range: an unknown
+ * algorithm or variant, a cell_factor that is negative, NaN or above 1e6,
+ * a negative max_cells, leaf_size, min_box or max_pairs, dense or
+ * renumber outside -1..1, renumber_keep below -1. */
 int ct_search_init(ct_search **s, const ct_search_params *p);
 void ct_search_destroy(ct_search *s);
 
@@ -147,7 +152,9 @@ void ct_search_destroy(ct_search *s);
  * CT_ERR_ARG for a missing array, a negative count or a gap or margin that
  * is negative or not finite; CT_ERR_RANGE when a secondary or a segment
  * corner is not a node index (0 <= i < nnode); CT_ERR_NONFINITE when one of
- * those nodes has a NaN or infinite coordinate (other nodes are not read);
+ * those nodes has a NaN or infinite coordinate, or one beyond 1e300
+ * (single precision 3e38), whose arithmetic would overflow (other nodes
+ * are not read);
  * CT_ERR_NOMEM. The same for every algorithm. */
 int ct_search_run(ct_search *s, const ct_search_input *in, ct_pairs *out);
 

@@ -44,7 +44,7 @@ int ct_search_init(ct_search **s, const ct_search_params *p)
         return CT_ERR_ARG;
     *s = NULL;
     if (p && (p->algo < 0 || p->algo >= CT_SEARCH_NALGO || p->variant < 0 || p->variant > 1 ||
-              !(p->cell_factor >= 0) ||
+              !(p->cell_factor >= 0) || !(p->cell_factor <= 1e6) || p->max_pairs < 0 ||
               p->max_cells < 0 || p->leaf_size < 0 || !(p->min_box >= 0) || p->dense < -1 || p->dense > 1 ||
               p->renumber < -1 || p->renumber > 1 || p->renumber_keep < -1))
         return CT_ERR_ARG;
