@@ -187,8 +187,10 @@ ct_real ct_type7_energy(ct_real K0, ct_real g, ct_real p);
  * For x >= 1 - RMIN the pair is deactivated (flag[k] = 1, else 0): F stays
  * at F_max, the energy continues as E(p_c) + F_max (min(p, g) - p_c) and the
  * tangent is the one at p_c. p <= 0, NaN p, g <= 0 or NaN g, K0 <= 0 give
- * zero force, energy and tangent. No output is ever NaN or infinite for
- * finite positive K0 and g. ktan, energy and flag may be NULL. (Radioss
+ * zero force, energy and tangent. No output is ever NaN for finite
+ * positive K0 and g, nor infinite unless its value exceeds the largest
+ * ct_real (F_max = 999 K0 g beyond it; the energy of a gap above 1e154
+ * does not overflow with it). ktan, energy and flag may be NULL. (Radioss
  * halves K0 in this law unless Istf = 1: the caller passes the K0 it wants.)
  */
 int ct_penalty_type7(ct_idx npair, const ct_real *p, const ct_real *g, const ct_real *K0,

@@ -154,15 +154,31 @@ int ct_initial_penetration(ct_idx npair, int mode, const ct_real *p_init, ct_rea
 
 /* r - 1 - ln r with r = 1 - x, 0 <= x < 1: the series sum_{n>=2} x^n/n for
  * small x (the closed form cancels there), -x - log1p(-x) otherwise. */
+static inline ct_real cti_type7_series(ct_real x)
+{
+    ct_real s = (ct_real)(1.0 / 15);
+    for (int k = 14; k >= 2; k--)
+        s = (ct_real)1 / (ct_real)k + x * s;
+    return s;
+}
+
 static inline ct_real cti_type7_phi(ct_real x)
 {
-    if (x < (ct_real)(1.0 / 32)) {
-        ct_real s = (ct_real)(1.0 / 15);
-        for (int k = 14; k >= 2; k--)
-            s = (ct_real)1 / (ct_real)k + x * s;
-        return x * x * s;
-    }
+    if (x < (ct_real)(1.0 / 32))
+        return x * x * cti_type7_series(x);
     return -x - CTI_LOG1P(-x);
+}
+
+/* K0 g^2 phi(x), x = p / g < 1 - RMIN: as K0 g g phi(x), and where g^2
+ * overflows (g above about 1.3e154, single 1.8e19) while the energy does
+ * not, as K0 p^2 s(x) (phi(x) = x^2 s(x) below x = 1/32; above it p is as
+ * large as g / 32 and the energy overflows itself). */
+static inline ct_real cti_type7_e(ct_real K0, ct_real g, ct_real p, ct_real x)
+{
+    ct_real e = K0 * g * g * cti_type7_phi(x);
+    if (!(e <= CTI_HUGE) && x < (ct_real)(1.0 / 32))
+        e = K0 * (p * p) * cti_type7_series(x);
+    return e;
 }
 
 ct_real ct_type7_energy(ct_real K0, ct_real g, ct_real p)
@@ -171,7 +187,7 @@ ct_real ct_type7_energy(ct_real K0, ct_real g, ct_real p)
         return 0;
     ct_real x = p / g, xc = (ct_real)1 - (ct_real)CT_TYPE7_RMIN;
     if (x < xc)
-        return K0 * g * g * cti_type7_phi(x);
+        return cti_type7_e(K0, g, p, x);
     ct_real fmax = K0 * g * xc / (ct_real)CT_TYPE7_RMIN;
     ct_real xe = x < 1 ? x : 1;
     return K0 * g * g * cti_type7_phi(xc) + fmax * g * (xe - xc);
@@ -217,7 +233,7 @@ cti_type7_block(int64_t i0, int64_t i1, const ct_real *restrict p, const ct_real
         }
         ct_real x = q / gi;
         ct_real xs = x >= xc ? xc : x;
-        ct_real e = k0 * gi * gi * cti_type7_phi(xs);
+        ct_real e = cti_type7_e(k0, gi, q, xs);
         if (x >= xc)
             e += fel[i] * gi * ((x < 1 ? x : 1) - xc);
         energy[i] = e;
