@@ -38,6 +38,11 @@
  *    centroid triangles of CT_QUAD_4TRI) has an area at most 1e-12 (single
  *    1e-6) times the square of the segment's longest edge: zero area,
  *    needles, coincident nodes.
+ *  - Needles short of that: a node's closest point on a triangle of longest
+ *    edge L and height h is found to about eps L^2 / h on its face (eps
+ *    the precision's; measured within 1e-6 h at L/h = 1e6 in double, 1e-4 h
+ *    at 1e2 in single) and to eps L beside its short edge
+ *    (tests/test_api_extremes.c). Mesh needles finer than that.
  */
 #ifndef CT_NARROW_H
 #define CT_NARROW_H
@@ -59,7 +64,12 @@ typedef enum ct_quad_method {
      * point of the four straight boundary edges is taken when it is closer
      * or the minimum lies outside [-1,1]^2. After 30 iterations without
      * convergence the best of the last iterate (clamped) and the boundary is
-     * kept and CT_NARROW_FALLBACK set. */
+     * kept and CT_NARROW_FALLBACK set. Newton finds the minimum it starts
+     * in: on quads whose bilinear map folds over itself (a corner pushed
+     * across the opposite diagonal, far beyond any usable element) it may
+     * stop at a local minimum, farther than the surface's closest point,
+     * without the flag (seen only on such random quads, never on convex
+     * ones warped up to twice their size). */
     CT_QUAD_NEWTON,
     /* Closed form (TYPE3/5 style): p is projected on the mean plane
      * (normal (x3-x1) x (x4-x2)); with d_41, d_23, d_12, d_34 the signed
@@ -113,8 +123,8 @@ typedef struct ct_narrow_stats {
 /*
  * Node-segment narrow phase over npair candidate pairs (node[k], seg[k]).
  * n1..n4 are indexed by segment, x/y/z by node. Returns CT_OK, or
- * CT_ERR_ARG for a NULL array, a negative count or a bad method. stats may
- * be NULL.
+ * CT_ERR_ARG for a NULL array, a negative count, a bad method, a scalar gap
+ * that is negative, NaN or infinite, or a NaN cap. stats may be NULL.
  */
 int ct_narrow_node_segment(ct_idx npair, const ct_idx *node,
                            const ct_idx *seg, const ct_idx *n1,
@@ -195,7 +205,8 @@ typedef struct ct_edge_geo {
  * gap_edge is NULL; the pair gap is the sum for the two edges. Skipped
  * pairs (an edge shorter than 1e-12, single 1e-6, times the longer one,
  * or NaN/Inf): flag, pen 0, dist CT_NARROW_FAR, normal (0,0,1), sa = sb = 0,
- * points 0.
+ * points 0. Returns CT_OK, or CT_ERR_ARG for a NULL array, a negative
+ * count, a scalar gap that is negative, NaN or infinite, or a NaN cap.
  */
 int ct_narrow_edge_edge(ct_idx npair, const ct_idx *ea, const ct_idx *eb,
                         const ct_idx *e1, const ct_idx *e2,
@@ -206,7 +217,8 @@ int ct_narrow_edge_edge(ct_idx npair, const ct_idx *ea, const ct_idx *eb,
 
 /*
  * The four nodal forces of edge-edge pairs for a normal force magnitude
- * fmag[k] >= 0 (pushing the edges apart): A1 gets (1-sa) F n, A2 sa F n,
+ * fmag[k] >= 0 (pushing the edges apart; a NaN, negative or infinite
+ * fmag[k] gives zero forces): A1 gets (1-sa) F n, A2 sa F n,
  * B1 -(1-sb) F n, B2 -sb F n. They sum to zero, and their moment is
  * (Pa - Pb) x F n = 0 since n is along Pa - Pb. Output slots 4k+0..3 are
  * A1, A2, B1, B2 (fx, fy, fz hold 4*npair elements).

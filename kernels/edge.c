@@ -43,7 +43,9 @@ int ct_narrow_edge_edge(ct_idx npair, const ct_idx *restrict ea, const ct_idx *r
                         ct_real gap, ct_real gap_max, const ct_edge_geo *out,
                         ct_narrow_stats *stats)
 {
-    if (npair < 0 || !out)
+    /* The scalar gap: finite and >= 0 (as the node-segment phase); a NaN
+     * cap is not "no cap". */
+    if (npair < 0 || !out || !(gap >= 0) || !(gap <= CTI_HUGE) || gap_max != gap_max)
         return CT_ERR_ARG;
     if (stats)
         memset(stats, 0, sizeof *stats);
@@ -115,7 +117,10 @@ int ct_edge_edge_forces(ct_idx npair, const ct_real *restrict fmag,
         ct_idx k0 = bi * CTI_EE_BLOCK, k1 = CTI_MIN(npair, k0 + CTI_EE_BLOCK);
         CTI_NR_SIMD
         for (ct_idx k = k0; k < k1; k++) {
-            ct_real F = fmag[k];
+            /* A NaN, negative or infinite magnitude gives no force (as a
+             * NaN or non-positive penetration does in ct_force.h). */
+            const ct_real F0 = fmag[k];
+            ct_real F = (F0 > 0) & (F0 <= CTI_HUGE) ? F0 : 0;
             ct_real wa2 = sa[k], wa1 = 1 - wa2, wb2 = sb[k], wb1 = 1 - wb2;
             ct_real Fx = F * nx[k], Fy = F * ny[k], Fz = F * nz[k];
             fx[4 * k + 0] = wa1 * Fx;

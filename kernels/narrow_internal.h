@@ -155,25 +155,27 @@ void cti_ee_block(ct_idx nb, const ct_real *restrict G,
     ct_real *restrict o_gap = o_->gap + (k0);                                             \
     cti_nr_int *restrict o_iflag = b->flag
 
-/* Write pair j of the block, or the documented skip values when bad != 0;
+/* Write pair j of the block, or the documented skip values when bad != 0
+ * or when cti_nr_finish found the distance overflowed (flag NONFINITE);
  * the contact point (cx, cy, cz) is relative to (ox, oy, oz) (see
  * CTI_NR_LOAD). */
 #define CTI_NR_STORE(j, bad, dist, pen, nx, ny, nz, cx, cy, cz, h1, h2, h3, h4, g, flag)  \
     do {                                                                                  \
-        o_dist[j] = (bad) ? CT_NARROW_FAR : (dist);                                       \
-        o_pen[j] = (bad) ? 0 : (pen);                                                     \
-        o_nx[j] = (bad) ? 0 : (nx);                                                       \
-        o_ny[j] = (bad) ? 0 : (ny);                                                       \
-        o_nz[j] = (bad) ? 1 : (nz);                                                       \
-        o_cx[j] = (bad) ? 0 : (cx) + ox;                                                  \
-        o_cy[j] = (bad) ? 0 : (cy) + oy;                                                  \
-        o_cz[j] = (bad) ? 0 : (cz) + oz;                                                  \
-        o_h1[j] = (bad) ? 0 : (h1);                                                       \
-        o_h2[j] = (bad) ? 0 : (h2);                                                       \
-        o_h3[j] = (bad) ? 0 : (h3);                                                       \
-        o_h4[j] = (bad) ? 0 : (h4);                                                       \
-        o_gap[j] = ((bad) & CTI_NR_F(NONFINITE)) ? 0 : (g);                               \
-        o_iflag[j] = (bad) ? (bad) : (flag);                                              \
+        const cti_nr_int b_ = (bad) ? (bad) : ((flag) & CTI_NR_F(NONFINITE));             \
+        o_dist[j] = b_ ? CT_NARROW_FAR : (dist);                                          \
+        o_pen[j] = b_ ? 0 : (pen);                                                        \
+        o_nx[j] = b_ ? 0 : (nx);                                                          \
+        o_ny[j] = b_ ? 0 : (ny);                                                          \
+        o_nz[j] = b_ ? 1 : (nz);                                                          \
+        o_cx[j] = b_ ? 0 : (cx) + ox;                                                     \
+        o_cy[j] = b_ ? 0 : (cy) + oy;                                                     \
+        o_cz[j] = b_ ? 0 : (cz) + oz;                                                     \
+        o_h1[j] = b_ ? 0 : (h1);                                                          \
+        o_h2[j] = b_ ? 0 : (h2);                                                          \
+        o_h3[j] = b_ ? 0 : (h3);                                                          \
+        o_h4[j] = b_ ? 0 : (h4);                                                          \
+        o_gap[j] = (b_ & CTI_NR_F(NONFINITE)) ? 0 : (g);                                  \
+        o_iflag[j] = b_ ? b_ : (flag);                                                    \
     } while (0)
 
 /* Narrow the block's integer flags to the output bytes. */
@@ -267,7 +269,6 @@ CTI_NR_INLINE void cti_nr_tri_k(ct_real abx, ct_real aby, ct_real abz, ct_real a
     ct_real n2 = cx * cx + cy * cy + cz * cz;
     ct_real aa = abx * abx + aby * aby + abz * abz;
     ct_real cc = acx * acx + acy * acy + acz * acz;
-    ct_real ac = abx * acx + aby * acy + abz * acz;
     ct_real d1 = abx * apx + aby * apy + abz * apz;
     ct_real d2 = acx * apx + acy * apy + acz * apz;
     ct_real bcx = acx - abx, bcy = acy - aby, bcz = acz - abz;
@@ -276,8 +277,8 @@ CTI_NR_INLINE void cti_nr_tri_k(ct_real abx, ct_real aby, ct_real abz, ct_real a
     ct_real e3 = bcx * bpx + bcy * bpy + bcz * bpz; /* (b->c).(b->p) */
     ct_real lm = aa > cc ? aa : cc;
     lm = lm > bb ? lm : bb;
-    /* ab.(p - b), ac.(p - b), ab.(p - c), ac.(p - c). */
-    ct_real d3 = d1 - aa, d4 = d2 - ac, d5 = d1 - ac, d6 = d2 - cc;
+    /* ab.(p - b) and ac.(p - c). */
+    ct_real d3 = d1 - aa, d6 = d2 - cc;
     /* Face: barycentric numerators over the determinant |ab x ac|^2, as
      * (ap x ac).n and (ab x ap).n: equal to cc d1 - ac d2 and aa d2 - ac d1
      * (Lagrange's identity) but without their cancellation, which on a
@@ -288,7 +289,11 @@ CTI_NR_INLINE void cti_nr_tri_k(ct_real abx, ct_real aby, ct_real abz, ct_real a
      * products, subtracted in the other order. */
     ct_real fv = -(kcx * cx + kcy * cy + kcz * cz);
     ct_real fw = kbx * cx + kby * cy + kbz * cz;
-    ct_real fu = n2 - fv - fw;
+    /* (bc x bp).n, not n2 - fv - fw: on a needle whose far corner is a,
+     * those three are of the order of the long edge squared and their
+     * difference can lose the sign that picks the edge b-c's region. */
+    ct_real fu = (bcy * bpz - bcz * bpy) * cx + (bcz * bpx - bcx * bpz) * cy +
+                 (bcx * bpy - bcy * bpx) * cz;
     ct_real lim = -CTI_NR_IN_TOL * n2;
     *in = (fv >= lim) & (fw >= lim) & (fu >= lim);
     /* Regions in increasing priority; the last true test wins. */
@@ -303,7 +308,14 @@ CTI_NR_INLINE void cti_nr_tri_k(ct_real abx, ct_real aby, ct_real abz, ct_real a
     vn = r ? 0 : vn;
     wn = r ? d2 : wn;
     den = r ? cc : den;
-    r = (d6 >= 0) & (d5 <= d6);                        /* vertex c */
+    /* The vertex tests ab.(p - c) <= ac.(p - c) and ac.(p - b) <=
+     * ab.(p - b) are (b - c).(p - c) <= 0 and (c - b).(p - b) <= 0: e3 >= bb
+     * and e3 <= 0, formed from the short
+     * vectors b->c and b->p, not as differences of dot products with the
+     * edges from a (on a needle whose far corner is a, of the order of its
+     * length squared: their difference lost its sign and a point near the
+     * edge b-c went to vertex c, 0.88 away instead of 0.51). */
+    r = (d6 >= 0) & (e3 >= bb);                        /* vertex c */
     un = r ? 0 : un;
     vn = r ? 0 : vn;
     wn = r ? 1 : wn;
@@ -313,7 +325,7 @@ CTI_NR_INLINE void cti_nr_tri_k(ct_real abx, ct_real aby, ct_real abz, ct_real a
     vn = r ? d1 : vn;
     wn = r ? 0 : wn;
     den = r ? aa : den;
-    r = (d3 >= 0) & (d4 <= d3);                        /* vertex b */
+    r = (d3 >= 0) & (e3 <= 0);                         /* vertex b */
     un = r ? 0 : un;
     vn = r ? 1 : vn;
     wn = r ? 0 : wn;
@@ -364,6 +376,10 @@ CTI_NR_INLINE void cti_nr_finish(ct_real px, ct_real py, ct_real pz, ct_real cx,
 {
     ct_real rx = px - cx, ry = py - cy, rz = pz - cz;
     ct_real r2 = rx * rx + ry * ry + rz * rz;
+    /* Finite coordinates whose squares overflow (near 1e154, single 1e19)
+     * give an infinite or NaN r2: the pair is then skipped as non-finite
+     * (CTI_NR_STORE), not given an infinite distance and a zero normal. */
+    const cti_nr_int ovf = !(r2 - r2 == 0);
     ct_real r = CTI_SQRT(r2);
     /* r <= tol * sqrt(l2), squared. */
     cti_nr_int on = r2 <= (CTI_NR_ON_TOL * CTI_NR_ON_TOL) * l2;
@@ -388,7 +404,8 @@ CTI_NR_INLINE void cti_nr_finish(ct_real px, ct_real py, ct_real pz, ct_real cx,
     *nx = vx * inv;
     *ny = vy * inv;
     *nz = vz * inv;
-    *flag = (behind ? CTI_NR_F(BEHIND) : 0) | (in ? 0 : CTI_NR_F(OUTSIDE));
+    *flag = (behind ? CTI_NR_F(BEHIND) : 0) | (in ? 0 : CTI_NR_F(OUTSIDE)) |
+            (ovf ? CTI_NR_F(NONFINITE) : 0);
 }
 
 #endif /* NARROW_INTERNAL_H */

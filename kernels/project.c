@@ -116,6 +116,13 @@ static int cti_narrow_run(const cti_nr_args *ap, ct_idx npair, ct_quad_method me
     const ct_contact_geo *out = a.out;
     if (npair < 0 || (int)method < 0 || method >= CT_QUAD_NMETHOD || !out)
         return CT_ERR_ARG;
+    /* The scalar gap is a parameter (finite, >= 0, as ct_search_run asks):
+     * with per-node or per-segment gaps a NaN one would be dropped by the
+     * max, and a negative one gave negative penetrations. A NaN cap is not
+     * "no cap". */
+    if (!(a.gap >= 0) || !(a.gap <= CTI_HUGE) || a.gap_max_s != a.gap_max_s ||
+        a.gap_max_m != a.gap_max_m)
+        return CT_ERR_ARG;
     if (stats)
         memset(stats, 0, sizeof *stats);
     if (npair == 0)
