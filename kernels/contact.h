@@ -144,8 +144,11 @@ void ct_mesh_destroy(ct_mesh *m);
 
 /* Check the mesh: node index out of range, a node repeated in a segment
  * (other than the n3 == n4 triangle convention), NaN/Inf coordinates, and
- * zero-area segments are all rejected (the first one found, in segment then
- * node order, is reported in diag). Zero area means area <= 1e-12 (double)
+ * zero-area segments are all rejected. Reported in diag: the first bad
+ * segment (index, repeated node, area; in segment order), else the first
+ * node with a NaN/Inf coordinate (in node order), so a segment of valid
+ * indices with a NaN corner is reported by its node after every other
+ * segment's problem. Zero area means area <= 1e-12 (double)
  * or 1e-6 (single) times the square of the segment's longest edge. */
 int ct_mesh_validate(const ct_mesh *m, ct_diag *diag);
 
