@@ -120,7 +120,7 @@ int ct_edge_edge_forces(ct_idx npair, const ct_real *restrict fmag,
             /* A NaN, negative or infinite magnitude gives no force (as a
              * NaN or non-positive penetration does in ct_force.h). */
             const ct_real F0 = fmag[k];
-            ct_real F = (F0 > 0) & (F0 <= CTI_HUGE) ? F0 : 0;
+            ct_real F = ((F0 > 0) & (F0 <= CTI_HUGE)) ? F0 : 0;
             ct_real wa2 = sa[k], wa1 = 1 - wa2, wb2 = sb[k], wb1 = 1 - wb2;
             ct_real Fx = F * nx[k], Fy = F * ny[k], Fz = F * nz[k];
             fx[4 * k + 0] = wa1 * Fx;
