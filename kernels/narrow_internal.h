@@ -308,13 +308,13 @@ CTI_NR_INLINE void cti_nr_tri_k(ct_real abx, ct_real aby, ct_real abz, ct_real a
     vn = r ? 0 : vn;
     wn = r ? d2 : wn;
     den = r ? cc : den;
-    /* The vertex tests ab.(p - c) <= ac.(p - c) and ac.(p - b) <=
-     * ab.(p - b) are (b - c).(p - c) <= 0 and (c - b).(p - b) <= 0: e3 >= bb
-     * and e3 <= 0, formed from the short
-     * vectors b->c and b->p, not as differences of dot products with the
-     * edges from a (on a needle whose far corner is a, of the order of its
-     * length squared: their difference lost its sign and a point near the
-     * edge b-c went to vertex c, 0.88 away instead of 0.51). */
+    /* The vertex tests ab.(p - c) <= ac.(p - c) and ac.(p - b) <= ab.(p - b)
+     * are (b - c).(p - c) <= 0 and (c - b).(p - b) <= 0, i.e. e3 >= bb and
+     * e3 <= 0, formed from the short vectors b->c and b->p; not as the
+     * differences of dot products with the edges from a, which on a needle
+     * whose far corner is a are of the order of its length squared and lost
+     * their sign (a point near the edge b-c went to vertex c, 0.88 away
+     * instead of 0.51). */
     r = (d6 >= 0) & (e3 >= bb);                        /* vertex c */
     un = r ? 0 : un;
     vn = r ? 0 : vn;
