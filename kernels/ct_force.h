@@ -8,7 +8,10 @@
  *  - p is the penetration (p > 0 in contact; p <= 0 or NaN: no contact).
  *  - n = (nx, ny, nz) is the unit normal pointing from the main segment
  *    towards the secondary node; the normal force on the secondary node is
- *    +fn * n (fn >= 0: compressive only). Assembly applies the reaction to
+ *    +fn * n (fn >= 0: compressive only). It must be finite for every pair,
+ *    in contact or not (the narrow phase gives (0, 0, 1) to pairs it
+ *    skips): the force vector is fn * n, and 0 times a NaN normal is NaN
+ *    (a select to zero there cost the linear kernel 0.81x at 10^6 pairs). Assembly applies the reaction to
  *    the segment nodes with the shape weights.
  *  - vn is the relative normal velocity (secondary minus contact point) . n:
  *    negative while the node approaches the segment.

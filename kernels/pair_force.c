@@ -45,9 +45,9 @@ CTI_SIMD_SQRT
         ct_real m = has_mm ? cti_reduced_mass(m1[i], m2[i]) : m1[i];
         ct_real e, d;
         ct_real ft = cti_normal_pair(pp[i], kk[i], m, vs, w, dt, &e, &d);
-        ox[i] = ft > 0 ? ft * n0 : 0; /* as ct_normal_force */
-        oy[i] = ft > 0 ? ft * n1 : 0;
-        oz[i] = ft > 0 ? ft * n2 : 0;
+        ox[i] = ft * n0;
+        oy[i] = ft * n1;
+        oz[i] = ft * n2;
         ofn[i] = ft;
         oe[i] = e;
         od[i] = d;

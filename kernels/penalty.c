@@ -379,11 +379,9 @@ CTI_SIMD_SQRT
         d = d > 0 ? d : 0;
         if (has_fn)
             ofn[i] = ft;
-        /* No force: zeros, whatever the normal (a NaN normal times 0 was
-         * NaN for a pair out of contact). */
-        ox[i] = ft > 0 ? ft * ax[i] : 0;
-        oy[i] = ft > 0 ? ft * ay[i] : 0;
-        oz[i] = ft > 0 ? ft * az[i] : 0;
+        ox[i] = ft * ax[i];
+        oy[i] = ft * ay[i];
+        oz[i] = ft * az[i];
         if (has_d)
             od[i] = d;
     }
@@ -435,10 +433,9 @@ CTI_SIMD_SQRT
         ct_real m = has_mm ? cti_reduced_mass(m1[i], m2[i]) : m1[i];
         ct_real e, d;
         ct_real ft = cti_normal_pair(pp[i], has_k ? kk[i] : K0, m, vs, v[i], dt, &e, &d);
-        /* As in cti_finish_block: no force, zeros, whatever the normal. */
-        ox[i] = ft > 0 ? ft * ax[i] : 0;
-        oy[i] = ft > 0 ? ft * ay[i] : 0;
-        oz[i] = ft > 0 ? ft * az[i] : 0;
+        ox[i] = ft * ax[i];
+        oy[i] = ft * ay[i];
+        oz[i] = ft * az[i];
         if (has_fn)
             ofn[i] = ft;
         if (has_e)

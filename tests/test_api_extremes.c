@@ -422,31 +422,3 @@ Test(api_extremes, search_init_refuses_out_of_range_params)
     p.max_pairs = -1;
     cr_assert_eq(ct_search_init(&s, &p), CT_ERR_ARG);
 }
-
-/* A pair out of contact gets zero force whatever its normal: a NaN normal
- * times the zero force was NaN (ct_normal_force, ct_normal_finish and the
- * fused linear + Coulomb kernel alike). */
-Test(api_extremes, no_contact_no_force_whatever_the_normal)
-{
-    const ct_real p[2] = {-1, (ct_real)0.1}, nan = (ct_real)NAN;
-    const ct_real nx[2] = {nan, 0}, ny[2] = {nan, 0}, nz[2] = {nan, 1};
-    const ct_real vn[2] = {0, 0}, ms[2] = {1, 1}, kd[2] = {10, 10}, fel[2] = {0, 1};
-    ct_real fx[2], fy[2], fz[2], fn[2];
-    cr_assert_eq(ct_normal_force(2, p, nx, ny, nz, vn, NULL, 10, ms, NULL, 0, (ct_real)1e-3, fx,
-                                 fy, fz, fn, NULL, NULL),
-                 CT_OK);
-    cr_assert(fx[0] == 0 && fy[0] == 0 && fz[0] == 0 && fn[0] == 0);
-    cr_assert_eq(fz[1], 1);
-    cr_assert_eq(ct_normal_finish(2, p, fel, kd, vn, ms, NULL, 0, (ct_real)1e-3, nx, ny, nz, fn,
-                                  fx, fy, fz, NULL),
-                 CT_OK);
-    cr_assert(fx[0] == 0 && fy[0] == 0 && fz[0] == 0 && fn[0] == 0);
-    cr_assert_eq(fz[1], 1);
-    ct_real v[2] = {0, 0}, tx[2] = {0, 0}, ty[2] = {0, 0}, tz[2] = {0, 0};
-    cr_assert_eq(ct_pair_force_linear_coulomb(2, p, nx, ny, nz, v, v, v, NULL, NULL, 10, ms, NULL,
-                                              0, NULL, (ct_real)0.3, NULL, 100, (ct_real)1e-3, 1,
-                                              fx, fy, fz, fn, NULL, NULL, tx, ty, tz, NULL),
-                 CT_OK);
-    cr_assert(fx[0] == 0 && fy[0] == 0 && fz[0] == 0 && fn[0] == 0);
-    cr_assert_eq(fz[1], 1);
-}
