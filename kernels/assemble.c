@@ -155,9 +155,10 @@ int ct_assemble_serial(const ct_asm_map *map, const ct_real *const w[],
 {
     if (!cti_asm_map_ok(map) || !w || nnode < 0)
         return CT_ERR_ARG;
-    cti_asm_range(0, map->npair, map->nslot, cti_asm_mode(map->nslot, w), map->slot, w,
-                  map->sign, fx, fy, fz, fxn, fyn, fzn);
-    return CT_OK;
+    const int bad = cti_asm_range_checked(0, map->npair, map->nslot,
+                                          cti_asm_mode(map->nslot, w), map->slot, w, map->sign,
+                                          fx, fy, fz, fxn, fyn, fzn, nnode);
+    return bad ? CT_ERR_RANGE : CT_OK;
 }
 
 int ct_assemble_prepare(ct_assemble_ws *ws, ct_assemble_variant variant,

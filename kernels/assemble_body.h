@@ -68,17 +68,31 @@ cti_asm_pair(ct_idx k, const int nslot, const int mode, const ct_idx *const slot
  * which saves three loads and three stores per pair. It receives the same
  * additions in the same order (a later slot naming it adds to the
  * registers too), so every bit is the memory loop's. */
-static inline __attribute__((always_inline)) void
+static inline __attribute__((always_inline)) int
 cti_asm_range_k(ct_idx lo, ct_idx hi, const int nslot, const int mode,
                 const ct_idx *const slot[], const ct_real *const w[], const ct_real *sign,
                 const ct_real *restrict fx, const ct_real *restrict fy,
                 const ct_real *restrict fz, ct_real *restrict fxn, ct_real *restrict fyn,
-                ct_real *restrict fzn)
+                ct_real *restrict fzn, const int check, const ct_idx nnode)
 {
     const ct_idx *restrict s0 = slot[0];
     ct_idx cur = -1; /* the node held in (ax, ay, az), -1: none */
     ct_real ax = 0, ay = 0, az = 0;
+    int bad = 0;
     for (ct_idx k = lo; k < hi; k++) {
+        /* check: a pair with a node outside [0, nnode) adds nothing (a
+         * predictable branch; the caller answers CT_ERR_RANGE), whatever
+         * its force. */
+        if (check) {
+            /* A negative node becomes a large unsigned one. */
+            uint64_t out = 0;
+            for (int s = 0; s < nslot; s++)
+                out |= (uint64_t)((uint64_t)(int64_t)slot[s][k] >= (uint64_t)nnode);
+            if (out) {
+                bad = 1;
+                continue;
+            }
+        }
         /* A zero force adds nothing (ct_assemble.h): skipped. In a contact
          * cycle's list the pairs in contact come in runs, so the branch is
          * well predicted. */
@@ -117,23 +131,53 @@ cti_asm_range_k(ct_idx lo, ct_idx hi, const int nslot, const int mode,
         fyn[cur] = ay;
         fzn[cur] = az;
     }
+    return bad;
 }
 
-static inline void cti_asm_range(ct_idx lo, ct_idx hi, int nslot, int mode,
-                                 const ct_idx *const slot[], const ct_real *const w[],
-                                 const ct_real *sign, const ct_real *restrict fx,
-                                 const ct_real *restrict fy, const ct_real *restrict fz,
-                                 ct_real *restrict fxn, ct_real *restrict fyn,
-                                 ct_real *restrict fzn)
+/* The specialisations of cti_asm_range_k for the common (nslot, mode);
+ * check and nnode as there. */
+#define CTI_ASM_RANGE_DISPATCH(check, nnode)                                                   \
+    do {                                                                                       \
+        if (nslot == 5 && mode == 1)                                                           \
+            return cti_asm_range_k(lo, hi, 5, 1, slot, w, sign, fx, fy, fz, fxn, fyn, fzn,     \
+                                   check, nnode);                                              \
+        if (nslot == 4 && mode == 2)                                                           \
+            return cti_asm_range_k(lo, hi, 4, 2, slot, w, sign, fx, fy, fz, fxn, fyn, fzn,     \
+                                   check, nnode);                                              \
+        if (nslot == 5 && mode == 2)                                                           \
+            return cti_asm_range_k(lo, hi, 5, 2, slot, w, sign, fx, fy, fz, fxn, fyn, fzn,     \
+                                   check, nnode);                                              \
+        return cti_asm_range_k(lo, hi, nslot, 0, slot, w, sign, fx, fy, fz, fxn, fyn, fzn,     \
+                               check, nnode);                                                  \
+    } while (0)
+
+/* Pairs lo..hi-1 whose nodes are known to be in range (a prepared
+ * colouring checked them). */
+static inline int cti_asm_range_trusted(ct_idx lo, ct_idx hi, int nslot, int mode,
+                                        const ct_idx *const slot[], const ct_real *const w[],
+                                        const ct_real *sign, const ct_real *restrict fx,
+                                        const ct_real *restrict fy, const ct_real *restrict fz,
+                                        ct_real *restrict fxn, ct_real *restrict fyn,
+                                        ct_real *restrict fzn)
 {
-    if (nslot == 5 && mode == 1)
-        cti_asm_range_k(lo, hi, 5, 1, slot, w, sign, fx, fy, fz, fxn, fyn, fzn);
-    else if (nslot == 4 && mode == 2)
-        cti_asm_range_k(lo, hi, 4, 2, slot, w, sign, fx, fy, fz, fxn, fyn, fzn);
-    else if (nslot == 5 && mode == 2)
-        cti_asm_range_k(lo, hi, 5, 2, slot, w, sign, fx, fy, fz, fxn, fyn, fzn);
-    else
-        cti_asm_range_k(lo, hi, nslot, 0, slot, w, sign, fx, fy, fz, fxn, fyn, fzn);
+    CTI_ASM_RANGE_DISPATCH(0, 0);
+}
+#define cti_asm_range(...) ((void)cti_asm_range_trusted(__VA_ARGS__))
+
+/* Pairs lo..hi-1, each pair's nodes checked against [0, nnode) as it
+ * comes: a pair with one out of range adds nothing (to none of its nodes,
+ * so the forces added still sum to zero) and the answer is 1.
+ * The serial variant's own check: 1.1x its time on 10^4 pairs, none
+ * measurable on 10^6, where a vector pass over the slots before the loop
+ * cost 1.1x and 1.25x. */
+static inline int cti_asm_range_checked(ct_idx lo, ct_idx hi, int nslot, int mode,
+                                        const ct_idx *const slot[], const ct_real *const w[],
+                                        const ct_real *sign, const ct_real *restrict fx,
+                                        const ct_real *restrict fy, const ct_real *restrict fz,
+                                        ct_real *restrict fxn, ct_real *restrict fyn,
+                                        ct_real *restrict fzn, ct_idx nnode)
+{
+    CTI_ASM_RANGE_DISPATCH(1, nnode);
 }
 
 /* Worksharing loops whose iterations never write the same node: SIMD is
@@ -164,6 +208,23 @@ static inline int cti_asm_map_ok(const ct_asm_map *map)
         if (map->npair > 0 && !map->slot[s])
             return 0;
     return 1;
+}
+
+/* CT_ERR_RANGE when a slot of the map holds a node outside [0, nnode): a
+ * pass over the slots, made by every entry that would otherwise write
+ * through them unchecked (the colouring and the gather map once per pair
+ * list; the atomic variant and the serial scalar sum, which have no
+ * preparation, at every call). */
+static inline int cti_asm_nodes_in_range(const ct_asm_map *map, ct_idx nnode)
+{
+    int bad = 0;
+    for (int s = 0; s < map->nslot; s++) {
+        const ct_idx *restrict sl = map->slot[s];
+#pragma omp parallel for schedule(static) reduction(| : bad)
+        for (ct_idx k = 0; k < map->npair; k++)
+            bad |= (sl[k] < 0) | (sl[k] >= nnode);
+    }
+    return bad ? CT_ERR_RANGE : CT_OK;
 }
 
 #endif /* CT_ASSEMBLE_BODY_H */

@@ -31,18 +31,6 @@ static inline void cti_block_range(const ct_assemble_ws *ws, ct_idx b, ct_idx np
     }
 }
 
-static int cti_map_nodes_in_range(const ct_asm_map *map, ct_idx nnode)
-{
-    int bad = 0;
-    for (int s = 0; s < map->nslot; s++) {
-        const ct_idx *restrict sl = map->slot[s];
-#pragma omp parallel for schedule(static) reduction(| : bad)
-        for (ct_idx k = 0; k < map->npair; k++)
-            bad |= (sl[k] < 0) | (sl[k] >= nnode);
-    }
-    return bad ? CT_ERR_RANGE : CT_OK;
-}
-
 #define CTI_GROW(ws, field, capf, need)                                                 \
     cti_grow((void **)&(ws)->field, &(ws)->capf, (size_t)(need), sizeof *(ws)->field, 0)
 
@@ -208,7 +196,7 @@ int ct_colour_pairs(ct_assemble_ws *ws, const ct_asm_map *map, ct_idx nnode, ct_
     if (!ws || !cti_asm_map_ok(map) || nnode < 0)
         return CT_ERR_ARG;
     ws->col_npair = ws->col_nnode = -1; /* invalid until finished */
-    int rc = cti_map_nodes_in_range(map, nnode);
+    int rc = cti_asm_nodes_in_range(map, nnode);
     if (rc != CT_OK)
         return rc;
     const ct_idx B = block > 0 ? block : ct_asm_default_block(map->npair);
@@ -229,7 +217,7 @@ int ct_colour_pair_blocks(ct_assemble_ws *ws, const ct_asm_map *map, ct_idx nnod
         bad = !(bstart[b + 1] > bstart[b]);
     if (bad)
         return CT_ERR_ARG;
-    int rc = cti_map_nodes_in_range(map, nnode);
+    int rc = cti_asm_nodes_in_range(map, nnode);
     if (rc != CT_OK)
         return rc;
     if (CTI_GROW(ws, bstart, cap_bstart, (size_t)nblock + 1))
@@ -426,6 +414,9 @@ int ct_assemble_scalar(const ct_assemble_ws *ws, ct_assemble_variant variant,
     const ct_idx *const *slot = map->slot;
     const ct_real *sign = map->sign;
     if (variant != CT_ASM_COLOUR) {
+        const int rc = cti_asm_nodes_in_range(map, nnode);
+        if (rc != CT_OK)
+            return rc;
         for (ct_idx k = 0; k < npair; k++)
             scalar_pair(k, ns, slot, w, sign, f, fn);
         return CT_OK;

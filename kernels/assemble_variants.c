@@ -17,6 +17,9 @@ int ct_assemble_atomic(const ct_asm_map *map, const ct_real *const w[],
 {
     if (!cti_asm_map_ok(map) || !w || nnode < 0)
         return CT_ERR_ARG;
+    const int rc = cti_asm_nodes_in_range(map, nnode);
+    if (rc != CT_OK)
+        return rc;
     const int ns = map->nslot;
     const ct_idx *const *slot = map->slot;
     const ct_real *sign = map->sign;

@@ -244,6 +244,80 @@ Test(assemble, errors)
     ct_assemble_ws_destroy(&ws);
 }
 
+/* A node outside [0, nnode) in any slot: every variant answers
+ * CT_ERR_RANGE and writes nothing outside [0, nnode); all but the serial
+ * one write nothing at all (the serial one skips the bad slots as it meets
+ * them, ct_assemble.h). The force arrays are longer than nnode, so a
+ * variant that wrote through the bad slot unchecked (the atomic and serial
+ * variants and the serial scalar sum did, before 2026-12-02) leaves a
+ * nonzero value past nnode, where the test looks. */
+Test(assemble, out_of_range_node_every_variant)
+{
+    enum { NN = 5, LEN = 16 };
+    const ct_idx bad_nodes[3] = {NN, LEN - 1, -1};
+    for (int c = 0; c < 3; c++)
+        for (int s = 0; s < 5; s++) {
+            ct_idx slot[5][3] = {{0, 1, 2}, {1, 2, 3}, {2, 3, 4}, {3, 4, 0}, {4, 0, 1}};
+            slot[s][1] = bad_nodes[c];
+            ct_asm_map map = ct_asm_map_nodeseg(3, slot[0], slot[1], slot[2], slot[3], slot[4]);
+            ct_real h[3] = {0.25, 0.5, 0.125}, f[3] = {1, -2, 3};
+            const ct_real *w[5] = {NULL, h, h, h, h};
+            ct_assemble_ws ws;
+            cr_assert_eq(ct_assemble_ws_init(&ws), CT_OK);
+            ct_real X[LEN] = {0}, Y[LEN] = {0}, Z[LEN] = {0}, S[LEN] = {0};
+            for (int v = 0; v < CT_ASM_NVARIANT; v++) {
+                if (v == CT_ASM_SERIAL)
+                    continue; /* below */
+                int rp = ct_assemble_prepare(&ws, (ct_assemble_variant)v, &map, NN);
+                int ra = ct_assemble(&ws, (ct_assemble_variant)v, &map, w, f, f, f, NN, X, Y, Z);
+                /* The variants that prepare refuse there (then the call
+                 * refuses an unprepared workspace); the others at the call. */
+                cr_assert(rp == CT_ERR_RANGE || ra == CT_ERR_RANGE,
+                          "variant %s, slot %d, node %ld: prepare %d, assemble %d",
+                          ct_assemble_variant_name((ct_assemble_variant)v), s,
+                          (long)bad_nodes[c], rp, ra);
+                cr_assert_neq(ra, CT_OK);
+                if (v != CT_ASM_COLOUR)
+                    cr_assert_eq(ct_assemble_scalar(&ws, (ct_assemble_variant)v, &map, w, f,
+                                                    NN, S),
+                                 CT_ERR_RANGE, "scalar sum, variant %s",
+                                 ct_assemble_variant_name((ct_assemble_variant)v));
+            }
+            cr_assert_eq(ct_assemble_atomic(&map, w, f, f, f, NN, X, Y, Z), CT_ERR_RANGE);
+            cr_assert_eq(ct_assemble_threadbuf(&ws, &map, w, f, f, f, NN, X, Y, Z),
+                         CT_ERR_RANGE);
+            for (int i = 0; i < LEN; i++)
+                cr_assert(X[i] == 0 && Y[i] == 0 && Z[i] == 0 && S[i] == 0,
+                          "slot %d, node %ld: force written at %d", s, (long)bad_nodes[c], i);
+            /* The serial variant, directly and through ct_assemble: the
+             * pairs whose nodes are all in range add, the bad pair adds
+             * nothing (to none of its nodes), nothing lands beyond nnode. */
+            for (int r = 0; r < 2; r++) {
+                int rc = r ? ct_assemble(&ws, CT_ASM_SERIAL, &map, w, f, f, f, NN, X, Y, Z)
+                           : ct_assemble_serial(&map, w, f, f, f, NN, X, Y, Z);
+                cr_assert_eq(rc, CT_ERR_RANGE);
+            }
+            /* The bad pair with a zero force: refused all the same. */
+            ct_real fz0[3] = {f[0], 0, f[2]}, T[3][LEN] = {{0}};
+            cr_assert_eq(ct_assemble_serial(&map, w, fz0, fz0, fz0, NN, T[0], T[1], T[2]),
+                         CT_ERR_RANGE);
+            cr_assert_eq(ct_assemble_atomic(&map, w, fz0, fz0, fz0, NN, T[0], T[1], T[2]),
+                         CT_ERR_RANGE);
+            double want[LEN] = {0};
+            for (int k = 0; k < 3; k++) {
+                if (k == 1)
+                    continue; /* the bad pair */
+                for (int q = 0; q < 5; q++)
+                    want[slot[q][k]] += 2 * (q == 0 ? 1.0 : -(double)h[k]) * (double)f[k];
+            }
+            for (int i = 0; i < LEN; i++)
+                cr_assert(fabs((double)X[i] - want[i]) <= 1e-6 && X[i] == Y[i] && X[i] == Z[i],
+                          "serial, slot %d, node %ld: node %d has %g, want %g", s,
+                          (long)bad_nodes[c], i, (double)X[i], want[i]);
+            ct_assemble_ws_destroy(&ws);
+        }
+}
+
 /* Segment slots are the segment's nodes; a bad segment index is reported. */
 Test(assemble, seg_slots)
 {
