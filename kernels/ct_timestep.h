@@ -6,8 +6,11 @@
  * where it occurs through *imin (ties: the smallest index, so the answer is
  * the same for any thread count). An entry that sets no limit counts as
  * CT_DT_NONE; when no entry sets a limit, *dtmin = CT_DT_NONE and
- * *imin = -1. A NaN in an input that would be used gives CT_ERR_NONFINITE
- * with *imin the smallest such index. dt (per entry, may be NULL) receives
+ * *imin = -1. A NaN or infinite input of an entry (for ct_dt_nodal its
+ * mass or its total stiffness, for the TYPE7 step p, g or vn, whether or not
+ * the entry sets a limit) gives CT_ERR_NONFINITE with *imin the smallest
+ * such index: an infinite stiffness or approach speed would otherwise give
+ * a zero step, on which a solver cannot advance. dt (per entry, may be NULL) receives
  * every entry's step.
  */
 #ifndef CT_TIMESTEP_H
@@ -52,7 +55,8 @@ ct_real ct_dt_type6(ct_real mmin, ct_real p, ct_idx ncurve, const ct_real *cx,
                     const ct_real *cy);
 
 /* Tunnelling limit 0.9 gap_min / |v_rel,max| (CT_DT_NONE when the speed is
- * 0 or the gap is not positive). */
+ * 0 or NaN or the gap is not positive or NaN; 0 for an infinite speed: the
+ * caller checks the scalars it passes). */
 ct_real ct_dt_tunnel(ct_real gap_min, ct_real vrel_max);
 
 #ifdef __cplusplus

@@ -54,21 +54,27 @@ struct cti_dt_in {
     struct cti_dt_type7_in type7;
 };
 
+/* x - x is 0 for a finite x, NaN for an infinite or NaN one. */
+#define CTI_NONFINITE(x) (!((x) - (x) == 0))
+
 /* The nodal step of a node of mass mi and stiffness k (element plus
- * contact); *nan is set if an input is NaN. */
+ * contact); *nan is set if an input is NaN or infinite (an infinite
+ * stiffness, or a sum of two that overflows, would give a zero step, on
+ * which a solver cannot advance; an infinite mass an infinite one). */
 static inline ct_real cti_dt_nodal_step(ct_real mi, ct_real k, int *nan)
 {
-    *nan = mi != mi || k != k;
+    *nan = CTI_NONFINITE(mi) | CTI_NONFINITE(k);
     return (mi > 0 && k > 0) ? CTI_SQRT((ct_real)2 * mi / k) : CT_DT_NONE;
 }
 
 /* The TYPE7 kinematic step of a pair of penetration pi, gap gi and normal
- * velocity v (ct_dt_type7_kinematic). */
+ * velocity v (ct_dt_type7_kinematic); *nan is set if an input is NaN or
+ * infinite (an infinite approach speed would give a zero step). */
 static inline ct_real cti_dt_type7_step(ct_real pi, ct_real gi, ct_real v, int *nan)
 {
     const ct_real xc = (ct_real)1 - (ct_real)CT_TYPE7_RMIN;
     int lim = pi > 0 && gi > 0 && pi < gi * xc && v < 0;
-    *nan = pi != pi || gi != gi || v != v;
+    *nan = CTI_NONFINITE(pi) | CTI_NONFINITE(gi) | CTI_NONFINITE(v);
     return lim ? (gi - pi) / ((ct_real)2 * -v) : CT_DT_NONE;
 }
 
@@ -104,8 +110,8 @@ CTI_NOVEC static void cti_dt_fetch(const ct_idx *restrict ix, const ct_real *res
 /* Element stiffness zero, for the calls without one (a chunk's worth). */
 static const ct_real cti_dt_zero[CTI_DT_CHUNK];
 
-/* The steps of items [i0, i0 + n) (n <= CTI_DT_CHUNK) into d, their NaN
- * flags into nan; returns whether any is NaN. One vector loop per kind. */
+/* The steps of items [i0, i0 + n) (n <= CTI_DT_CHUNK) into d, their
+ * non-finite flags into nan; returns whether any is set. One vector loop per kind. */
 static int cti_dt_chunk(const struct cti_dt_in *in, ct_idx i0, int n, ct_real *restrict d,
                         cti_lane *restrict nan)
 {
@@ -154,7 +160,7 @@ static int cti_dt_chunk(const struct cti_dt_in *in, ct_idx i0, int n, ct_real *r
 }
 
 /* Chunk c of the scan: its steps (into dt when given), and its minimum,
- * lowest index and first NaN item folded into the running (lb, li, ln). */
+ * lowest index and first non-finite item folded into the running (lb, li, ln). */
 static void cti_dt_scan_chunk(ct_idx n, const struct cti_dt_in *in, ct_idx c, ct_real *dt,
                               ct_real *lb, ct_idx *li, ct_idx *ln)
 {
@@ -186,8 +192,8 @@ static void cti_dt_scan_chunk(ct_idx n, const struct cti_dt_in *in, ct_idx c, ct
 }
 
 /* The scan shared by the per-item limits: dt[i] = the step of item i
- * (CT_DT_NONE where an input is NaN), the minimum and its lowest index, or
- * CT_ERR_NONFINITE with the first NaN item. In chunks: the steps of a
+ * (CT_DT_NONE where an input is NaN or infinite), the minimum and its
+ * lowest index, or CT_ERR_NONFINITE with the first such item. In chunks: the steps of a
  * chunk in a vector loop, its minimum by a vector reduction (exact), then
  * the first index holding it, so the answer is the item-by-item scan's.
  * Below CTI_PAR_MIN items the chunks run without a thread team (see

@@ -196,3 +196,99 @@ Test(timestep, minimum_index_threads_and_ties)
     free(m);
     free(k);
 }
+
+/* Infinite inputs: an infinite stiffness (or a sum of two finite ones that
+ * overflows) gave a nodal step of exactly 0 with CT_OK, an infinite approach
+ * speed a TYPE7 step of 0: a solver that takes the minimum then cannot
+ * advance, and nothing said why. Both are CT_ERR_NONFINITE now, with the
+ * first such entry, on the threaded path (20000 entries, 1 and 2 threads)
+ * as on the short one, through a node list as without; finite entries
+ * around them keep their steps. */
+Test(timestep, infinite_inputs_are_errors_not_zero_steps)
+{
+    enum { N = 20000 };
+    ct_real *m = malloc(N * sizeof *m), *k = malloc(N * sizeof *k);
+    ct_real *ke = malloc(N * sizeof *ke), *p = malloc(N * sizeof *p);
+    ct_real *g = malloc(N * sizeof *g), *vn = malloc(N * sizeof *vn);
+    ct_idx *idx = malloc(N * sizeof *idx);
+    cr_assert(m && k && ke && p && g && vn && idx);
+    const ct_real big = (ct_real)(sizeof(ct_real) == 4 ? 3e38 : 1e308);
+    const ct_idx at[3] = {5, 300, N - 7};
+    for (int c = 0; c < 6; c++) {
+        for (ct_idx i = 0; i < N; i++) {
+            m[i] = 1;
+            k[i] = 100;
+            ke[i] = 0;
+            p[i] = (ct_real)0.1;
+            g[i] = 1;
+            vn[i] = -1;
+            idx[i] = (ct_idx)(((int64_t)i * 37) % N);
+        }
+        const ct_idx i0 = at[c % 3], i1 = at[(c + 1) % 3];
+        const ct_idx first = i0 < i1 ? i0 : i1;
+        switch (c) {
+        case 0: k[i0] = INFINITY; k[i1] = INFINITY; break;
+        case 1: m[i0] = INFINITY; m[i1] = -INFINITY; break;
+        case 2: k[i0] = big; ke[i0] = big; k[i1] = big; ke[i1] = big; break; /* overflow */
+        case 3: vn[i0] = -INFINITY; vn[i1] = -INFINITY; break;
+        case 4: p[i0] = INFINITY; p[i1] = -INFINITY; break;
+        default: g[i0] = INFINITY; g[i1] = INFINITY; break;
+        }
+        for (int t = 1; t <= 2; t++) {
+            ctt_threads(t);
+            for (ct_idx n = 400; n <= N; n += N - 400) {
+                ct_real dmin = -1;
+                ct_idx imin = -2;
+                const ct_idx want = first < n ? first : (i0 < n ? i0 : (i1 < n ? i1 : -1));
+                int rc = c < 3 ? ct_dt_nodal(n, NULL, m, c == 2 ? ke : NULL, k, NULL, &dmin,
+                                             &imin)
+                               : ct_dt_type7_kinematic(n, p, g, vn, NULL, &dmin, &imin);
+                if (want < 0) {
+                    /* No bad entry in the first n: the plain answer. */
+                    cr_assert_eq(rc, CT_OK, "case %d, n %ld", c, (long)n);
+                    cr_assert(dmin > 0 && dmin < CT_DT_NONE, "case %d: dmin %g", c,
+                              (double)dmin);
+                    continue;
+                }
+                cr_assert_eq(rc, CT_ERR_NONFINITE, "case %d, %d threads, n %ld: rc %d", c, t,
+                             (long)n, rc);
+                cr_assert_eq(imin, want, "case %d, %d threads: imin %ld, want %ld", c, t,
+                             (long)imin, (long)want);
+                cr_assert_eq(dmin, CT_DT_NONE);
+            }
+            if (c < 3) {
+                /* Through a node list (mass and element stiffness of node
+                 * idx[i], contact stiffness of entry i): the first entry
+                 * whose mass or total stiffness is not finite, by a plain
+                 * scan. */
+                ct_idx want = -1;
+                for (ct_idx i = 0; i < N && want < 0; i++) {
+                    const double mi = m[idx[i]], ki = (c == 2 ? ke[idx[i]] : 0) + k[i];
+                    if (!isfinite(mi) || !isfinite((ct_real)ki))
+                        want = i;
+                }
+                ct_real dmin;
+                ct_idx imin;
+                const int rc = ct_dt_nodal(N, idx, m, c == 2 ? ke : NULL, k, NULL, &dmin, &imin);
+                if (c == 2) {
+                    /* The two big stiffnesses of node i0 now belong to two
+                     * entries (i0's contact, the entry naming i0's element):
+                     * no sum overflows, the step is finite. */
+                    cr_assert_eq(want, -1);
+                    cr_assert_eq(rc, CT_OK);
+                    cr_assert(dmin > 0 && dmin < CT_DT_NONE);
+                    continue;
+                }
+                cr_assert_eq(rc, CT_ERR_NONFINITE, "case %d through the list", c);
+                cr_assert_eq(imin, want);
+            }
+        }
+    }
+    free(m);
+    free(k);
+    free(ke);
+    free(p);
+    free(g);
+    free(vn);
+    free(idx);
+}
