@@ -258,6 +258,10 @@ ct_idx ct_colour_degree(ct_assemble_ws *ws, const ct_asm_map *map, ct_idx nnode)
     if (!ws || !cti_asm_map_ok(map) || ws->col_npair != map->npair ||
         ws->col_nnode != nnode || ws->col_nslot != map->nslot)
         return -1;
+    /* The map may have changed since the colouring (same sizes): its nodes
+     * index the counters below. */
+    if (cti_asm_nodes_in_range(map, nnode) != CT_OK)
+        return -1;
     /* cnt[n]: distinct blocks touching node n; mask[n]: last block seen + 1. */
     if (cti_grow((void **)&ws->cnt, &ws->cap_cnt, (size_t)nnode, sizeof *ws->cnt, 0) ||
         cti_grow((void **)&ws->mask, &ws->cap_mask, (size_t)nnode, sizeof *ws->mask, 0))

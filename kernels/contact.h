@@ -152,7 +152,8 @@ void ct_mesh_destroy(ct_mesh *m);
  * or 1e-6 (single) times the square of the segment's longest edge. */
 int ct_mesh_validate(const ct_mesh *m, ct_diag *diag);
 
-/* Derive edges and node->segment adjacency (replaces earlier ones). */
+/* Derive edges and node->segment adjacency (replaces earlier ones).
+ * CT_ERR_RANGE (segment in diag) for a segment node outside [0, nnode). */
 int ct_mesh_build_topology(ct_mesh *m, ct_diag *diag);
 
 /* A surface is a list of segments; a node set is a list of nodes. */
@@ -166,7 +167,9 @@ typedef struct ct_nodeset {
     ct_idx *node;
 } ct_nodeset;
 
-/* The nodes used by a surface's segments, sorted and unique. */
+/* The nodes used by a surface's segments, sorted and unique. CT_ERR_RANGE
+ * for a segment index outside [0, nseg) or a segment node outside
+ * [0, nnode). */
 int ct_surface_nodes(const ct_mesh *m, const ct_surface *s, ct_nodeset *out);
 void ct_nodeset_destroy(ct_nodeset *s);
 

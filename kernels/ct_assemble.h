@@ -210,7 +210,9 @@ ct_idx ct_asm_default_block(ct_idx npair);
 
 /* The greedy bound of the last colouring: the largest, over blocks, number
  * of (other block, shared node) incidences; ncolour <= it + 1. Costs a pass
- * over the map (for tests and reports). Stores it in ws->max_degree too. */
+ * over the map (for tests and reports). Stores it in ws->max_degree too.
+ * -1 when ws holds no colouring of a map of these sizes, or a node of the
+ * map is outside [0, nnode). */
 ct_idx ct_colour_degree(ct_assemble_ws *ws, const ct_asm_map *map, ct_idx nnode);
 
 /* Build the node->slot CSR map of the gather variant (once per pair list). */

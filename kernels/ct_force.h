@@ -269,6 +269,8 @@ int ct_normal_force(ct_idx npair, const ct_real *p, const ct_real *nx, const ct_
  * and h1..h4 their weights (ct_contact_geo; a triangle has h4 = 0). When m
  * is given, mm gets the main mass at the contact point, sum_i h_i m(s_i)
  * (the reduced mass of the damper); m and mm are both NULL or both given.
+ * node and s1..s4 are not range-checked (no node count is passed; they come
+ * from the search and ct_asm_seg_slots, which check them).
  */
 int ct_relative_velocity(ct_idx npair, const ct_idx *node, const ct_idx *s1, const ct_idx *s2,
                          const ct_idx *s3, const ct_idx *s4, const ct_real *h1,

@@ -139,7 +139,9 @@ int ct_pair_match(ct_idx nold, const ct_idx *old_node, const ct_idx *old_seg, ct
 
 /* dst[k] = src[old_of_new[k]], or fill when old_of_new[k] < 0: the gather
  * that carries any per-pair state (friction history, p_prev, fcap, p0) to
- * the new list. src and dst must not overlap. */
+ * the new list. src and dst must not overlap. old_of_new is not checked
+ * against src's length (not passed): it must come from ct_pair_match or
+ * ct_friction_remap on the list src belongs to. */
 int ct_pair_remap(ct_idx nnew, const ct_idx *old_of_new, const ct_real *src, ct_real fill,
                   ct_real *dst);
 

@@ -202,7 +202,8 @@ int ct_pair_may_touch(const ct_real p[3], const ct_real a[3], const ct_real b[3]
  * A NaN position gives an infinite bound. Returns 1 when a re-sort is
  * needed, 0 when not; *bound (may be NULL) receives the bound. Passing the
  * same array for sec and main_nodes (self contact, one node list) reads
- * the nodes once.
+ * the nodes once. The node lists are not range-checked (no node count is
+ * passed): they are the lists the search was given, which it checks.
  */
 int ct_resort_needed(ct_idx nsec, const ct_idx *sec, ct_idx nmain,
                      const ct_idx *main_nodes, const ct_real *x0, const ct_real *y0,
@@ -219,7 +220,10 @@ int ct_resort_needed(ct_idx nsec, const ct_idx *sec, ct_idx nmain,
  * not NULL, xk/yk/zk receive the current positions of the listed nodes
  * (the next call's xp; they must not alias x or xp: keep two arrays and
  * swap them). *amax receives the largest coordinate magnitude of the listed
- * nodes, infinite if one is NaN. bound, step, amax may be NULL. One pass
+ * nodes, infinite if one is NaN. bound, step, amax may be NULL. The node
+ * lists are not range-checked (as ct_resort_needed's), and xk/yk/zk are
+ * written at the listed nodes' indices: they hold as many entries as the
+ * position arrays. One pass
  * reads the 9 coordinates of a node where ct_resort_needed twice and a copy
  * read 15.
  */

@@ -318,6 +318,31 @@ Test(assemble, out_of_range_node_every_variant)
         }
 }
 
+/* ct_colour_degree on a map whose slots changed since the colouring (same
+ * sizes): its per-node counters are indexed by the map's nodes, so a node
+ * out of range is refused (-1) rather than read and written past them. */
+Test(assemble, colour_degree_refuses_a_changed_map)
+{
+    ct_idx slot[5][3] = {{0, 1, 2}, {1, 2, 3}, {2, 3, 4}, {3, 4, 0}, {4, 0, 1}};
+    ct_asm_map map = ct_asm_map_nodeseg(3, slot[0], slot[1], slot[2], slot[3], slot[4]);
+    ct_assemble_ws ws;
+    cr_assert_eq(ct_assemble_ws_init(&ws), CT_OK);
+    cr_assert_eq(ct_colour_pairs(&ws, &map, 5, 1), CT_OK);
+    /* Every pair shares nodes with both others: degree 2 per shared node
+     * counted with repetition, at least 2. */
+    const ct_idx d = ct_colour_degree(&ws, &map, 5);
+    cr_assert_geq(d, 2);
+    cr_assert_leq(ws.ncolour, d + 1);
+    const ct_idx bad[3] = {5, 40, -1};
+    for (int c = 0; c < 3; c++) {
+        slot[3][2] = bad[c];
+        cr_assert_eq(ct_colour_degree(&ws, &map, 5), -1, "node %ld", (long)bad[c]);
+    }
+    slot[3][2] = 0;
+    cr_assert_eq(ct_colour_degree(&ws, &map, 5), d);
+    ct_assemble_ws_destroy(&ws);
+}
+
 /* Segment slots are the segment's nodes; a bad segment index is reported. */
 Test(assemble, seg_slots)
 {
