@@ -127,6 +127,7 @@ typedef struct ctd_if_summary {
     const char *search;
     int64_t max_active, resorts;
     double max_force;
+    int64_t memory; /* bytes held at the end (the peak), -1: unknown */
 } ctd_if_summary;
 
 typedef struct ctd_run_summary {

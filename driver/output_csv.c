@@ -201,9 +201,10 @@ int ctd_output_summary(ctd_output *o, const ctd_run_summary *s)
         ctd_json_string(f, i->name);
         fprintf(f, ", \"type\": %d, \"search\": ", i->type);
         ctd_json_string(f, i->search);
-        fprintf(f, ", \"max_active\": %lld, \"resorts\": %lld, \"max_force\": %.9g}",
+        fprintf(f, ", \"max_active\": %lld, \"resorts\": %lld, \"max_force\": %.9g, "
+                   "\"memory_bytes\": %lld}",
                 (long long)i->max_active, (long long)i->resorts,
-                i->max_force == i->max_force ? i->max_force : 0.0);
+                i->max_force == i->max_force ? i->max_force : 0.0, (long long)i->memory);
     }
     fputs(s->ninterface ? "\n  ],\n" : "],\n", f);
     fputs("  \"provenance\": {\n", f);

@@ -126,6 +126,10 @@ typedef struct ctd_contact_hook {
     void *ctx;
     ctd_contact_step_fn contact_step;
     void (*destroy)(void *ctx);
+    /* Bytes the interface holds (its arrays, search and assembly
+     * workspaces); may be NULL. They only grow, so at the end of a run
+     * this is the run's peak. */
+    size_t (*memory)(const void *ctx);
 } ctd_contact_hook;
 
 /*
@@ -249,6 +253,10 @@ void ctd_solver_penetration(const ctd_solver *s, int64_t *count, double *pmax, c
  * start within their gap and the deepest (its depth, node id and part);
  * nothing without interfaces. In the run's report and `contact check`. */
 void ctd_solver_print_penetration(FILE *f, const char *prefix, const ctd_solver *s);
+
+/* Bytes held by interface i (its hook's memory), -1 when its hook does not
+ * say or i is out of range. */
+int64_t ctd_solver_if_memory(const ctd_solver *s, int i);
 
 #ifdef __cplusplus
 }

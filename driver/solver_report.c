@@ -309,11 +309,16 @@ static void print_report(ctd_solver *s, FILE *f)
             s->e0.total);
     fprintf(f, "  energy error (E - E0 - W_ext) / max(E): final %+.3e, largest %.3e\n", e->error,
             s->error_max);
-    for (int i = 0; i < s->nhook; i++)
+    for (int i = 0; i < s->nhook; i++) {
         fprintf(f, "  interface %s (type %d, %s search): max force %.4g, max active pairs %lld, "
-                   "re-sorts %lld\n", s->w->if_names[i], s->hooks[i].type,
+                   "re-sorts %lld", s->w->if_names[i], s->hooks[i].type,
                 s->hooks[i].search ? s->hooks[i].search : "?", s->if_force_max[i],
                 (long long)s->if_active_max[i], (long long)s->w->if_resorts[i]);
+        const int64_t mem = ctd_solver_if_memory(s, i);
+        if (mem >= 0)
+            fprintf(f, ", memory %.3g MB", (double)mem / 1e6);
+        fputc('\n', f);
+    }
     ctd_solver_print_penetration(f, "  ", s);
     const ctd_timers *t = &s->timers;
     double tot = t->total > 0 ? t->total : 1;
@@ -324,6 +329,13 @@ static void print_report(ctd_solver *s, FILE *f)
     if (s->out_dir[0])
         fprintf(f, "  files: %s/ (state.pvd + state_*.vtu for ParaView, history.csv, "
                    "summary.json, energies.png)\n", s->out_dir);
+}
+
+int64_t ctd_solver_if_memory(const ctd_solver *s, int i)
+{
+    if (!s || i < 0 || i >= s->nhook || !s->hooks[i].memory)
+        return -1;
+    return (int64_t)s->hooks[i].memory(s->hooks[i].ctx);
 }
 
 int cti_solver_finish(ctd_solver *s)
@@ -346,6 +358,7 @@ int cti_solver_finish(ctd_solver *s)
             ifs[i].max_active = s->if_active_max[i];
             ifs[i].resorts = w->if_resorts[i];
             ifs[i].max_force = s->if_force_max[i];
+            ifs[i].memory = ctd_solver_if_memory(s, i);
         }
         ctd_run_summary sum = {m->scene->path, m->scene->title ? m->scene->title : "",
                                s->status, s->exit_code, s->message[0] ? s->message : NULL,

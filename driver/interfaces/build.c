@@ -19,6 +19,7 @@ typedef struct hook_ctx {
     ctd_iface *it;
     ct_real *kelem; /* owned when own_kelem */
     int own_kelem;
+    ct_idx nnode; /* kelem's length */
 } hook_ctx;
 
 static int fail(char *err, size_t len, int code, const char *fmt, ...)
@@ -88,6 +89,16 @@ static void hook_destroy(void *ctx)
     if (h->own_kelem)
         ct_free(h->kelem);
     free(h);
+}
+
+static size_t hook_memory(const void *ctx)
+{
+    const hook_ctx *h = ctx;
+    if (!h)
+        return 0;
+    /* The element stiffness is counted by the hook that owns it. */
+    size_t b = sizeof *h + ctd_iface_memory(h->it);
+    return b + (h->own_kelem ? (size_t)h->nnode * sizeof(ct_real) : 0);
 }
 
 /* Segment connectivity of a selection (ct_calloc'ed, 4 arrays). */
@@ -516,6 +527,7 @@ static int build_one(const ctd_model *m, const ctd_scene_interface *f, unsigned 
     h->it = it;
     h->kelem = kelem;
     h->own_kelem = own_kelem;
+    h->nnode = m->mesh.nodes.n;
     ctd_iface_set_kelem(it, kelem);
     hook->name = f->label;
     hook->type = t;
@@ -523,6 +535,7 @@ static int build_one(const ctd_model *m, const ctd_scene_interface *f, unsigned 
     hook->ctx = h;
     hook->contact_step = hook_step;
     hook->destroy = hook_destroy;
+    hook->memory = hook_memory;
     return CT_OK;
 }
 
