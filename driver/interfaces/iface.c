@@ -71,12 +71,6 @@ ct_idx *ctdi_copy_idx(ct_idx n, const ct_idx *a)
     return c;
 }
 
-static int cmp_idx(const void *a, const void *b)
-{
-    ct_idx u = *(const ct_idx *)a, v = *(const ct_idx *)b;
-    return (u > v) - (u < v);
-}
-
 int64_t ctdi_unique_nodes(ct_idx nnode, const ct_idx *const lists[6], const ct_idx counts[6],
                           ct_idx **out)
 {
@@ -87,27 +81,38 @@ int64_t ctdi_unique_nodes(ct_idx nnode, const ct_idx *const lists[6], const ct_i
             tot += counts[l];
     if (tot > INT32_MAX)
         return CT_ERR_TOOBIG;
-    ct_idx *a = ct_calloc((size_t)(tot > 0 ? tot : 1), sizeof(ct_idx));
-    if (!a)
+    /* A mark per node, then the marked nodes in increasing order into an
+     * array of their exact count (the lists hold each node several times:
+     * 4 nseg entries for about nseg nodes; a sorted copy of them all, kept
+     * whole, held three times the memory the result needs). */
+    uint8_t *mark = ct_calloc((size_t)(nnode > 0 ? nnode : 1), 1);
+    if (!mark)
         return CT_ERR_NOMEM;
-    int64_t k = 0;
     for (int l = 0; l < 6; l++) {
         if (!lists[l])
             continue;
         for (ct_idx i = 0; i < counts[l]; i++) {
             ct_idx v = lists[l][i];
             if (v < 0 || v >= nnode) {
-                ct_free(a);
+                ct_free(mark);
                 return CT_ERR_RANGE;
             }
-            a[k++] = v;
+            mark[v] = 1;
         }
     }
-    qsort(a, (size_t)tot, sizeof(ct_idx), cmp_idx);
     int64_t u = 0;
-    for (int64_t i = 0; i < tot; i++)
-        if (u == 0 || a[u - 1] != a[i])
-            a[u++] = a[i];
+    for (ct_idx v = 0; v < nnode; v++)
+        u += mark[v];
+    ct_idx *a = ct_calloc((size_t)(u > 0 ? u : 1), sizeof(ct_idx));
+    if (!a) {
+        ct_free(mark);
+        return CT_ERR_NOMEM;
+    }
+    int64_t k = 0;
+    for (ct_idx v = 0; v < nnode; v++)
+        if (mark[v])
+            a[k++] = v;
+    ct_free(mark);
     *out = a;
     return u;
 }
@@ -370,7 +375,7 @@ size_t ctd_iface_memory(const ctd_iface *it)
     for (int i = 0; i < it->npass; i++)
         b += ctdi_pass_memory(&it->pass[i], it->nnode);
     if (it->ep)
-        b += ctdi_type11_memory(it->ep);
+        b += ctdi_type11_memory(it->ep, it->nnode);
     return b;
 }
 

@@ -286,7 +286,7 @@ int ctdi_type11_step(ctd_iface *it, ct_real dt, const ct_real *x, const ct_real 
                      const ct_real *vz, const ct_real *m, ct_real *fx, ct_real *fy,
                      ct_real *fz, ctd_iface_report *rep);
 void ctdi_type11_free(ctdi_epass *e);
-size_t ctdi_type11_memory(const ctdi_epass *e);
+size_t ctdi_type11_memory(const ctdi_epass *e, ct_idx nnode);
 void ctdi_type11_force_resort(ctdi_epass *e);
 /* The unique edges of segments d->n1..n4 (d->nseg of them), lower node
  * first, sorted; *e1 and *e2 are ct_calloc'ed. */

@@ -124,10 +124,13 @@ void ctdi_pass_free(ctdi_pass *p)
 
 size_t ctdi_pass_memory(const ctdi_pass *p, ct_idx nnode)
 {
-    size_t b = p->cap * (5 * sizeof(ct_idx) + (13 + CTDI_R_N) * sizeof(ct_real) + 2 + 4);
+    /* Per pair: s1..s4, o2n and handoff; the geometry and results; flag
+     * and carry; iflag. */
+    size_t b = p->cap * (6 * sizeof(ct_idx) + (13 + CTDI_R_N) * sizeof(ct_real) + 2 + 4);
     b += (p->capst[0] + p->capst[1]) * CTDI_ST_N * sizeof(ct_real);
     b += ((size_t)p->pairs[0].cap + (size_t)p->pairs[1].cap) * 2 * sizeof(ct_idx);
     b += ((size_t)p->nsec + (size_t)p->nmain + 4 * (size_t)p->nseg) * sizeof(ct_idx);
+    b += ((p->kseg ? 1 : 0) + (p->gseg ? 1 : 0)) * (size_t)p->nseg * sizeof(ct_real);
     b += 3 * (size_t)nnode * sizeof(ct_real);
     b += ct_search_memory(p->search) + ct_assemble_ws_memory(&p->ws);
     return b;

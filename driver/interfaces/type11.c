@@ -80,17 +80,20 @@ void ctdi_type11_free(ctdi_epass *e)
     ct_free(e->cell_off);
     ct_free(e->cell_edge);
     ct_free(e->tmp_a);
-    ct_free(e->tmp_b);
     if (e->ws_ok)
         ct_assemble_ws_destroy(&e->ws);
     free(e);
 }
 
-size_t ctdi_type11_memory(const ctdi_epass *e)
+size_t ctdi_type11_memory(const ctdi_epass *e, ct_idx nnode)
 {
     size_t b = sizeof *e + e->cap * (6 * sizeof(ct_idx) + E_N * sizeof(ct_real) + 5);
     b += (size_t)e->ne * (2 * sizeof(ct_idx) + 7 * sizeof(ct_real));
-    b += (e->cap_cell + e->cap_ce + 2 * e->cap_tmp) * sizeof(ct_idx);
+    b += (e->cap_cell + e->cap_ce + e->cap_tmp) * sizeof(ct_idx);
+    /* The unique nodes of each side, the pair counts per A edge, the
+     * positions at the last sort (nnode + 1 each). */
+    b += ((size_t)e->nan + (size_t)e->nbn + (size_t)e->na + 2) * sizeof(ct_idx);
+    b += 3 * ((size_t)nnode + 1) * sizeof(ct_real);
     return b + ct_assemble_ws_memory(&e->ws);
 }
 

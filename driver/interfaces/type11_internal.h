@@ -39,7 +39,7 @@ struct ctdi_epass {
     ct_idx *cnt;           /* per A edge: pair counts, then offsets (na + 1) */
     ct_idx *cell_off, *cell_edge;
     size_t cap_cell, cap_ce;
-    ct_idx *tmp_a, *tmp_b;
+    ct_idx *tmp_a;
     size_t cap_tmp;
     ct_assemble_ws ws;
     int ws_ok;
