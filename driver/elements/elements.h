@@ -305,9 +305,6 @@ void ctd_rigid_clear(ctd_rigid *r);
 void ctd_rigid_accumulate(ctd_rigid *r, const ct_real *x, const ct_real *y, const ct_real *z,
                           const ct_real *fx, const ct_real *fy, const ct_real *fz);
 
-/* Add an external force f applied at point p (world). */
-void ctd_rigid_add_force(ctd_rigid *r, const double f[3], const double p[3]);
-
 /* One step: kick with F and tau, then drift (see above). CT_ERR_NOCONV if
  * the midpoint iteration does not converge (|omega| dt far above 1),
  * CT_ERR_NONFINITE for NaN/Inf. */

@@ -285,16 +285,6 @@ void ctd_rigid_accumulate(ctd_rigid *r, const ct_real *x, const ct_real *y, cons
     }
 }
 
-void ctd_rigid_add_force(ctd_rigid *r, const double f[3], const double p[3])
-{
-    double rr[3] = {p[0] - r->xc[0], p[1] - r->xc[1], p[2] - r->xc[2]}, t[3];
-    cross(rr, f, t);
-    for (int d = 0; d < 3; d++) {
-        r->F[d] += f[d];
-        r->tau[d] += t[d];
-    }
-}
-
 int ctd_rigid_advance(ctd_rigid *r, double dt)
 {
     if (!(dt >= 0))
