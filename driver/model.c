@@ -327,6 +327,15 @@ static int build_bcs(cti_mbuild *b)
         int rc = ctd_model_select_nodes(m, bc->nodes, &ns, b->err, b->len);
         if (rc)
             return rc;
+        /* A condition on no node is a mistake in the selection (a `where`
+         * that misses the mesh by a tolerance): the run would go on
+         * without it. As loads.c tells an empty load. */
+        if (ns.n == 0) {
+            ct_nodeset_destroy(&ns);
+            return cti_model_err(b->err, b->len, CT_ERR_ARG,
+                                 "%s:%d: boundary[%u] (%s): nodes selects no node", sc->path,
+                                 bc->line, i, bc->kind_name);
+        }
         for (ct_idx k = 0; k < ns.n; k++) {
             ct_idx n = ns.node[k];
             if (bc->kind == CTD_BC_INITIAL_VELOCITY) {

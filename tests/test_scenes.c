@@ -233,6 +233,29 @@ Test(scenes, interface_errors_name_file_line, .init = cr_redirect_stderr)
     expect_build_error("iface_type7_no_gap.yaml", "a two-sided surface needs a gap > 0");
 }
 
+/* A boundary condition whose selection holds no node is bad input told at
+ * the model's build (it was accepted, and the run went on without it),
+ * with the file, the line and the condition. */
+Test(scenes, condition_on_no_node_is_an_error, .init = cr_redirect_stderr)
+{
+    char p[1024], err[1024] = "";
+    const char *f = __FILE__, *slash = strrchr(f, '/');
+    snprintf(p, sizeof p, "%.*s/data/scenes/bc_selects_nothing.yaml",
+             slash ? (int)(slash - f) : 1, slash ? f : ".");
+    static ctd_scene_err se;
+    ctd_scene *sc = NULL;
+    cr_assert_eq(ctd_scene_load(p, &sc, &se), CT_OK, "%s", se.count ? se.msg[0].text : "?");
+    ctd_model m;
+    cr_assert_eq(ctd_model_build(&m, sc, err, sizeof err), CT_ERR_ARG);
+    char want[1200];
+    snprintf(want, sizeof want, "%s:13: boundary[1] (velocity): nodes selects no node", p);
+    cr_assert_str_eq(err, want);
+    ctd_scene_free(sc);
+    char *argv[] = {p, "--quiet"};
+    cr_expect_eq(ctd_run_main(2, argv), CTD_EXIT_BADINPUT);
+    cr_expect_eq(ctd_check_main(p, 0, NULL), CTD_EXIT_BADINPUT);
+}
+
 /* A gap that spans the interface's nodes is an input mistake told at the
  * build: a 10^4-node sheet with a 10 m gap filled 24 GiB with candidates
  * and was killed; the two scenes run with a gap of 1 or 2 mm. */
