@@ -342,6 +342,57 @@ Test(search_bsp, random_soups_many_seeds, .timeout = 120)
     }
 }
 
+/* The box filter (a node's distance to a segment's axis-aligned box, the
+ * cheaper superset of the hull filter): bsp gives direct's pairs with it
+ * too, at every leaf size and on both leaf paths (check_bsp), on two
+ * plates at several gaps, quads and triangles, a self-contact fold and
+ * random soups; and the box pairs include the hull pairs. The leaf's box
+ * loop (search_bsp_leaf.c) ran in no test before. */
+Test(search_bsp, box_filter_matches_direct)
+{
+    const double gaps[] = {0.05, 0.3, 0.6, 1.5};
+    for (int tri = 0; tri < 2; tri++)
+        for (int g = 0; g < 4; g++) {
+            ctt_scene s;
+            bs_two_plates(&s, small() ? 8 : 16, 0.3, tri);
+            ct_search_input in = ctt_scene_input(&s, gaps[g] * 0.6, gaps[g] * 0.4, 0);
+            char what[64];
+            snprintf(what, sizeof what, "plates (tri %d, gap %g), hull", tri, gaps[g]);
+            const ct_idx hull = check_bsp(&in, what);
+            in.filter = CT_FILTER_BOX;
+            snprintf(what, sizeof what, "plates (tri %d, gap %g), box", tri, gaps[g]);
+            cr_assert_geq(check_bsp(&in, what), hull, "%s: fewer pairs than the hull", what);
+        }
+    for (int seed = 1; seed <= (small() ? 6 : 24); seed++) {
+        rng_state = 777 + (uint64_t)seed * 104729;
+        int nseg = 10 + (int)(rnd() * 150), nfree = (int)(rnd() * 200), self = seed % 2;
+        double box = 1 + 5 * rnd();
+        ctt_scene s;
+        ctt_scene_init(&s, 4 * nseg + nfree, nseg);
+        for (int k = 0; k < nseg; k++) {
+            double c[3] = {box * rnd(), box * rnd(), box * rnd()};
+            double size = 0.05 + rnd() * 1.5;
+            ct_idx v[4];
+            for (int q = 0; q < 4; q++)
+                v[q] = ctt_scene_node(&s, c[0] + size * (rnd() - 0.5),
+                                      c[1] + size * (rnd() - 0.5),
+                                      c[2] + 0.3 * size * (rnd() - 0.5));
+            ctt_scene_seg(&s, v[0], v[1], v[2], rnd() < 0.3 ? v[2] : v[3]);
+        }
+        for (int k = 0; k < nfree; k++)
+            ctt_scene_node(&s, box * rnd(), box * rnd(), box * rnd());
+        for (ct_idx i = 0; i < s.nn; i++)
+            if (self || i >= 4 * nseg || rnd() < 0.3)
+                ctt_scene_sec(&s, i);
+        ct_search_input in = ctt_scene_input(&s, box * 0.05 * rnd(), box * 0.02 * rnd(), self);
+        in.filter = CT_FILTER_BOX;
+        char what[64];
+        snprintf(what, sizeof what, "soup seed %d (self %d), box", seed, self);
+        check_bsp(&in, what);
+        ctt_scene_free(&s);
+    }
+}
+
 /* Big enough for tasks (more than 4096 nodes + segments): the bytes are
  * the same for 1 and 2 threads and equal to direct's. With 1 thread a
  * repeated call must not grow the workspace (with 2 threads the per-thread
