@@ -24,6 +24,20 @@ typedef struct crun {
     ctd_cycle *cy;
 } crun;
 
+/* The cycle's law and friction for crun_make_opts (the defaults unless a
+ * test sets them before making its run). */
+static ctd_cycle_law crun_law = CTD_LAW_TYPE7;
+static int crun_frictionless = 0;
+
+static ctd_cycle_params crun_params(double h)
+{
+    ctd_cycle_params p = ctd_cycle_default_params(h);
+    p.law = crun_law;
+    if (crun_frictionless)
+        p.mu = 0;
+    return p;
+}
+
 static void crun_make_opts(crun *r, int64_t nodes, double step, int skip,
                            ct_assemble_variant variant)
 {
@@ -56,7 +70,7 @@ static void crun_make_opts(crun *r, int64_t nodes, double step, int skip,
     ctd_motion mo = {1, 2, 0.5 * (lo + hi), 0.72, 0.1, 0.5 * r->h, 0.8 * r->h, 1};
     mo.period = ctd_motion_max_step(&mo, 0.5 * (hi - lo)) / (step * r->h);
     r->mo = mo;
-    ctd_cycle_params p = ctd_cycle_default_params(r->h);
+    ctd_cycle_params p = crun_params(r->h);
     p.skip = skip;
     p.asm_variant = variant;
     cr_assert_eq(ctd_cycle_init(&r->cy, &p, r->n, r->m, r->c.sec.n, r->c.sec.node, r->c.sec.n,
@@ -258,7 +272,7 @@ static void whole_list_reference(const crun *r, const ct_pairs *P, ct_real *cons
                                  const uint8_t *ev, int64_t *handed)
 {
     const ct_idx n = P->n;
-    const ctd_cycle_params p = ctd_cycle_default_params(r->h);
+    const ctd_cycle_params p = crun_params(r->h);
     const ct_real dt = (ct_real)1e-3;
     enum { DIST, PEN, NX, NY, NZ, CX, CY, CZ, H1, H2, H3, H4, GAP, VX, VY, VZ, VN, K0, MS, FEL,
            KT, FN, PX, PY, PZ, NA };
@@ -328,13 +342,24 @@ static void whole_list_reference(const crun *r, const ct_pairs *P, ct_real *cons
         a[K0][k] = p.K0;
         a[MS][k] = r->m[P->node[k]];
     }
-    cr_assert_eq(ct_penalty_type7(n, a[PEN], a[GAP], a[K0], a[FEL], a[KT], NULL, NULL), CT_OK);
-    cr_assert_eq(ct_normal_finish(n, a[PEN], a[FEL], a[KT], a[VN], a[MS], NULL, p.viss, dt,
-                                  a[NX], a[NY], a[NZ], a[FN], a[PX], a[PY], a[PZ], NULL),
-                 CT_OK);
-    cr_assert_eq(ct_friction_step(n, a[NX], a[NY], a[NZ], a[VX], a[VY], a[VZ], a[FN], NULL,
-                                  p.mu, NULL, p.kt, dt, 1, ft[0], ft[1], ft[2], NULL),
-                 CT_OK);
+    if (p.law == CTD_LAW_TYPE7) {
+        cr_assert_eq(ct_penalty_type7(n, a[PEN], a[GAP], a[K0], a[FEL], a[KT], NULL, NULL),
+                     CT_OK);
+        cr_assert_eq(ct_normal_finish(n, a[PEN], a[FEL], a[KT], a[VN], a[MS], NULL, p.viss, dt,
+                                      a[NX], a[NY], a[NZ], a[FN], a[PX], a[PY], a[PZ], NULL),
+                     CT_OK);
+    } else {
+        /* The linear law: F = K0 p with damping; its tangent is K0. */
+        cr_assert_eq(ct_normal_force(n, a[PEN], a[NX], a[NY], a[NZ], a[VN], NULL, p.K0, a[MS],
+                                     NULL, p.viss, dt, a[PX], a[PY], a[PZ], a[FN], NULL, NULL),
+                     CT_OK);
+        for (ct_idx k = 0; k < n; k++)
+            a[KT][k] = a[PEN][k] > 0 ? p.K0 : 0;
+    }
+    if (p.mu > 0)
+        cr_assert_eq(ct_friction_step(n, a[NX], a[NY], a[NZ], a[VX], a[VY], a[VZ], a[FN], NULL,
+                                      p.mu, NULL, p.kt, dt, 1, ft[0], ft[1], ft[2], NULL),
+                     CT_OK);
     for (int d = 0; d < 3; d++)
         memset(f[d], 0, sizeof(ct_real) * (size_t)r->n);
     for (ct_idx k = 0; k < n; k++) {
@@ -422,7 +447,7 @@ static void fused_pass_check(ct_assemble_variant variant)
                 herr = fmax(herr, fabs((double)h[q] - (double)ft[d][q]));
             }
         }
-        cr_assert_gt(hmag, 0, "cycle %d: no friction", k);
+        cr_assert(crun_frictionless ? hmag == 0 : hmag > 0, "cycle %d: friction %g", k, hmag);
         cr_assert_leq(herr, CTT_TOL(1e-12, 1e-4) * hmag, "cycle %d: friction history %g of %g", k,
                       herr, hmag);
         double mag = 0, err = 0;
@@ -465,6 +490,23 @@ Test(cycle, fused_pass_equals_whole_list_kernels)
  * the same check, with the per-pair weights too. */
 Test(cycle, fused_pass_equals_whole_list_kernels_per_pair_forces)
 {
+    fused_pass_check(CT_ASM_GATHER);
+}
+
+/* The same with the linear law (F = K0 p, the TYPE3/5/24 law) and without
+ * friction: the cycle's other force path (ct_normal_force, no friction
+ * step), which only the benchmark's trade table ran before. */
+Test(cycle, fused_pass_equals_whole_list_kernels_linear_frictionless)
+{
+    crun_law = CTD_LAW_LINEAR;
+    crun_frictionless = 1;
+    fused_pass_check(CT_ASM_COLOUR);
+}
+
+/* The linear law with friction, the assembly after the pass. */
+Test(cycle, fused_pass_equals_whole_list_kernels_linear_gather)
+{
+    crun_law = CTD_LAW_LINEAR;
     fused_pass_check(CT_ASM_GATHER);
 }
 
