@@ -131,6 +131,7 @@ static int run_search(const search_opts *o)
     int have_ref = 0, failed = 0;
     if (!secpos) {
         rc = CT_ERR_NOMEM;
+        fprintf(stderr, "contact search: out of memory (%d nodes)\n", c.mesh.nodes.n);
         goto done;
     }
     for (ct_idx i = 0; i < c.sec.n; i++)
@@ -165,10 +166,21 @@ static int run_search(const search_opts *o)
         p.dense = o->dense;
         p.cell_factor = o->cells;
         ct_search *s;
-        if ((rc = ct_search_init(&s, &p)) != CT_OK)
+        if ((rc = ct_search_init(&s, &p)) != CT_OK) {
+            fprintf(stderr, "contact search: %s: cannot set up the search: %s\n",
+                    ct_search_algo_name(a), ct_strerror(rc));
             goto done;
+        }
         int reps = o->repeat > 0 ? o->repeat : 5;
         double *ts = calloc((size_t)reps, sizeof *ts);
+        if (!ts) {
+            /* The timings' array: without it nothing can be timed. */
+            rc = CT_ERR_NOMEM;
+            fprintf(stderr, "contact search: %s: out of memory (%d timings)\n",
+                    ct_search_algo_name(a), reps);
+            ct_search_destroy(s);
+            goto done;
+        }
         for (int r = 0; r < reps && rc == CT_OK; r++) {
             if (a == CT_SEARCH_TOPO)
                 ct_search_reset(s); /* time the full first search each time */
@@ -442,6 +454,26 @@ static int cmd_check(int argc, char **argv)
     return ctd_check_main(scene, file_only, out);
 }
 
+/* The arguments of a command that takes none but --help (info, demo):
+ * prints `help` and returns 0 for --help or -h anywhere, returns 1 (bad
+ * usage) naming the first other argument, and -1 when there is none (run
+ * the command). An unknown option used to be ignored: `contact demo
+ * --quick` started the full demo, minutes long, and exited 0. */
+static int no_options(const char *cmd, int argc, char **argv, const char *help)
+{
+    for (int i = 0; i < argc; i++)
+        if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
+            fputs(help, stdout);
+            return 0;
+        }
+    if (argc > 0) {
+        fprintf(stderr, "contact %s: unknown %s '%s' (try --help)\n", cmd,
+                argv[0][0] == '-' ? "option" : "argument", argv[0]);
+        return EXIT_USAGE;
+    }
+    return -1;
+}
+
 int main(int argc, char **argv)
 {
     if (argc < 2) {
@@ -454,10 +486,11 @@ int main(int argc, char **argv)
         return 0;
     }
     if (!strcmp(cmd, "info")) {
-        if (argc > 2 && strcmp(argv[2], "--help") == 0) {
-            printf("usage: contact info\nPrints build provenance and the hwloc machine summary.\n");
-            return 0;
-        }
+        int code = no_options("info", argc - 2, argv + 2,
+                              "usage: contact info\nPrints build provenance and the hwloc "
+                              "machine summary.\n");
+        if (code >= 0)
+            return code;
         ctd_print_provenance(stdout, "");
         return 0;
     }
@@ -468,11 +501,12 @@ int main(int argc, char **argv)
     if (!strcmp(cmd, "check"))
         return cmd_check(argc - 2, argv + 2);
     if (!strcmp(cmd, "demo")) {
-        if (argc > 2 && strcmp(argv[2], "--help") == 0) {
-            printf("usage: contact demo\nRuns `contact search` on a folded sheet, two plates "
-                   "(natural and shuffled numbering) and a graded mesh.\n");
-            return 0;
-        }
+        int code = no_options("demo", argc - 2, argv + 2,
+                              "usage: contact demo\nRuns `contact search` on a folded sheet, "
+                              "two plates (natural and shuffled numbering) and a graded "
+                              "mesh.\n");
+        if (code >= 0)
+            return code;
         return cmd_demo();
     }
     fprintf(stderr, "contact: unknown command '%s'\n", cmd);
