@@ -13,6 +13,8 @@
 #define CTI_CHUNK 4096
 
 typedef struct cti_solver_work {
+    /* What the run wrote, for the report's list of files. */
+    int wrote_csv, wrote_vtu, wrote_summary, wrote_plot;
     ct_real *vox, *voy, *voz;     /* v(n-1/2), kept at energy cycles */
     ct_real *fx, *fy, *fz;        /* total nodal force */
     ct_real *fcx, *fcy, *fcz;     /* contact force */

@@ -218,6 +218,7 @@ int cti_solver_output(ctd_solver *s)
                              s->e.contact, s->e.damping, s->e.friction, s->e.external,
                              s->e.error, w->if_force, w->if_active, w->if_resorts};
         rc = ctd_output_csv_row(w->out, &r);
+        w->wrote_csv |= rc == CT_OK;
     }
     if (!rc && sc->output->vtu) {
         const ct_idx nn = s->nnode;
@@ -238,6 +239,7 @@ int cti_solver_output(ctd_solver *s)
         ctd_out_mesh om;
         out_mesh(s, &om, s->x, s->y, s->z, w->vmx, w->vmy, w->vmz);
         rc = ctd_output_vtu(w->out, s->time, &om);
+        w->wrote_vtu |= rc == CT_OK;
     }
     return rc;
 }
@@ -326,9 +328,22 @@ static void print_report(ctd_solver *s, FILE *f)
                "elements %.1f%%, other %.1f%% of %.3f s\n", 100 * t->search / tot,
             100 * t->narrow / tot, 100 * t->force / tot, 100 * t->assembly / tot,
             100 * t->elements / tot, 100 * t->other / tot, t->total);
-    if (s->out_dir[0])
-        fprintf(f, "  files: %s/ (state.pvd + state_*.vtu for ParaView, history.csv, "
-                   "summary.json, energies.png)\n", s->out_dir);
+    /* The files this run wrote (an earlier run's may lie beside them). */
+    const cti_solver_work *w = s->w;
+    const char *name[4] = {"state.pvd + state_*.vtu for ParaView", "history.csv",
+                           "summary.json", "energies.png"};
+    const int wrote[4] = {w->wrote_vtu, w->wrote_csv, w->wrote_summary, w->wrote_plot};
+    int any = 0;
+    for (int k = 0; k < 4; k++) {
+        if (!wrote[k])
+            continue;
+        if (any++)
+            fprintf(f, ", %s", name[k]);
+        else
+            fprintf(f, "  files: %s/ (%s", s->out_dir, name[k]);
+    }
+    if (any)
+        fprintf(f, ")\n");
 }
 
 int64_t ctd_solver_if_memory(const ctd_solver *s, int i)
@@ -367,12 +382,14 @@ int cti_solver_finish(ctd_solver *s)
                                s->error_max, t->search, t->narrow, t->force, t->assembly,
                                t->elements, t->other, s->nhook, ifs};
         rc = ctd_output_summary(w->out, &sum);
+        w->wrote_summary = rc == CT_OK;
         free(ifs);
         /* A run stopped in its first cycle has no history to plot (gnuplot
          * fails on it). */
         if (!rc && m->scene->output->csv && (s->cycle > 0 || s->exit_code == CTD_EXIT_OK)) {
             char msg[512];
             int prc = ctd_output_plot_energies(s->out_dir, msg, sizeof msg);
+            w->wrote_plot = prc == 0;
             if (prc < 0 && !s->opts.quiet)
                 fprintf(stderr, "contact: energy plot: %s\n", msg);
         }
