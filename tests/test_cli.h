@@ -149,4 +149,23 @@ static inline double ctt_json_num(const char *json, const char *key)
     return e == p + strlen(k) ? NAN : v;
 }
 
+/* Expect exit code `code`, and `what` (when not NULL) in the error stream. */
+#define EXPECT_FAIL(r, code, what)                                                            \
+    do {                                                                                      \
+        cr_expect_eq((r)->status, (code), "exit %d, expected %d; stderr: %s", (r)->status,    \
+                     (code), (r)->err);                                                       \
+        if ((what) != NULL)                                                                   \
+            cr_expect(strstr((r)->err, (what)) != NULL, "stderr lacks \"%s\": %s",            \
+                      (const char *)(what), (r)->err);                                        \
+    } while (0)
+
+/* The number of lines of s. */
+static inline int count_lines(const char *s)
+{
+    int n = 0;
+    for (; *s; s++)
+        n += *s == '\n';
+    return n;
+}
+
 #endif /* TEST_CLI_H */
