@@ -152,17 +152,16 @@ cti_asm_range_k(ct_idx lo, ct_idx hi, const int nslot, const int mode,
     } while (0)
 
 /* Pairs lo..hi-1 whose nodes are known to be in range (a prepared
- * colouring checked them). */
-static inline int cti_asm_range_trusted(ct_idx lo, ct_idx hi, int nslot, int mode,
-                                        const ct_idx *const slot[], const ct_real *const w[],
-                                        const ct_real *sign, const ct_real *restrict fx,
-                                        const ct_real *restrict fy, const ct_real *restrict fz,
-                                        ct_real *restrict fxn, ct_real *restrict fyn,
-                                        ct_real *restrict fzn)
+ * colouring checked them); returns 0. */
+static inline int cti_asm_range(ct_idx lo, ct_idx hi, int nslot, int mode,
+                                const ct_idx *const slot[], const ct_real *const w[],
+                                const ct_real *sign, const ct_real *restrict fx,
+                                const ct_real *restrict fy, const ct_real *restrict fz,
+                                ct_real *restrict fxn, ct_real *restrict fyn,
+                                ct_real *restrict fzn)
 {
     CTI_ASM_RANGE_DISPATCH(0, 0);
 }
-#define cti_asm_range(...) ((void)cti_asm_range_trusted(__VA_ARGS__))
 
 /* Pairs lo..hi-1, each pair's nodes checked against [0, nnode) as it
  * comes: a pair with one out of range adds nothing (to none of its nodes,
