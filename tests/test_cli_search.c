@@ -224,7 +224,8 @@ Test(cli, search_options_against_direct)
 }
 
 /* Each algorithm alone (--algo) reports the direct search's pair count; the
- * direct search alone is the reference line and nothing else. */
+ * direct search alone is the reference line and nothing else, or its timed
+ * line with --check off. */
 Test(cli, search_each_algorithm_alone)
 {
     char dir[64];
@@ -246,10 +247,45 @@ Test(cli, search_each_algorithm_alone)
     cr_assert_eq(r.status, 0, "%s", r.err);
     cr_expect_eq(search_pairs(r.out, "direct", NULL), ref.pairs, "%s", r.out);
     cr_expect_eq(timed_lines(r.out), 0, "%s", r.out);
+    /* Asked for alone without a reference, the direct search is timed: its
+     * line is a timed one, with the pair count of the direct search run
+     * here (it printed nothing at all before). */
+    ctt_cli_run(&r, dir, 2, "search --n 800 --repeat 1 --algo direct --check off");
+    cr_assert_eq(r.status, 0, "%s", r.err);
+    cr_expect_eq(timed_lines(r.out), 1, "%s", r.out);
+    cr_expect_eq(search_pairs(r.out, "direct", NULL), ref.pairs, "%s", r.out);
+    cr_expect(strstr(r.out, "skipped") == NULL, "%s", r.out);
     ctt_cli_run(&r, dir, 2, "search --n 800 --repeat 1 --algo all");
     cr_assert_eq(r.status, 0, "%s", r.err);
     cr_expect_eq(timed_lines(r.out), 3, "%s", r.out);
     ctt_cli_free(&r);
+    ctt_rmtree(dir);
+}
+
+/* A case too large for the memory the process may have exits 5 (out of
+ * memory, as `contact run` does), not 1 (bad usage: the options are
+ * valid). The limit is set by the shell (ulimit -v), which the sanitizers'
+ * shadow memory cannot run under. */
+Test(cli, search_out_of_memory_exit_5)
+{
+    if (ctt_checking())
+        cr_skip_test("the sanitizers' shadow memory does not fit under ulimit -v");
+    char dir[64], bin[1100], cmd[1600];
+    ctt_tmpdir(dir, "cli");
+    ctt_contact_path(bin, sizeof bin);
+    snprintf(cmd, sizeof cmd,
+             "cd '%s' && ulimit -v 400000 && OMP_NUM_THREADS=1 '%s' search --n 20000000 "
+             "--algo bucket --check off --repeat 1 >.cli_out 2>.cli_err",
+             dir, bin);
+    int st = system(cmd);
+    cr_assert(st != -1 && WIFEXITED(st), "%s", cmd);
+    char p[1200];
+    snprintf(p, sizeof p, "%s/.cli_err", dir);
+    char *err = ctt_slurp(p);
+    cr_assert_not_null(err);
+    cr_expect_eq(WEXITSTATUS(st), 5, "%s", err);
+    cr_expect(strstr(err, "out of memory") != NULL, "%s", err);
+    free(err);
     ctt_rmtree(dir);
 }
 
