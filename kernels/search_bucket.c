@@ -312,7 +312,8 @@ static int bk_auto(bk_state *st, const ct_search_input *in, const bk_grid *g, in
         return CT_OK;
     }
     if (bk_grow(&st->auto_scr, &st->auto_scr_cap,
-                cti_bucket_auto_scratch() / sizeof(ct_real) + 1, sizeof(ct_real)))
+                cti_bucket_auto_scratch(in->nsec, in->nseg) / sizeof(ct_real) + 1,
+                sizeof(ct_real)))
         return CT_ERR_NOMEM;
     st->auto_f =
         cti_bucket_auto_factor(in, st->fbox, g->lo, g->hi, maxc, limit, nb, st->auto_scr, NULL);

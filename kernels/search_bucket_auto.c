@@ -75,60 +75,79 @@ static int auto_range(const float *restrict f, const bk_grid *g, ct_idx a[3], ct
     return 1;
 }
 
-/* The sampled nodes' cells, counted in an open-addressing table of
- * BK_AUTO_SLOTS slots (at most half full: BK_AUTO_NODES distinct cells):
- * per slot the cell number plus one (0: empty) and its count. A table the
- * size of the grid would cost 4 bytes per cell, held for one choice every
- * few searches, and its sparse lookups would miss the caches. */
-#define BK_AUTO_SLOTS (2 * BK_AUTO_NODES)
+/* The sampled nodes' cells, counted in an open-addressing table of a power
+ * of two of slots at least twice the sampled nodes (so at most half full:
+ * one distinct cell per node at most): per slot the cell number plus one
+ * (0: empty) and its count. A table the size of the grid would cost 4
+ * bytes per cell, held for one choice every few searches, and its sparse
+ * lookups would miss the caches. The slots' placement depends on the
+ * table's size, the counts do not. */
 typedef struct auto_slot {
     uint32_t cell1, count;
 } auto_slot;
 
-static inline uint32_t auto_hash(uint32_t cell1)
+/* The table's slots for s sampled nodes. */
+static size_t auto_slots(ct_idx s)
 {
-    return (uint32_t)(cell1 * UINT32_C(0x9e3779b1)) & (BK_AUTO_SLOTS - 1);
+    size_t n = 16;
+    while (n < (size_t)2 * (size_t)s)
+        n *= 2;
+    return n;
 }
 
-static void auto_count(auto_slot *restrict tab, uint32_t cell1)
+static inline uint32_t auto_hash(uint32_t cell1, uint32_t mask)
 {
-    uint32_t h = auto_hash(cell1);
+    return (uint32_t)(cell1 * UINT32_C(0x9e3779b1)) & mask;
+}
+
+static void auto_count(auto_slot *restrict tab, uint32_t mask, uint32_t cell1)
+{
+    uint32_t h = auto_hash(cell1, mask);
     while (tab[h].cell1 && tab[h].cell1 != cell1)
-        h = (h + 1) & (BK_AUTO_SLOTS - 1);
+        h = (h + 1) & mask;
     tab[h].cell1 = cell1;
     tab[h].count++;
 }
 
-static uint32_t auto_lookup(const auto_slot *restrict tab, uint32_t cell1)
+static uint32_t auto_lookup(const auto_slot *restrict tab, uint32_t mask, uint32_t cell1)
 {
-    uint32_t h = auto_hash(cell1);
+    uint32_t h = auto_hash(cell1, mask);
     while (tab[h].cell1) {
         if (tab[h].cell1 == cell1)
             return tab[h].count;
-        h = (h + 1) & (BK_AUTO_SLOTS - 1);
+        h = (h + 1) & mask;
     }
     return 0;
 }
 
 /* Count the nv sampled nodes (xyz) by their cell of grid g. */
 static void auto_nodes(const ct_real *restrict xyz, ct_idx nv, const bk_grid *g,
-                       auto_slot *restrict tab)
+                       auto_slot *restrict tab, uint32_t mask)
 {
-    memset(tab, 0, BK_AUTO_SLOTS * sizeof *tab);
+    memset(tab, 0, ((size_t)mask + 1) * sizeof *tab);
     const size_t nx = (size_t)g->n[0], ny = (size_t)g->n[1];
     for (ct_idx m = 0; m < nv; m++) {
         const ct_real *p = xyz + (size_t)3 * m;
         const size_t cx = (size_t)bk_cell1(p[0], g->lo[0], g->inv[0], g->n[0] - 1);
         const size_t cy = (size_t)bk_cell1(p[1], g->lo[1], g->inv[1], g->n[1] - 1);
         const size_t cz = (size_t)bk_cell1(p[2], g->lo[2], g->inv[2], g->n[2] - 1);
-        auto_count(tab, (uint32_t)((cz * ny + cy) * nx + cx) + 1);
+        auto_count(tab, mask, (uint32_t)((cz * ny + cy) * nx + cx) + 1);
     }
 }
 
-size_t cti_bucket_auto_scratch(void)
+/* The samples of an input of nsec nodes and nseg segments. */
+static void auto_samples(ct_idx nsec, ct_idx nseg, ct_idx *sn, ct_idx *ss)
 {
-    return (size_t)3 * BK_AUTO_NODES * sizeof(ct_real) + (size_t)8 * BK_AUTO_SEGS * sizeof(float) +
-           (size_t)BK_AUTO_SLOTS * sizeof(auto_slot);
+    *sn = CTI_MIN(nsec > 0 ? nsec : 0, BK_AUTO_NODES);
+    *ss = CTI_MIN(nseg > 0 ? nseg : 0, BK_AUTO_SEGS);
+}
+
+size_t cti_bucket_auto_scratch(ct_idx nsec, ct_idx nseg)
+{
+    ct_idx sn, ss;
+    auto_samples(nsec, nseg, &sn, &ss);
+    return (size_t)3 * (size_t)sn * sizeof(ct_real) + (size_t)8 * (size_t)ss * sizeof(float) +
+           auto_slots(sn) * sizeof(auto_slot);
 }
 
 double cti_bucket_auto_factor(const ct_search_input *in, const float *fbox,
@@ -137,14 +156,16 @@ double cti_bucket_auto_factor(const ct_search_input *in, const float *fbox,
                               cti_bucket_auto_info *info)
 {
     const ct_idx nseg = in->nseg, nsec = in->nsec;
-    const ct_idx ss = CTI_MIN(nseg, BK_AUTO_SEGS), sn = CTI_MIN(nsec, BK_AUTO_NODES);
+    ct_idx sn, ss;
+    auto_samples(nsec, nseg, &sn, &ss);
     const double ks = (double)nseg / (double)ss, kn = (double)nsec / (double)sn;
     /* The samples, gathered once: the nodes the query would look up (a
      * node out of range, refused there, or out of the region tests
      * nothing), and the segments' float boxes. */
     ct_real *restrict xyz = scratch;
-    float *restrict sbox = (float *)(xyz + (size_t)3 * BK_AUTO_NODES);
-    auto_slot *restrict tab = (auto_slot *)(sbox + (size_t)8 * BK_AUTO_SEGS);
+    float *restrict sbox = (float *)(xyz + (size_t)3 * (size_t)sn);
+    auto_slot *restrict tab = (auto_slot *)(sbox + (size_t)8 * (size_t)ss);
+    const uint32_t mask = (uint32_t)(auto_slots(sn) - 1);
     ct_idx nv = 0;
     for (ct_idx m = 0; m < sn; m++) {
         const ct_idx p = in->sec[auto_pick(m, sn, nsec, 1)];
@@ -192,7 +213,7 @@ double cti_bucket_auto_factor(const ct_search_input *in, const float *fbox,
             break;
         /* Tests: the sampled nodes in the cells of the sampled segments'
          * ranges, counted from the segments' side (reads only). */
-        auto_nodes(xyz, nv, &g, tab);
+        auto_nodes(xyz, nv, &g, tab, mask);
         const size_t nx = (size_t)g.n[0], ny = (size_t)g.n[1];
         double t = 0;
         for (ct_idx m = 0; m < ss; m++) {
@@ -204,7 +225,7 @@ double cti_bucket_auto_factor(const ct_search_input *in, const float *fbox,
                 for (ct_idx iy = a[1]; iy <= b[1]; iy++) {
                     const size_t row = ((size_t)iz * ny + (size_t)iy) * nx;
                     for (ct_idx ix = a[0]; ix <= b[0]; ix++)
-                        sum += auto_lookup(tab, (uint32_t)(row + (size_t)ix) + 1);
+                        sum += auto_lookup(tab, mask, (uint32_t)(row + (size_t)ix) + 1);
                 }
             t += (double)sum;
         }

@@ -46,7 +46,7 @@ typedef struct bk_state {
     /* The chosen cell factor (cell_factor 0): search_bucket_auto.c's
      * scratch, the factor, the searches since it was chosen, and the input
      * it was chosen on. */
-    ct_real *auto_scr; /* cti_bucket_auto_scratch() bytes */
+    ct_real *auto_scr; /* cti_bucket_auto_scratch(nsec, nseg) bytes */
     size_t auto_scr_cap;
     double auto_f;
     int auto_age;
@@ -76,14 +76,16 @@ typedef struct cti_bucket_auto_info {
 /* The cell factor for this input (search_bucket_auto.c): fbox the
  * segments' float boxes (pass 1), lo/hi the grid's region, maxc the cap on
  * cells, limit the entries beyond which the search coarsens the grid, nb
- * the counting blocks, scratch cti_bucket_auto_scratch() bytes,
+ * the counting blocks, scratch cti_bucket_auto_scratch(in->nsec, in->nseg) bytes,
  * ct_real-aligned; info may be NULL. */
 double cti_bucket_auto_factor(const ct_search_input *in, const float *fbox,
                               const ct_real lo[3], const ct_real hi[3], int64_t maxc,
                               int64_t limit, int nb, void *scratch,
                               cti_bucket_auto_info *info);
-/* The bytes of cti_bucket_auto_factor's scratch (the gathered samples). */
-size_t cti_bucket_auto_scratch(void);
+/* The bytes of cti_bucket_auto_factor's scratch for an input of nsec
+ * secondary nodes and nseg segments (the gathered samples and the table of
+ * their cells: 460 KB at most, 0.5 KB for a few nodes). */
+size_t cti_bucket_auto_scratch(ct_idx nsec, ct_idx nseg);
 
 /* The chosen factor is kept for this many searches at most, and while the
  * counts stay the same and no side of the region changes by more than

@@ -98,11 +98,17 @@ static void iface_memory(const char *name, int refine, int cycles, double *count
 /* The figure never exceeds the growth, and falls short of it by the
  * allocator's overhead and the small uncounted blocks alone: at most about
  * 200 bytes per array (a 16-byte header, the 64-byte alignment, ct_calloc's
- * rounding of the count) over a few hundred arrays, within 3 % of these
- * models' growth (measured 0.2-1 %). Before this test, the interfaces
+ * rounding of the count) over 100-150 arrays, 32 KiB, or 3 % of the growth
+ * on the larger models (measured 0.2-1 % there). The allowance is a size
+ * in bytes, not a fraction: it was once 3 % alone, which the smallest
+ * models met only while every bucket search held a 460 KB sampling scratch
+ * whatever its input (now sized by the input: those models grow by 170 KB
+ * and fall 10-21 KB short). Before this test, the interfaces
  * missed their node lists' spare capacity (4.5 % of the showcase's
  * growth), the element stiffness and a pass's hand-over array, and counted
- * an edge search array never allocated (2 % over on the folding sheet). */
+ * an edge search array never allocated (2 % over on the folding sheet);
+ * an array missed in proportion to the mesh exceeds the allowance at
+ * refine 4. */
 static void expect_close(const char *what, double counted, double grown)
 {
     cr_log_info("%s: counted %.0f bytes, the heap grew by %.0f (%.3f)", what, counted, grown,
@@ -110,7 +116,8 @@ static void expect_close(const char *what, double counted, double grown)
     cr_assert_gt(counted, 0, "%s: nothing counted", what);
     cr_assert_leq(counted, grown, "%s: counted %.0f bytes, but the heap grew by %.0f only", what,
                   counted, grown);
-    cr_assert_geq(counted, 0.97 * grown, "%s: counted %.0f bytes of the %.0f the heap grew by",
+    const double allow = fmax(0.03 * grown, 32768.0);
+    cr_assert_geq(counted, grown - allow, "%s: counted %.0f bytes of the %.0f the heap grew by",
                   what, counted, grown);
 }
 
