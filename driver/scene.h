@@ -140,6 +140,12 @@
  *                 needs 0 < C5 < C6; Ifric 4 needs C2 >= 0).
  *       Ifiltr    0..3 [0]; Xfreq: Ifiltr 1 needs 0 < Xfreq <= 1, 2 needs
  *                 Xfreq >= 2 pi, 3 needs Xfreq > 0.
+ *     pressure_area  main | secondary (default main; not a Radioss field):
+ *                 the area the pressure of Ifric 1 and 2 divides a pair's
+ *                 normal force by: the main segment's (Radioss), or the
+ *                 secondary node's share of its surface segments facing the
+ *                 contact (every secondary node must be on a surface
+ *                 segment; not for type 11).
  *       Tstart, Tstop  >= 0 [0, 0 = never stops]; Tstop > Tstart when set.
  *       grnd_IDs  a node selection: extra secondary nodes (TYPE24).
  *       curve     TYPE6, required there: [[p0, F0], [p1, F1], ...], at least
@@ -294,6 +300,7 @@ typedef struct ctd_scene_interface {
     char *name;
     ctd_scene_sel *main, *secondary, *grnd_IDs;
     char *search_name;
+    char *pressure_area_name;
     int64_t Istf, Igap0, Ipen0, Inacti, Ifric, Ifiltr;
     double Stfac, Stmin, Stmax, gap, Gap_max_s, Gap_max_m, Ipen_max, VisS;
     double Fric, C1, C2, C3, C4, C5, C6, Xfreq, Tstart, Tstop;
@@ -301,6 +308,7 @@ typedef struct ctd_scene_interface {
     unsigned curve_count;
     /* Filled by the loader. */
     int search;                /* enum ct_search_algo value (ct_search.h) */
+    int pressure_area;         /* 0 main, 1 secondary (CTD_PAREA_*, iface.h) */
     int self;                  /* 1: no secondary, self contact on main */
     char label[64];            /* name, or "if<index>" */
     int line;

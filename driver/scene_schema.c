@@ -106,6 +106,7 @@ static const cyaml_schema_field_t f_interface[] = {
     CYAML_FIELD_MAPPING_PTR("secondary", OPT, ctd_scene_interface, secondary, f_sel),
     CYAML_FIELD_MAPPING_PTR("grnd_IDs", OPT, ctd_scene_interface, grnd_IDs, f_sel),
     STR("search", OPT, ctd_scene_interface, search_name),
+    STR("pressure_area", OPT, ctd_scene_interface, pressure_area_name),
     IF_INT(Istf), IF_INT(Igap0), IF_INT(Ipen0), IF_INT(Inacti), IF_INT(Ifric), IF_INT(Ifiltr),
     IF_NUM(Stfac), IF_NUM(Stmin), IF_NUM(Stmax), IF_NUM(gap), IF_NUM(Gap_max_s),
     IF_NUM(Gap_max_m), IF_NUM(Ipen_max), IF_NUM(VisS), IF_NUM(Fric), IF_NUM(C1), IF_NUM(C2),

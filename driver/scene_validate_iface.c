@@ -84,6 +84,18 @@ void cti_vcheck_interface(vctx *v, unsigned i, ctd_scene_interface *f)
         f->search = cti_venum(v, cti_vpath(v, "%s.search", b), f->search_name, search_names, 4);
     else
         f->search = (t == 3 || t == 5) ? CT_SEARCH_TOPO : CT_SEARCH_BUCKET;
+    /* The pressure's area (the secondary nodes' areas are checked with the
+     * model, ctd_interfaces_build). */
+    static const char *const parea_names[] = {"main", "secondary"};
+    f->pressure_area = 0;
+    if (f->pressure_area_name) {
+        const char *pa = cti_vpath(v, "%s.pressure_area", b);
+        f->pressure_area = cti_venum(v, pa, f->pressure_area_name, parea_names, 2);
+        if (t == 11 && f->pressure_area == 1)
+            cti_err(v->e, CT_ERR_ARG, 0, pa,
+                    "expected main for type 11 (edge to edge: its nodes have no area), got "
+                    "secondary");
+    }
     /* Defaults of the card fields that are not zero. */
     if (!cti_vhas(v, cti_vpath(v, "%s.Stfac", b)))
         f->Stfac = (t == 3 || t == 5 || t == 6) ? 0.2 : 1.0;

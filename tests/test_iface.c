@@ -479,3 +479,134 @@ Test(iface, search_algorithms_agree)
     for (int a = 0; a < 4; a++)
         ct_free(f[a]);
 }
+
+/* ---- The secondary nodes' area (pressure_area secondary) ---------------- */
+
+/* The areas ctdi_area_of_pairs gives every node of the surface for one
+ * contact normal n (pen > 0 for all), and their sum. */
+static double areas_for_normal(const ctd_iface *it, const tnodes *t, double nx, double ny,
+                               double nz, ct_real *area)
+{
+    const ct_idx n = t->n;
+    ct_idx *node = ct_calloc((size_t)n, sizeof(ct_idx));
+    ct_real *pen = ct_calloc((size_t)n, sizeof(ct_real));
+    ct_real *vx = ct_calloc((size_t)n, sizeof(ct_real));
+    ct_real *vy = ct_calloc((size_t)n, sizeof(ct_real));
+    ct_real *vz = ct_calloc((size_t)n, sizeof(ct_real));
+    cr_assert(node && pen && vx && vy && vz);
+    for (ct_idx i = 0; i < n; i++) {
+        node[i] = i;
+        pen[i] = (ct_real)0.01;
+        vx[i] = (ct_real)nx;
+        vy[i] = (ct_real)ny;
+        vz[i] = (ct_real)nz;
+    }
+    ctdi_area_of_pairs(it, n, node, pen, vx, vy, vz, t->x, t->y, t->z, area);
+    double sum = 0;
+    for (ct_idx i = 0; i < n; i++)
+        sum += (double)area[i];
+    ct_free(node);
+    ct_free(pen);
+    ct_free(vx);
+    ct_free(vy);
+    ct_free(vz);
+    return sum;
+}
+
+/*
+ * The area a secondary node stands for (driver/interfaces/iface_area.c),
+ * against sums worked by hand on the folded sheet of unit quads (two 4 x 3
+ * layers 0.19 apart joined by a strip of 0.19 x 1 quads at x = 4) and on
+ * a triangulated unit square. Facing the layers (n = z): an inner node
+ * stands for 1, a node of the fold's edge for 0.5 (its two layer quads;
+ * the strip meets it edge-on: with it, 0.595), and the areas sum to the
+ * layers' 24. Facing the strip (n = x): a fold node for the strip's
+ * 2 x 0.19 / 4 = 0.095, a node far from it (none of its quads faces x)
+ * for all of its quads, 1. A pair out of contact gets 0. Triangles: each
+ * of a node's triangles gives a third of its area, the areas sum to the
+ * square's.
+ */
+Test(iface, secondary_node_area)
+{
+    fold f;
+    fold_make(&f, 4, 3, 0.19, 0.1, 0);
+    ctd_iface_cfg cfg = ctd_iface_default_cfg(7);
+    cfg.Istf = 1;
+    cfg.Stfac = 100;
+    cfg.Ifric = CT_FRIC_POLY;
+    cfg.Fric = (ct_real)0.1;
+    cfg.pressure_area = CTD_PAREA_SECONDARY;
+    ctd_iface_data d = fold_data(&f);
+    ct_diag diag;
+    ctd_iface *it = NULL;
+    /* Without the model's segments there is no area to take. */
+    cr_assert_eq(ctd_iface_init(&it, &cfg, &d, &diag), CT_ERR_ARG);
+    d.nmseg = f.nseg;
+    d.m1 = f.n1;
+    d.m2 = f.n2;
+    d.m3 = f.n3;
+    d.m4 = f.n4;
+    cr_assert_eq(ctd_iface_init(&it, &cfg, &d, &diag), CT_OK, "%s", diag.msg);
+    cr_assert_not_null(it->area_off);
+    ct_real *area = ct_calloc((size_t)f.t.n, sizeof(ct_real));
+    cr_assert(area);
+    const double tol = CTT_TOL(1e-14, 1e-6);
+    double sum = areas_for_normal(it, &f.t, 0, 0, 1, area);
+    cr_expect(ctt_rel(sum, 24) <= tol, "sum %.17g", sum);
+    cr_expect(ctt_rel(area[fid(&f, 0, 2, 1)], 1) <= tol, "inner %.17g", area[fid(&f, 0, 2, 1)]);
+    cr_expect(ctt_rel(area[fid(&f, 1, 4, 1)], 0.5) <= tol, "fold %.17g", area[fid(&f, 1, 4, 1)]);
+    cr_expect(ctt_rel(area[fid(&f, 0, 0, 0)], 0.25) <= tol, "corner %.17g",
+              area[fid(&f, 0, 0, 0)]);
+    areas_for_normal(it, &f.t, 1, 0, 0, area);
+    cr_expect(ctt_rel(area[fid(&f, 0, 4, 1)], 0.095) <= tol, "strip %.17g",
+              area[fid(&f, 0, 4, 1)]);
+    cr_expect(ctt_rel(area[fid(&f, 1, 1, 1)], 1) <= tol, "edge-on %.17g",
+              area[fid(&f, 1, 1, 1)]);
+    /* Out of contact: 0. */
+    ct_idx one = fid(&f, 0, 2, 1);
+    ct_real zero = 0, nz = 1, z0 = 0;
+    area[0] = 7;
+    ctdi_area_of_pairs(it, 1, &one, &zero, &z0, &z0, &nz, f.t.x, f.t.y, f.t.z, area);
+    cr_expect_eq(area[0], 0);
+    ctd_iface_destroy(it);
+    ct_free(area);
+    fold_free(&f);
+
+    /* A unit square of 2 x 2 cells, each cut into two triangles. */
+    tnodes t;
+    tn_init(&t, 9);
+    for (int j = 0; j < 3; j++)
+        for (int i = 0; i < 3; i++)
+            tn_set(&t, 3 * j + i, 0.5 * i, 0.5 * j, 0);
+    ct_idx q[4][8];
+    int s = 0;
+    for (int j = 0; j < 2; j++)
+        for (int i = 0; i < 2; i++) {
+            const ct_idx a = 3 * j + i, b = a + 1, c = a + 4, e = a + 3;
+            const ct_idx tr[2][3] = {{a, b, c}, {a, c, e}};
+            for (int h = 0; h < 2; h++, s++) {
+                q[0][s] = tr[h][0];
+                q[1][s] = tr[h][1];
+                q[2][s] = q[3][s] = tr[h][2];
+            }
+        }
+    memset(&d, 0, sizeof d);
+    d.nnode = 9;
+    d.nseg = d.nmseg = 8;
+    d.n1 = d.m1 = q[0];
+    d.n2 = d.m2 = q[1];
+    d.n3 = d.m3 = q[2];
+    d.n4 = d.m4 = q[3];
+    cfg.gap = (ct_real)0.05;
+    cr_assert_eq(ctd_iface_init(&it, &cfg, &d, &diag), CT_OK, "%s", diag.msg);
+    ct_real a9[9];
+    sum = areas_for_normal(it, &t, 0, 0, -1, a9);
+    cr_expect(ctt_rel(sum, 1) <= tol, "triangles: sum %.17g", sum);
+    /* The centre is a corner of 6 triangles of 1/8: 6 x (1/8) / 3. */
+    cr_expect(ctt_rel(a9[4], 0.25) <= tol, "triangles: centre %.17g", a9[4]);
+    /* Corner (0, 0): two triangles; corner (1, 0): one. */
+    cr_expect(ctt_rel(a9[0], 2.0 / 24) <= tol, "triangles: corner %.17g", a9[0]);
+    cr_expect(ctt_rel(a9[2], 1.0 / 24) <= tol, "triangles: corner %.17g", a9[2]);
+    ctd_iface_destroy(it);
+    tn_free(&t);
+}

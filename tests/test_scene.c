@@ -194,6 +194,8 @@ static const broken broken_files[] = {
     {"unknown_interface.yaml", 12, "interfaces[0].type", "expected one of 3, 5, 6, 7, 11, 24, got 9", CT_ERR_ARG},
     {"unknown_key.yaml", 12, "interfaces[0].Frik", "unknown field, expected one of type, name, main", CT_ERR_ARG},
     {"bad_search.yaml", 12, "interfaces[0].search", "expected one of direct, topological, bucket, bsp, got 'octree'", CT_ERR_ARG},
+    {"bad_pressure_area.yaml", 12, "interfaces[0].pressure_area", "expected one of main, secondary, got 'nodal'", CT_ERR_ARG},
+    {"bad_pressure_area_type11.yaml", 12, "interfaces[0].pressure_area", "expected main for type 11 (edge to edge: its nodes have no area), got secondary", CT_ERR_ARG},
     {"bad_output_format.yaml", 4, "output.format", "expected one of binary, ascii, got 'hdf5'", CT_ERR_ARG},
     {"bad_part_ref.yaml", 12, "interfaces[0].secondary.part", "part 7 does not exist", CT_ERR_RANGE},
     {"bad_node_ref.yaml", 10, "boundary[0].nodes.ids[2]", "node 9999 does not exist", CT_ERR_RANGE},

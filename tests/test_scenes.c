@@ -230,6 +230,10 @@ Test(scenes, interface_errors_name_file_line, .init = cr_redirect_stderr)
 {
     expect_build_error("iface_empty_main.yaml", "main selects no surface segment");
     expect_build_error("iface_empty_secondary.yaml", "secondary selects no node");
+    /* The nodes of trusses have no area for the pressure. */
+    expect_build_error("iface_parea_no_area.yaml",
+                       "interfaces[0].pressure_area: node 19 of the secondary selection is a "
+                       "corner of no surface segment");
     expect_build_error("iface_type7_no_gap.yaml", "a two-sided surface needs a gap > 0");
 }
 

@@ -307,6 +307,7 @@ static ctd_iface_cfg card(const ctd_scene_interface *f)
     c.Xfreq = (ct_real)f->Xfreq;
     c.Tstart = f->Tstart;
     c.Tstop = f->Tstop;
+    c.pressure_area = f->pressure_area;
     return c;
 }
 
@@ -393,6 +394,43 @@ static ct_real type6_mass_min(const ctd_model *m, const resolved *r)
     return isfinite(v) && v > 0 ? (ct_real)v : 0;
 }
 
+/* pressure_area secondary with a pressure-dependent law (Ifric 1, 2):
+ * every secondary node needs an area, so every node of the secondary node
+ * selection and of grnd_IDs must be a corner of a surface segment of the
+ * model (the other secondary nodes are corners of the interface's own
+ * segments). */
+static int parea_check(const ctd_model *m, const ctd_scene_interface *f, unsigned idx,
+                       const resolved *r, char *err, size_t len)
+{
+    if (f->pressure_area != CTD_PAREA_SECONDARY || (f->Ifric != 1 && f->Ifric != 2))
+        return CT_OK;
+    const ct_mesh *me = &m->mesh;
+    uint8_t *on = calloc((size_t)me->nodes.n + 1, 1);
+    if (!on)
+        return fail(err, len, CT_ERR_NOMEM, "%s: out of memory", m->scene->path);
+    const ct_idx *const q[4] = {me->n1, me->n2, me->n3, me->n4};
+    for (ct_idx s = 0; s < me->nseg; s++)
+        for (int c = 0; c < 4; c++)
+            on[q[c][s]] = 1;
+    const ct_nodeset *set[2] = {&r->sec, &r->grnd};
+    static const char *const what[2] = {"secondary", "grnd_IDs"};
+    int rc = CT_OK;
+    for (int i = 0; i < 2 && rc == CT_OK; i++)
+        for (ct_idx k = 0; k < set[i]->n; k++)
+            if (!on[set[i]->node[k]]) {
+                rc = fail(err, len, CT_ERR_ARG,
+                          "%s:%d: interfaces[%u].pressure_area: node %lld of the %s "
+                          "selection is a corner of no surface segment (shell or solid "
+                          "face), so it has no area for the pressure; expected main, or "
+                          "secondary nodes on surfaces",
+                          m->scene->path, f->line, idx, (long long)m->node_id[set[i]->node[k]],
+                          what[i]);
+                break;
+            }
+    free(on);
+    return rc;
+}
+
 static int build_one(const ctd_model *m, const ctd_scene_interface *f, unsigned idx,
                      const ctd_build_data *bd, ct_real *kelem, int own_kelem,
                      ctd_contact_hook *hook, char *err, size_t len)
@@ -403,6 +441,8 @@ static int build_one(const ctd_model *m, const ctd_scene_interface *f, unsigned 
     int t = (int)f->type;
     resolved r;
     int rc = resolve(m, f, &r, where, err, len);
+    if (rc == CT_OK)
+        rc = parea_check(m, f, idx, &r, err, len);
     ct_surface msu = {0, NULL}, ssu = {0, NULL};
     seg_inputs gm, gs;
     memset(&gm, 0, sizeof gm);
@@ -455,6 +495,11 @@ static int build_one(const ctd_model *m, const ctd_scene_interface *f, unsigned 
     d.node_vnode = bd->node_vnode;
     d.node_et = bd->node_et;
     d.gap_node = bd->gap_node;
+    d.nmseg = m->mesh.nseg;
+    d.m1 = m->mesh.n1;
+    d.m2 = m->mesh.n2;
+    d.m3 = m->mesh.n3;
+    d.m4 = m->mesh.n4;
     if (rc == CT_OK) {
         /* Sides: self contact, surface to surface, shells two-sided. */
         c.self = f->self && t != 11;

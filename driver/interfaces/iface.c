@@ -247,6 +247,11 @@ static int check_cfg(const ctd_iface_cfg *c, ct_diag *diag)
         return ctdi_fail(diag, CT_ERR_ARG, -1, "Ifric must be 0..4 and Ifiltr 0..3.");
     if (!(c->Tstart >= 0) || !(c->Tstop >= 0) || (c->Tstop > 0 && c->Tstop <= c->Tstart))
         return ctdi_fail(diag, CT_ERR_ARG, -1, "Need Tstart >= 0 and Tstop > Tstart when set.");
+    if (c->pressure_area != CTD_PAREA_MAIN &&
+        (c->pressure_area != CTD_PAREA_SECONDARY || c->type == 11))
+        return ctdi_fail(diag, CT_ERR_ARG, c->pressure_area,
+                         "pressure_area must be main, or secondary for the node-segment "
+                         "types (3, 5, 6, 7, 24).");
     return CT_OK;
 }
 
@@ -320,6 +325,8 @@ int ctd_iface_init(ctd_iface **out, const ctd_iface_cfg *cfg, const ctd_iface_da
         default: rc = ctdi_type11_setup(it, d, diag); break;
         }
     }
+    if (rc == CT_OK)
+        rc = ctdi_area_setup(it, d, diag);
     if (rc != CT_OK) {
         ctd_iface_destroy(it);
         return rc;
@@ -340,6 +347,7 @@ void ctd_iface_destroy(ctd_iface *it)
     ct_free(it->knode);
     ct_free(it->gnode);
     ct_free(it->kc);
+    ctdi_area_free(it);
     free(it);
 }
 
@@ -376,7 +384,7 @@ size_t ctd_iface_memory(const ctd_iface *it)
         b += ctdi_pass_memory(&it->pass[i], it->nnode);
     if (it->ep)
         b += ctdi_type11_memory(it->ep, it->nnode);
-    return b;
+    return b + ctdi_area_memory(it);
 }
 
 static void report_zero(ctd_iface_report *rep)

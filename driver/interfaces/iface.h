@@ -117,6 +117,13 @@ typedef struct ctd_iface_cfg {
     ct_real Fric, C[6];
     int Ifiltr;
     ct_real Xfreq, kt_scale;
+    /* The area the contact pressure of the pressure-dependent laws (Ifric
+     * 1 and 2) divides a pair's normal force by: CTD_PAREA_MAIN, the main
+     * segment's (the Radioss definition, the default), or
+     * CTD_PAREA_SECONDARY, the secondary node's share of the surface that
+     * faces the contact (iface_area.c), which needs the model's segments
+     * in the data (nmseg, m1..m4) and every secondary node on one. */
+    int pressure_area;
     /* Active for Tstart <= time <= Tstop (Tstop 0: never stops). */
     double Tstart, Tstop;
     /* Re-sort margin (search distance gap + margin); 0 -> 0.2 times the
@@ -136,6 +143,9 @@ typedef struct ctd_iface_cfg {
     ct_idx ncurve;
     const ct_real *curve_p, *curve_f;
 } ctd_iface_cfg;
+
+/* ctd_iface_cfg.pressure_area. */
+enum { CTD_PAREA_MAIN = 0, CTD_PAREA_SECONDARY = 1 };
 
 /* Defaults for a type:
  *  - 24, 7, 11: bucket search, 4tri, Stfac 1, VisS 1.0 (24) or 0.05 (7,
@@ -172,7 +182,9 @@ ctd_iface_cfg ctd_iface_default_cfg(int type);
  *  - mass_min (6): the smaller of the two rigid bodies' masses for the
  *    time step; 0 -> the smaller of the sums of the nodal masses m of each
  *    side's nodes (secondary nodes, main segment nodes) at the first
- *    active step.
+ *    active step;
+ *  - m1..m4 (nmseg): the model's surface segments, read only with
+ *    pressure_area CTD_PAREA_SECONDARY and a pressure-dependent law.
  */
 typedef struct ctd_iface_data {
     ct_idx nnode;
@@ -192,6 +204,11 @@ typedef struct ctd_iface_data {
     const ct_real *node_B, *node_vnode, *node_et;
     const ct_real *gap_node;
     ct_real mass_min;
+    /* Every surface segment of the model (shells, faces of bricks and of
+     * rigid bodies), for pressure_area CTD_PAREA_SECONDARY: the secondary
+     * nodes' areas come from those they are corners of. */
+    ct_idx nmseg;
+    const ct_idx *m1, *m2, *m3, *m4;
 } ctd_iface_data;
 
 /* Timer slots of the report (seconds). */

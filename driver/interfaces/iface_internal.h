@@ -102,10 +102,32 @@ struct ctd_iface {
     ct_real *kc;
     ct_real coef[7];
     int fric_law, fric_on;
+    /* pressure_area CTD_PAREA_SECONDARY (iface_area.c): the model
+     * segments the secondary nodes of the passes are corners of (their
+     * corners copied, 4 per segment), and per node its segments (CSR over
+     * the nnode nodes; NULL when the main area is used). */
+    ct_idx narea_seg, narea_ent;
+    ct_idx *area_q, *area_off, *area_seg;
     int was_on;
     int64_t resorts, deactivated;
     char msg[512]; /* the failing step's explanation (ctd_iface_report.msg) */
 };
+
+/* pressure_area CTD_PAREA_SECONDARY (iface_area.c): build the node ->
+ * segment map of the passes' secondary nodes from the model's segments of
+ * d (after the passes are set up; nothing when the law reads no pressure);
+ * a secondary node on no segment is an error (its index in diag). */
+int ctdi_area_setup(ctd_iface *it, const ctd_iface_data *d, ct_diag *diag);
+void ctdi_area_free(ctd_iface *it);
+size_t ctdi_area_memory(const ctd_iface *it);
+/* The area of the secondary node of each pair in contact (pen > 0) that
+ * faces its contact normal, into area[k] (see iface_area.c); pairs out of
+ * contact get 0. */
+void ctdi_area_of_pairs(const ctd_iface *it, ct_idx n, const ct_idx *restrict node,
+                        const ct_real *restrict pen, const ct_real *restrict nx,
+                        const ct_real *restrict ny, const ct_real *restrict nz,
+                        const ct_real *restrict x, const ct_real *restrict y,
+                        const ct_real *restrict z, ct_real *restrict area);
 
 /* The factor on the nodal contact step for normal damping VisS: the
  * damping C = VisS sqrt(2 K m) is the ratio zeta = VisS / sqrt(2) of the

@@ -389,8 +389,13 @@ int ctdi_pass_step(ctd_iface *it, ctdi_pass *p, ct_real dt, const ct_real *x,
                 pen[k] = 0;
     }
     double t2 = ctdi_wtime();
+    /* The pressure-dependent laws' area: the main segment's, or the
+     * secondary node's (iface_area.c). */
     int wa = it->fric_on && (it->fric_law == CT_FRIC_POLY || it->fric_law == CT_FRIC_DARMSTAD);
-    rc = ctdi_pass_kinematics(p, n, pp->node, x, y, z, vx, vy, vz, m, wa);
+    rc = ctdi_pass_kinematics(p, n, pp->node, x, y, z, vx, vy, vz, m, wa && !it->area_off);
+    if (rc == CT_OK && wa && it->area_off)
+        ctdi_area_of_pairs(it, n, pp->node, p->geo.pen, p->geo.nx, p->geo.ny, p->geo.nz, x, y,
+                           z, p->r[CTDI_R_PRS]);
     if (rc == CT_OK)
         rc = ctdi_pass_normal_force(it, p, n, dt);
     ct_real *fd = p->r[CTDI_R_FD];
