@@ -98,6 +98,8 @@ static int collect_generate(cti_mcollect *c, const ctd_scene *sc, unsigned i, ch
             for (int a = 0; a < 8; a++)
                 h.n[a] = off + gen.hex8[8 * e + a];
             h.part = g->part;
+            h.mesh = (int32_t)i;
+            h.deck = -1;
             rc = cti_vec_push(&c->hex, &h, sizeof h);
         }
     } else if (gen.nline) {
@@ -137,6 +139,8 @@ static int collect_import(cti_mcollect *c, const ctd_scene *sc, unsigned i, char
         for (int a = 0; a < 8; a++)
             h.n[a] = off + d->brick_node[8 * b + a];
         h.part = d->brick_part[b];
+        h.mesh = (int32_t)i;
+        h.deck = b;
         rc = cti_vec_push(&c->hex, &h, sizeof h);
     }
     return rc ? cti_model_err(err, len, rc, "out of memory") : CT_OK;
@@ -403,6 +407,20 @@ static int build_bodies(cti_mbuild *b)
             if (sc->rigid_bodies[r].part == pt->id)
                 bd->id = sc->rigid_bodies[r].id;
         const ct_nodes *nd = &m->mesh.nodes;
+        /* A body whose masses all underflowed (a tiny rho on tiny
+         * elements) has none: say so in the file's terms (ctd_rigid_init
+         * would only refuse an invalid argument). */
+        double mass = 0;
+        for (ct_idx k = 0; k < n; k++)
+            mass += nd->m[list[k]];
+        if (!(mass > 0)) {
+            rc = cti_model_err(b->err, b->len, CT_ERR_ARG,
+                               "%s:%d: parts[%u].material.rho: rigid part %lld has a mass of %g "
+                               "(rho %g is too small for its elements); expected a rho that "
+                               "gives its elements a mass > 0", sc->path, pt->line, p,
+                               (long long)pt->id, mass, pt->material.rho);
+            break;
+        }
         rc = ctd_rigid_init(&bd->rigid, n, list, nn, nd->m, nd->x, nd->y, nd->z, nd->vx, nd->vy,
                             nd->vz);
         if (rc) {

@@ -42,7 +42,10 @@ void cti_gen_destroy(cti_gen *g);
 /* ---- Building a model (model.c, model_parts.c) ---------------------------- */
 
 /* The meshes of a scene collected into one numbering. */
-typedef struct cti_hex { ct_idx n[8]; int64_t part; } cti_hex;
+/* A brick remembers where it comes from (scene mesh entry, and its index
+ * in that deck's bricks or -1 for a generated one) so that an element the
+ * model refuses is named as the user wrote it. */
+typedef struct cti_hex { ct_idx n[8]; int64_t part; int32_t mesh; ct_idx deck; } cti_hex;
 typedef struct cti_quad { ct_idx n[4]; int64_t part; int32_t mesh, deck; } cti_quad;
 typedef struct cti_line { ct_idx n[2]; int64_t part; } cti_line;
 

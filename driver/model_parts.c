@@ -181,6 +181,21 @@ static int part_faces(part_index *ix, unsigned p, ct_idx nn, const ct_real *x,
     return CT_OK;
 }
 
+/* " (/BRICK/2 element 7, deck.rad:15)" for brick e of the model (an
+ * index into b->c.hex) when it comes from a deck, "" for a generated one:
+ * the brick as the user can find it (the element sets number bricks
+ * within their part). */
+static void brick_origin(const cti_mbuild *b, ct_idx e, char *buf, size_t len)
+{
+    const cti_hex *h = (const cti_hex *)b->c.hex.data + e;
+    const ctd_scene_mesh *me = &b->sc->mesh[h->mesh];
+    if (h->deck < 0 || !me->import || !me->import->deck)
+        return;
+    const ctd_deck *d = me->import->deck;
+    snprintf(buf, len, " (/BRICK/%lld element %lld, %s:%d)", (long long)d->brick_part[h->deck],
+             (long long)d->brick_id[h->deck], me->import->file, (int)d->brick_line[h->deck]);
+}
+
 static int parts_build(cti_mbuild *b, part_index *ix)
 {
     ctd_model *m = b->m;
@@ -232,6 +247,7 @@ static int parts_build(cti_mbuild *b, part_index *ix)
         for (ct_idx k = 0; k < nl; k++)
             memcpy(lc + 2 * (int64_t)k, line[il[k]].n, 2 * sizeof(ct_idx));
         ct_diag d = {0};
+        int bad_brick = 0; /* the brick elements refused one of their bricks */
         if (nh) {
             d.msg[0] = 0;
             rc = part_faces(ix, p, nn, x, y, z, nh, hc, &b->faces[p], &d);
@@ -244,6 +260,7 @@ static int parts_build(cti_mbuild *b, part_index *ix)
                 ctd_brick tmp;
                 rc = ctd_brick_init_shared(&tmp, nh, hc, nn, x, y, z, (ct_real)pt->material.E,
                                            (ct_real)pt->material.nu, (ct_real)rho, &d);
+                bad_brick = rc != CT_OK;
                 if (rc)
                     goto part_err;
                 ctd_brick_mass(&tmp, m->mesh.nodes.m);
@@ -288,6 +305,7 @@ static int parts_build(cti_mbuild *b, part_index *ix)
              * moves its own copy): shared by every brick part. */
             rc = ctd_brick_init_shared(&st->brick, nh, hc, nn, x, y, z, (ct_real)pt->material.E,
                                        (ct_real)pt->material.nu, (ct_real)rho, &d);
+            bad_brick = rc != CT_OK;
             if (!rc) {
                 ctd_brick_mass(&st->brick, m->mesh.nodes.m);
                 st->nelem = nh;
@@ -342,9 +360,13 @@ static int parts_build(cti_mbuild *b, part_index *ix)
         }
     part_err:
         free(conn);
+        char origin[512] = "";
+        if (bad_brick && d.index >= 0 && d.index < nh)
+            brick_origin(b, ih[d.index], origin, sizeof origin);
         return cti_model_err(b->err, b->len, rc,
-                             "%s:%d: parts[%u]: cannot build the %s elements of part %lld: %s%s%s",
-                             sc->path, pt->line, p, elem_name(el), (long long)pt->id,
+                             "%s:%d: parts[%u]: cannot build the %s elements of part %lld%s: "
+                             "%s%s%s",
+                             sc->path, pt->line, p, elem_name(el), (long long)pt->id, origin,
                              ct_strerror(rc), d.msg[0] ? ": " : "", d.msg);
     }
     return rc;

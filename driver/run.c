@@ -34,7 +34,7 @@ static void usage(FILE *f)
             "                  within it is an error (exit 2), not a run of days\n"
             "  --quiet         no progress line and no report\n"
             "Exit codes: 0 success, 1 bad usage, 2 bad input, 4 the run went unstable,\n"
-            "5 an output file could not be written.\n");
+            "5 an output file could not be written, or out of memory.\n");
 }
 
 static int parse_pos(const char *s, double *v)
@@ -90,18 +90,21 @@ static int setup_open(run_setup *r, const char *who, const char *scene, int64_t 
         for (unsigned i = 0; i < r->sc->interfaces_count; i++)
             r->sc->interfaces[i].search = algo;
     }
+    /* Out of memory is exit 5, as for the scene and the solver's arrays
+     * (a model too large for the machine is not a mistake in the file). */
     char err[1024] = "";
-    if (ctd_model_build(&r->model, r->sc, err, sizeof err) != CT_OK) {
+    int rc = ctd_model_build(&r->model, r->sc, err, sizeof err);
+    if (rc != CT_OK) {
         fprintf(stderr, "%s: %s\n", who, err);
-        return CTD_EXIT_BADINPUT;
+        return rc == CT_ERR_NOMEM ? CTD_EXIT_OUTPUT : CTD_EXIT_BADINPUT;
     }
     r->have_model = 1;
     ctd_contact_hook *hooks = NULL;
     int nhook = 0;
     if (r->sc->interfaces_count &&
-        ctd_interfaces_build(&r->model, r->sc, &hooks, &nhook, err, sizeof err) != CT_OK) {
+        (rc = ctd_interfaces_build(&r->model, r->sc, &hooks, &nhook, err, sizeof err)) != CT_OK) {
         fprintf(stderr, "%s: %s\n", who, err);
-        return CTD_EXIT_BADINPUT;
+        return rc == CT_ERR_NOMEM ? CTD_EXIT_OUTPUT : CTD_EXIT_BADINPUT;
     }
     r->have_solver = 1; /* the solver owns the hooks from here, even on failure */
     if (ctd_solver_init(&r->s, &r->model, o, hooks, nhook, err, sizeof err)) {

@@ -7,7 +7,8 @@
  * Loads the scene, builds the model and its interfaces, runs the solver
  * and prints the report. Exit codes: 0 success, 1 bad usage, 2 bad input
  * (scene, model or interfaces), 4 the run went unstable, 5 an output file
- * could not be written (or the output directory is unusable).
+ * could not be written (or the output directory is unusable, or memory ran
+ * out).
  */
 #ifndef CTD_RUN_H
 #define CTD_RUN_H
