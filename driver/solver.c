@@ -353,10 +353,19 @@ static ct_idx first_nonfinite(ct_idx n, const ct_real *a, const ct_real *b, cons
 
 static void fail_node(ctd_solver *s, ct_idx i, const char *what)
 {
-    fail(s, "unstable", CTD_EXIT_UNSTABLE,
-         "cycle %lld (t = %.6g): node %lld (part %d) has a non-finite %s; the time step "
-         "(dt = %.3g) is likely above the stable limit", (long long)s->cycle, s->time,
-         (long long)s->model->node_id[i], s->model->node_part[i], what, s->dt);
+    /* Before the first step no time step is to blame: the input is (loads
+     * or gravity past the range of the numbers, an interface's force). */
+    if (s->cycle == 0)
+        fail(s, "unstable", CTD_EXIT_UNSTABLE,
+             "cycle 0 (t = %.6g): node %lld (part %d) has a non-finite %s before the first "
+             "step: expected loads, gravity and initial state whose forces are finite (two "
+             "loads of 1e308 on one node add up to infinity)", s->time,
+             (long long)s->model->node_id[i], s->model->node_part[i], what);
+    else
+        fail(s, "unstable", CTD_EXIT_UNSTABLE,
+             "cycle %lld (t = %.6g): node %lld (part %d) has a non-finite %s; the time step "
+             "(dt = %.3g) is likely above the stable limit", (long long)s->cycle, s->time,
+             (long long)s->model->node_id[i], s->model->node_part[i], what, s->dt);
 }
 
 /* The stable step at x(n), before the safety factor. */
@@ -495,9 +504,10 @@ static int drift(ctd_solver *s, double dt)
         int rc = ctd_rigid_advance(r, dt);
         if (rc) {
             fail(s, "unstable", CTD_EXIT_UNSTABLE,
-                 "cycle %lld (t = %.6g): rigid body %lld (part %lld) failed to advance: %s",
+                 "cycle %lld (t = %.6g): rigid body %lld (part %lld) failed to advance: %s; "
+                 "the time step (dt = %.3g) is likely above the stable limit of its rotation",
                  (long long)s->cycle, s->time, (long long)m->body[b].id,
-                 (long long)m->body[b].part, ct_strerror(rc));
+                 (long long)m->body[b].part, ct_strerror(rc), dt);
             return -1;
         }
         ctd_rigid_set_nodes(r, s->x, s->y, s->z, s->vx, s->vy, s->vz);
