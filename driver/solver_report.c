@@ -384,6 +384,21 @@ int cti_solver_finish(ctd_solver *s)
         rc = ctd_output_summary(w->out, &sum);
         w->wrote_summary = rc == CT_OK;
         free(ifs);
+        if (rc) {
+            /* The run's outcome says so: a run that went well until its
+             * summary could not be written is an output error (it ended
+             * with status "ok" and an empty message, exit 5); a failed one
+             * keeps its own status and adds this. */
+            if (s->exit_code == CTD_EXIT_OK) {
+                s->status = "error";
+                s->exit_code = CTD_EXIT_OUTPUT;
+                snprintf(s->message, sizeof s->message, "%s", ctd_output_error(w->out));
+            } else {
+                size_t len = strlen(s->message);
+                snprintf(s->message + len, sizeof s->message - len, "; %s",
+                         ctd_output_error(w->out));
+            }
+        }
         /* A run stopped in its first cycle has no history to plot (gnuplot
          * fails on it). */
         if (!rc && m->scene->output->csv && (s->cycle > 0 || s->exit_code == CTD_EXIT_OK)) {
@@ -393,8 +408,6 @@ int cti_solver_finish(ctd_solver *s)
             if (prc < 0 && !s->opts.quiet)
                 fprintf(stderr, "contact: energy plot: %s\n", msg);
         }
-        if (rc && !s->opts.quiet)
-            fprintf(stderr, "contact: %s\n", ctd_output_error(w->out));
     }
     if (!s->opts.quiet)
         print_report(s, s->opts.report ? s->opts.report : stdout);
