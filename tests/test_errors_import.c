@@ -37,6 +37,13 @@
     "         7                   1                   1                   1\n"                  \
     "         8                   0                   1                   1\n"
 
+/* Nodes 5-8 on nodes 1-4 (lines 6-9): the top of a brick of no height. */
+#define FLAT_TOP                                                                                \
+    "         5                   0                   0                   0\n"                  \
+    "         6                   1                   0                   0\n"                  \
+    "         7                   1                   1                   0\n"                  \
+    "         8                   0                   1                   0\n"
+
 /* Write `text` as DIR/deck.rad, read it, and expect `code` with "deck.rad:
  * LINE: " and `w1`, `w2` (when not NULL) in the message. */
 static void expect_deck_error(const char *dir, const char *text, int code, int line,
@@ -174,11 +181,7 @@ Test(errors_import, elements)
      * has no area; the part's outer surface (/SURF/PART) takes them. The
      * first is local face 2 (corners 1 2 6 5) of brick 9 on line 11. */
     expect_deck_error(dir,
-                      NODES4 "         5                   0                   0                   0\n"
-                             "         6                   1                   0                   0\n"
-                             "         7                   1                   1                   0\n"
-                             "         8                   0                   1                   0\n"
-                             "/BRICK/1\n"
+                      NODES4 FLAT_TOP "/BRICK/1\n"
                              "         9         1         2         3         4         5"
                              "         6         7         8\n"
                              "/SURF/PART/1\n"

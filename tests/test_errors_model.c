@@ -123,7 +123,8 @@ Test(errors_model, masses)
     gen_scene(dir, "springs.yaml", "kind: rod, part: 1, cells: [2], to: [0.1, 0, 0]",
               "element: spring, stiffness: 1000, material: {E: 2.1e11, nu: 0.3, rho: 7800}");
     /* rho 1e-100 (its lower bound) times a brick of 1e-240 m^3: 0. */
-    gen_scene(dir, "tiny.yaml", "kind: block, part: 1, cells: [1, 1, 1], size: [1e-80, 1e-80, 1e-80]",
+    gen_scene(dir, "tiny.yaml",
+              "kind: block, part: 1, cells: [1, 1, 1], size: [1e-80, 1e-80, 1e-80]",
               "element: brick, material: {E: 1e-45, nu: 0.3, rho: 1e-100}");
     gen_scene(dir, "tiny_rigid.yaml",
               "kind: block, part: 1, cells: [1, 1, 1], size: [1e-80, 1e-80, 1e-80]",
@@ -254,6 +255,29 @@ Test(errors_model, out_of_memory_building_the_model)
     cte_run(&r, dir, "ulimit -v 100000;", "check big.yaml");
     CTE_EXPECT(&r, CTD_EXIT_OUTPUT, "contact check: big.yaml:3: mesh[0]: ", "out of memory");
     ctt_cli_free(&r);
+    ctt_rmtree(dir);
+}
+
+/* A force whose selection matches no node: the run would go on without
+ * it, so it is refused (loads.c), with the condition's line. */
+Test(errors_model, load_on_no_node)
+{
+    char dir[64];
+    ctt_tmpdir(dir, "errm");
+    ctt_write_file(dir, "deck.rad", DECK);
+    ctt_write_file(dir, "load.yaml",
+                   "end_time: 1.0e-4\n"
+                   "mesh:\n"
+                   "  - import: {file: deck.rad}\n"
+                   "parts:\n"
+                   "  - {id: 1, element: shell, thickness: 0.01, material: {E: 2.1e11, nu: 0.3, "
+                   "rho: 7800}}\n"
+                   "  - {id: 2, element: brick, material: {E: 2.1e11, nu: 0.3, rho: 7800}}\n"
+                   "boundary:\n"
+                   "  - {kind: fixed, nodes: {part: 2}}\n"
+                   "  - {kind: force, nodes: {part: 1, where: \"z > 5\"}, value: [1, 0, 0]}\n");
+    expect_run_fails(dir, "load.yaml", CTD_EXIT_BADINPUT,
+                     "contact run: load.yaml:9: boundary[1] (force): nodes selects no node", NULL);
     ctt_rmtree(dir);
 }
 

@@ -206,6 +206,31 @@ Test(errors_output, summary_at_the_end)
     }
 }
 
+/* A run that went unstable and cannot write its summary either: its own
+ * status and exit code stay, the summary's failure is added. */
+Test(errors_output, summary_of_an_unstable_run)
+{
+    char dir[64];
+    fresh(dir, "summary.json", "dir");
+    ctt_write_file(dir, "wobble.yaml",
+                   "end_time: 2.0e-4\n"
+                   "output: {every: 2.0e-4, vtu: false, csv: false}\n"
+                   "mesh:\n"
+                   "  - generate: {kind: block, part: 1, cells: [2, 2, 2], size: [0.01, 0.01, "
+                   "0.01]}\n"
+                   "parts:\n"
+                   "  - {id: 1, element: brick, material: {E: 2.1e11, nu: 0.3, rho: 7800}}\n"
+                   "boundary:\n"
+                   "  - {kind: initial_velocity, nodes: {part: 1, where: \"x > 0.009\"}, value: "
+                   "[1, 0, 0]}\n");
+    ctt_cli r = {0};
+    cte_run(&r, dir, "", "run wobble.yaml --out o --quiet --dt-scale 3");
+    CTE_EXPECT(&r, CTD_EXIT_UNSTABLE, "contact run: unstable: cycle ",
+               "; cannot create summary file 'o/summary.json': Is a directory");
+    ctt_cli_free(&r);
+    ctt_rmtree(dir);
+}
+
 /* The energy plot is a picture of history.csv: when its script cannot be
  * written the run warns and its results stand (exit 0, summary "ok"). */
 Test(errors_output, plot_script)
