@@ -130,6 +130,8 @@ static void check_generate(vctx *v, unsigned i, ctd_scene_generate *g)
     else if (kind_spec[k].folded && g->layers > 100000000)
         cti_err(v->e, CT_ERR_ARG, 0, pl, "expected an integer in 1 .. 1e8, got %lld",
                 (long long)g->layers);
+    else if (!kind_spec[k].folded && cti_vhas(v, pl))
+        cti_err(v->e, CT_ERR_ARG, 0, pl, "not used by kind %s", g->kind_name);
     const char *pt = cti_vpath(v, "%s.to", b);
     char pts[96];
     snprintf(pts, sizeof pts, "%s", pt);
@@ -145,6 +147,8 @@ static void check_generate(vctx *v, unsigned i, ctd_scene_generate *g)
         if (fin && g->to[0] == g->origin[0] && g->to[1] == g->origin[1] &&
             g->to[2] == g->origin[2])
             cti_err(v->e, CT_ERR_ARG, 0, pts, "expected a point other than origin");
+    } else if (cti_vhas(v, pts)) {
+        cti_err(v->e, CT_ERR_ARG, 0, pts, "not used by kind %s", g->kind_name);
     }
     /* Finite inputs can still make coordinates the arithmetic cannot hold
      * (origin -1e308 with size 1e308 gives inf; a rod from -1e308 overflows

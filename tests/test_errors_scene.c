@@ -6,8 +6,8 @@
  * first message must have the line and the field of the mistake and read
  * "FILE:LINE: FIELD: what" (scene.h), with the words given.
  *
- * Two cases are disabled: they show defects of the scene checks, which
- * are being edited elsewhere (see each one).
+ * Two cases showed a defect of the scene checks when written (fixed since,
+ * see each one).
  */
 #include <stdio.h>
 #include <string.h>
@@ -195,13 +195,13 @@ Test(errors_scene, generated_meshes)
     run_cases(c, sizeof c / sizeof c[0]);
 }
 
-/* DEFECT (driver/scene_validate_mesh.c, not fixed here: being edited
- * elsewhere): `to` is checked only for kind rod, and `layers` only for
- * kind folded; on any other kind they are accepted and ignored, where
- * radius, length, spacing, size and tri are refused as "not used by kind
- * X" (scene.h: an unknown key is an error, typos are caught). A plate
- * with `to: [1, 1, 1]` or `layers: 2` loads as if they were not there. */
-Test(errors_scene, to_of_another_kind_is_refused, .disabled = true)
+/* A defect these two found (driver/scene_validate_mesh.c): `to` was
+ * checked only for kind rod, and `layers` only for kind folded; on any
+ * other kind they were accepted and ignored, where radius, length,
+ * spacing, size and tri are refused as "not used by kind X" (scene.h: an
+ * unknown key is an error, typos are caught). A plate with
+ * `to: [1, 1, 1]` or `layers: 2` loaded as if they were not there. */
+Test(errors_scene, to_of_another_kind_is_refused)
 {
     static const scase c[] = {
         {"  - generate: {kind: plate, part: 1, cells: [1, 1], size: [1, 1], to: [1, 1, 1]}\n", 1,
@@ -211,7 +211,7 @@ Test(errors_scene, to_of_another_kind_is_refused, .disabled = true)
 }
 
 /* The same defect for `layers` (see above). */
-Test(errors_scene, layers_of_another_kind_are_refused, .disabled = true)
+Test(errors_scene, layers_of_another_kind_are_refused)
 {
     static const scase c[] = {
         {"  - generate: {kind: plate, part: 1, cells: [1, 1], size: [1, 1], layers: 2}\n", 1, 3,
