@@ -5,6 +5,7 @@
 #ifndef CT_INTERNAL_H
 #define CT_INTERNAL_H
 
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -132,6 +133,7 @@ static inline ct_idx cti_sample_index(uint64_t m, uint64_t stream, ct_idx n)
 #define CTI_FMAX fmaxf
 #define CTI_EPS 1.1920929e-07f
 #define CTI_HUGE 3.0e38f
+#define CTI_REAL_MAX FLT_MAX /* the largest finite ct_real */
 #else
 #define CTI_SQRT sqrt
 #define CTI_FABS fabs
@@ -142,10 +144,55 @@ static inline ct_idx cti_sample_index(uint64_t m, uint64_t stream, ct_idx n)
 #define CTI_FMAX fmax
 #define CTI_EPS 2.220446049250313e-16
 #define CTI_HUGE 1.0e300
+#define CTI_REAL_MAX DBL_MAX
 #endif
 
 #define CTI_MIN(a, b) ((a) < (b) ? (a) : (b))
 #define CTI_MAX(a, b) ((a) > (b) ? (a) : (b))
+
+/* ---- Non-finite values -------------------------------------------------- */
+
+/* x - x is 0 for a finite x and NaN for an infinite or NaN one: exact, since
+ * the build uses -fno-math-errno -fno-trapping-math but not -ffast-math
+ * (which would let the compiler fold it to 0). */
+#define CTI_NONFINITE(x) (!((x) - (x) == 0))
+
+/*
+ * The force and friction kernels check their values by a witness sum: one
+ * term per checked value, +-0 for a finite value and NaN for an infinite or
+ * NaN one, summed per pair and added into one accumulator per block inside
+ * the vector loop that computes the pairs (an `omp simd` reduction: no
+ * branch, no extra pass over memory). The sum stays +-0 while every term
+ * is and is NaN as soon as one is, in any order of the additions, so the
+ * verdict depends neither on the vector width nor on the thread count; on
+ * failure the kernels that report an index find it by a second pass.
+ *  - CTI_NF(x): x's term, x - x;
+ *  - cti_nf_add(acc, x): acc plus x's term in one operation where the
+ *    processor fuses a multiply and an add: x * 0 + acc, exact (x * 0 is
+ *    +-0 for a finite x, NaN otherwise; the build does not contract on its
+ *    own, -ffp-contract=off, so it is written out); without FMA, the
+ *    subtraction and the addition.
+ * A value whose NaN or negative values have a meaning (a penetration: no
+ * contact) enters as its select (p > 0 ? p : 0), whose term is NaN for +inf
+ * only. A pair's terms go into short chains of their own, added to the
+ * loop's accumulator once: a long chain runs at the fused operation's
+ * latency, and chained into the accumulator every iteration would wait for
+ * the one before. Each term costs an operation a pair, which in cache is
+ * 4 % of the lean normal-force loop: the kernels check the fewest values
+ * that cover their inputs (an input that always reaches an output is
+ * covered by that output's term).
+ */
+#define CTI_NF(x) ((x) - (x))
+static inline ct_real cti_nf_add(ct_real acc, ct_real x)
+{
+#if defined(__FMA__) && defined(CT_SINGLE)
+    return fmaf(x, 0.0f, acc);
+#elif defined(__FMA__)
+    return fma(x, 0.0, acc);
+#else
+    return acc + CTI_NF(x);
+#endif
+}
 
 /* Fill a ct_diag (when not NULL) and return the code. */
 int cti_fail(ct_diag *d, int code, int64_t index, const char *fmt, ...)

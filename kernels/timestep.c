@@ -54,9 +54,6 @@ struct cti_dt_in {
     struct cti_dt_type7_in type7;
 };
 
-/* x - x is 0 for a finite x, NaN for an infinite or NaN one. */
-#define CTI_NONFINITE(x) (!((x) - (x) == 0))
-
 /* The nodal step of a node of mass mi and stiffness k (element plus
  * contact); *nan is set if an input is NaN or infinite (an infinite
  * stiffness, or a sum of two that overflows, would give a zero step, on
