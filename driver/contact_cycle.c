@@ -138,7 +138,8 @@ int ctd_cycle_init(ctd_cycle **out, const ctd_cycle_params *p, ct_idx nnode, con
         (nmain && !mainn) || (nseg && (!n1 || !n2 || !n3 || !n4)) || !(p->gap > 0) ||
         !(p->margin >= 0) || p->quad < 0 || p->quad >= CT_QUAD_NMETHOD ||
         p->asm_variant < 0 || p->asm_variant >= CT_ASM_NVARIANT ||
-        (p->law != CTD_LAW_TYPE7 && p->law != CTD_LAW_LINEAR) || (p->skip != 0 && p->skip != 1))
+        (p->law != CTD_LAW_TYPE7 && p->law != CTD_LAW_LINEAR) || (p->skip != 0 && p->skip != 1) ||
+        !isfinite(p->K0) || !isfinite(p->viss) || !isfinite(p->mu) || !isfinite(p->kt))
         return CT_ERR_ARG;
     ctd_cycle *cy = calloc(1, sizeof *cy);
     if (!cy)

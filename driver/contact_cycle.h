@@ -140,7 +140,8 @@ typedef struct ctd_cycle ctd_cycle;
  * the re-sort criterion; for self contact pass sec again) and the main
  * segments n1..n4[0..nseg-1]. The arrays are not copied and must outlive
  * the interface. self: 1 for one surface against itself. Returns CT_OK,
- * CT_ERR_ARG or CT_ERR_NOMEM.
+ * CT_ERR_ARG (also for a NaN or infinite K0, viss, mu or kt, which the
+ * force kernels would refuse every cycle) or CT_ERR_NOMEM.
  */
 int ctd_cycle_init(ctd_cycle **cy, const ctd_cycle_params *p, ct_idx nnode, const ct_real *m,
                    ct_idx nsec, const ct_idx *sec, ct_idx nmain, const ct_idx *mainn,

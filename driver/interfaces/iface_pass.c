@@ -344,6 +344,29 @@ static int pass_search(ctd_iface *it, ctdi_pass *p, const ct_real *x, const ct_r
     return CT_OK;
 }
 
+/* After a search: a pair stiffness that overflowed (Stfac 1e308, or Istf 1
+ * with a huge Stfac, and no Stmax) is the input's fault, said here with
+ * the pair's node (CT_ERR_ARG). The force kernels would refuse it as a
+ * non-finite value (the run "unstable"); before they did, its zero stable
+ * step was caught by the solver's hook, with this advice. TYPE6 sets its
+ * stiffness from the curve each step. */
+static int pass_stiffness_finite(ctd_iface *it, const ctdi_pass *p, ctd_iface_report *rep)
+{
+    if (p->law == CTDI_LAW_TYPE6)
+        return CT_OK;
+    const ct_pairs *pp = &p->pairs[p->cur];
+    const ct_real *restrict K = p->r[CTDI_R_K];
+    for (ct_idx k = 0; k < pp->n; k++)
+        if (CTI_NONFINITE(K[k])) {
+            rep->dt_node = pp->node[k];
+            snprintf(it->msg, sizeof it->msg,
+                     "the contact stiffness overflows (expected a smaller Stfac, or a finite "
+                     "Stmax)");
+            return CT_ERR_ARG;
+        }
+    return CT_OK;
+}
+
 int ctdi_pass_step(ctd_iface *it, ctdi_pass *p, ct_real dt, const ct_real *x,
                    const ct_real *y, const ct_real *z, const ct_real *vx, const ct_real *vy,
                    const ct_real *vz, const ct_real *m, ct_real *fx, ct_real *fy,
@@ -365,6 +388,8 @@ int ctdi_pass_step(ctd_iface *it, ctdi_pass *p, ct_real dt, const ct_real *x,
     if (did) {
         it->resorts++;
         rep->resorted++;
+        if ((rc = pass_stiffness_finite(it, p, rep)) != CT_OK)
+            return rc;
     }
     double t1 = ctdi_wtime();
     const ct_pairs *pp = &p->pairs[p->cur];
