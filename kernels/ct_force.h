@@ -22,6 +22,22 @@
  *  - Kernels run in parallel (OpenMP, static schedule) and give bit-identical
  *    results for any thread count: every pair is computed independently, and
  *    sums use ct_sum_ordered().
+ *  - Non-finite values (docs/fuzz F15): the force kernels answer
+ *    CT_ERR_NONFINITE when a value they read for a pair, in contact or not,
+ *    is NaN or infinite, or when a result overflows (a force, or an energy,
+ *    dissipation or state they write, that would be NaN or infinite). The
+ *    values these conventions give a meaning keep it: a penetration that is
+ *    NaN or <= 0, -inf included, is no contact (only p = +inf is an error),
+ *    and so are the values a kernel's description names so. Stiffnesses,
+ *    masses, velocities, normals and states must be finite (a stiffness
+ *    <= 0 gives no force, a NaN or infinite one is an error). A NaN or
+ *    infinite step dt or damping ratio viss is CT_ERR_ARG; a scalar standing
+ *    for a per-pair array (K0 for K) is checked as the array. The check runs
+ *    in the loop that computes the pairs, at the cost of an operation or
+ *    two per checked value. These kernels take no ct_diag and report no
+ *    pair (ct_penalty_type6 does). After CT_ERR_NONFINITE their outputs,
+ *    and the states they update, are unspecified: the step is to be
+ *    discarded.
  */
 #ifndef CT_FORCE_H
 #define CT_FORCE_H
@@ -150,7 +166,9 @@ int ct_stiffness_pairs(ct_idx npair, int mode, const ct_idx *node, const ct_idx 
  * Outputs: fel[k] the elastic normal force magnitude (>= 0), energy[k] the
  * stored energy (may be NULL). K <= 0 gives no force. Returns CT_ERR_ARG for
  * a negative count, NULL required arrays (vn is required with blending),
- * dt < 0, or a partial blending state.
+ * dt < 0 or not finite, or a partial blending state; CT_ERR_NONFINITE (see
+ * the conventions) for a NaN or infinite K, p0, blending state or (with
+ * blending) vn, p = +inf, or a force, energy or state that overflows.
  */
 int ct_penalty_linear(ct_idx npair, const ct_real *p, const ct_real *vn, const ct_real *K,
                       ct_real dt, ct_real *p0, ct_real *p_prev, ct_real *fcap,
@@ -181,7 +199,9 @@ int ct_initial_penetration(ct_idx npair, int mode, const ct_real *p_init, ct_rea
 
 /* The TYPE7 stored energy K0 g^2 (r - 1 - ln r), r = 1 - p/g, for
  * 0 <= p < g (series in p/g below 1/32, else -x - log1p(-x)). Other
- * inputs: see ct_penalty_type7. */
+ * inputs: see ct_penalty_type7; this scalar function has no error code,
+ * and an infinite input gives a finite value (0 for an infinite K0 or g,
+ * the capped law's for p = +inf). */
 ct_real ct_type7_energy(ct_real K0, ct_real g, ct_real p);
 
 /*
@@ -189,12 +209,14 @@ ct_real ct_type7_energy(ct_real K0, ct_real g, ct_real p);
  * energy E = K0 g^2 (r - 1 - ln r), tangent dF/dp = K0 g^2/(g - p)^2.
  * For x >= 1 - RMIN the pair is deactivated (flag[k] = 1, else 0): F stays
  * at F_max, the energy continues as E(p_c) + F_max (min(p, g) - p_c) and the
- * tangent is the one at p_c. p <= 0, NaN p, g <= 0 or NaN g, K0 <= 0 give
- * zero force, energy and tangent. No output is ever NaN for finite
- * positive K0 and g, nor infinite unless its value exceeds the largest
- * ct_real (F_max = 999 K0 g beyond it; the energy of a gap above 1e154
- * does not overflow with it). ktan, energy and flag may be NULL. (Radioss
- * halves K0 in this law unless Istf = 1: the caller passes the K0 it wants.)
+ * tangent is the one at p_c: a penetration reaching or passing the gap is
+ * not an error. p <= 0, NaN p, g <= 0 or NaN g (-inf too), K0 <= 0 give
+ * zero force, energy and tangent. CT_ERR_NONFINITE (see the conventions)
+ * for p or g = +inf, a NaN or infinite K0, or an output whose value
+ * exceeds the largest ct_real (F_max = 999 K0 g; the energy of a gap above
+ * 1e154 does not overflow with it); no output is NaN otherwise. ktan,
+ * energy and flag may be NULL. (Radioss halves K0 in this law unless
+ * Istf = 1: the caller passes the K0 it wants.)
  */
 int ct_penalty_type7(ct_idx npair, const ct_real *p, const ct_real *g, const ct_real *K0,
                      ct_real *fel, ct_real *ktan, ct_real *energy, int32_t *flag);
@@ -219,7 +241,12 @@ ct_real ct_curve_eval(ct_idx n, const ct_real *x, const ct_real *y, ct_real p,
  * fel[k] = F q_k / sum(q), q_k = max(0, p_k) (NaN counts as 0), so the
  * forces sum to F (to round-off). *pmax, *ftotal and *kcurve (the stiffness
  * for damping and time step, max(f'(p_max), f(p_max)/p_max)) may be NULL.
- * The table is checked first (CT_ERR_ARG via diag).
+ * The table is checked first (CT_ERR_ARG via diag). CT_ERR_NONFINITE with
+ * diag's index at the first pair of p = +inf (-inf, like NaN, counts as
+ * 0), or at the first pair of the largest penetration when F, the largest
+ * force or (asked for) kcurve overflows there (a steep extrapolation), or
+ * -1 when the sum of the penetrations does; the outputs are then
+ * unspecified.
  */
 int ct_penalty_type6(ct_idx npair, const ct_real *p, ct_idx ncurve, const ct_real *cx,
                      const ct_real *cy, ct_real *fel, ct_real *pmax, ct_real *ftotal,
@@ -241,6 +268,10 @@ ct_real ct_damping_coef(ct_real viss, ct_real K, ct_real ms, ct_real mm);
  * never pulls. dissip[k] = -(fn - fel) vn dt >= 0 is the work the clamped
  * damper removes over the step. (fx, fy, fz) = fn n. Pairs out of contact
  * get zeros. mm may be NULL (secondary mass only); fn and dissip may be NULL.
+ * CT_ERR_ARG for a negative count, NULL required arrays, or dt or viss
+ * NaN, infinite or (dt) negative; CT_ERR_NONFINITE (see the conventions)
+ * for a NaN or infinite fel, kd, vn, ms, mm or normal, p = +inf, or a
+ * force or (asked for) dissipation that overflows.
  */
 int ct_normal_finish(ct_idx npair, const ct_real *p, const ct_real *fel, const ct_real *kd,
                      const ct_real *vn, const ct_real *ms, const ct_real *mm, ct_real viss,
@@ -252,7 +283,9 @@ int ct_normal_finish(ct_idx npair, const ct_real *p, const ct_real *fel, const c
  * penetration: F = K p, damping as in ct_normal_finish, in one pass.
  * Outputs the force vector on the secondary node, fn (its magnitude), the
  * stored energy K p^2/2 and the damping dissipation; energy and dissip may
- * be NULL. K may be NULL to use the scalar K0 for every pair.
+ * be NULL. K may be NULL to use the scalar K0 for every pair. Errors as for
+ * ct_normal_finish, with K (or K0) in place of fel and kd, and the energy
+ * (asked for) among the results that may overflow.
  */
 int ct_normal_force(ct_idx npair, const ct_real *p, const ct_real *nx, const ct_real *ny,
                     const ct_real *nz, const ct_real *vn, const ct_real *K, ct_real K0,

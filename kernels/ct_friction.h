@@ -82,7 +82,17 @@ ct_real ct_filter_alpha(int ifiltr, ct_real xfreq, ct_real dt);
  * step: the work of the slipping part (>= 0; mu fn |v_t| dt in steady
  * sliding). Pairs with fn <= 0 (out of contact) get F = 0, dissip 0.
  * mu (per pair) may be NULL to use mu0; kt may be NULL to use kt0; dissip
- * may be NULL. fn, mu, kt NaN or negative count as 0 (no friction force).
+ * may be NULL. fn, mu, kt NaN or negative (-inf too) count as 0 (fn or mu:
+ * no friction force; kt: no elastic increment, the old force is kept
+ * within the cone).
+ * CT_ERR_ARG for a negative count, NULL required arrays, dt NaN, infinite
+ * or negative, or alpha outside (0, 1]. CT_ERR_NONFINITE (docs/fuzz F15)
+ * for +inf in fn, mu, kt (or mu0, kt0 standing for them), a NaN or
+ * infinite normal, velocity or old force, or an overflow (the trial
+ * force's square, the cone mu fn, the filtered force's square, the asked
+ * dissipation): checked for every pair, in the loop that computes them;
+ * no index is reported, and the forces (the history) are then
+ * unspecified: the step is to be discarded.
  */
 int ct_friction_step(ct_idx npair, const ct_real *nx, const ct_real *ny, const ct_real *nz,
                      const ct_real *vx, const ct_real *vy, const ct_real *vz,
@@ -108,7 +118,11 @@ int ct_friction_step(ct_idx npair, const ct_real *nx, const ct_real *ny, const c
  * (normal damping work) and fdissip (friction work) may be NULL; fx, fy, fz
  * receive the normal force vector and ftx, fty, ftz (in: last step's
  * tangential force, out: the new one) the tangential force, both on the
- * secondary node. CT_ERR_ARG as in the two kernels.
+ * secondary node. CT_ERR_ARG and CT_ERR_NONFINITE as in the two kernels,
+ * with one difference: the normal must be the unit vector the conventions
+ * ask for, since the check takes the first component of the normal force
+ * vector only (it covers fn; the friction trial covers the normal); a
+ * component fn n_i that overflows only because |n_i| > 1 is not detected.
  */
 int ct_pair_force_linear_coulomb(
     ct_idx npair, const ct_real *p, const ct_real *nx, const ct_real *ny, const ct_real *nz,

@@ -110,8 +110,9 @@ ct_real ct_filter_alpha(int ifiltr, ct_real xfreq, ct_real dt)
 }
 
 /* One block [i0, i1) of ct_friction_step. Inlined with constant has_*
- * flags so that every variant is a branch-free SIMD loop. */
-static inline __attribute__((always_inline)) void
+ * flags so that every variant is a branch-free SIMD loop. Returns 1 when a
+ * checked value of the block is NaN or infinite (pair_force_body.h). */
+static inline __attribute__((always_inline)) int
 cti_friction_block(int64_t i0, int64_t i1, const ct_real *restrict ax,
                    const ct_real *restrict ay, const ct_real *restrict az,
                    const ct_real *restrict ux, const ct_real *restrict uy,
@@ -121,18 +122,21 @@ cti_friction_block(int64_t i0, int64_t i1, const ct_real *restrict ax,
                    ct_real *restrict hy, ct_real *restrict hz, ct_real *restrict od,
                    const int has_mu, const int has_kt, const int has_d, const int filt)
 {
-CTI_SIMD_SQRT
+    ct_real bad = 0;
+CTI_SIMD_SQRT_BAD
     for (int64_t i = i0; i < i1; i++) {
-        ct_real g0 = hx[i], g1 = hy[i], g2 = hz[i];
+        ct_real g0 = hx[i], g1 = hy[i], g2 = hz[i], nf = 0, draw;
         ct_real d = cti_friction_pair(ax[i], ay[i], az[i], ux[i], uy[i], uz[i], f_n[i],
                                       has_mu ? m_[i] : mu0, has_kt ? k_[i] : kt0, dt, alpha,
-                                      filt, &g0, &g1, &g2);
+                                      filt, &g0, &g1, &g2, &nf, &draw);
         hx[i] = g0;
         hy[i] = g1;
         hz[i] = g2;
         if (has_d)
             od[i] = d;
+        bad += has_d ? cti_nf_add(nf, draw) : nf;
     }
+    return !(bad == 0);
 }
 
 /* Pairs per block of the friction loop. */
@@ -145,25 +149,30 @@ int ct_friction_step(ct_idx npair, const ct_real *nx, const ct_real *ny, const c
                      ct_real *ftz, ct_real *dissip)
 {
     if (npair < 0 || !nx || !ny || !nz || !vx || !vy || !vz || !fn || !ftx || !fty || !ftz ||
-        !(dt >= 0) || !(alpha > 0 && alpha <= 1))
+        !cti_step_ok(dt) || !(alpha > 0 && alpha <= 1))
         return CT_ERR_ARG;
+    /* The scalars that stand for per-pair arrays: NaN and -inf count as 0,
+     * as in the arrays; +inf is refused here, once. */
+    if ((!mu && mu0 > CTI_REAL_MAX) || (!kt && kt0 > CTI_REAL_MAX))
+        return CT_ERR_NONFINITE;
     const int variant = (mu != NULL) | (kt != NULL) << 1 | (dissip != NULL) << 2 |
                         (alpha < 1) << 3;
     const int64_t nblk = ((int64_t)npair + CTI_FRIC_BLOCK - 1) / CTI_FRIC_BLOCK;
+    int bad = 0;
 #define CTI_FRIC_CASE(V)                                                                   \
     case V:                                                                                \
-        cti_friction_block(i0, i1, nx, ny, nz, vx, vy, vz, fn, mu, mu0, kt, kt0, dt, alpha, \
-                           ftx, fty, ftz, dissip, (V)&1, ((V) >> 1) & 1, ((V) >> 2) & 1,    \
-                           ((V) >> 3) & 1);                                                \
+        bad |= cti_friction_block(i0, i1, nx, ny, nz, vx, vy, vz, fn, mu, mu0, kt, kt0, dt, \
+                                  alpha, ftx, fty, ftz, dissip, (V)&1, ((V) >> 1) & 1,     \
+                                  ((V) >> 2) & 1, ((V) >> 3) & 1);                         \
         break;
-    CTI_PAR_FOR(npair > CTI_PAR_MIN, (schedule(static)),
+    CTI_PAR_FOR(npair > CTI_PAR_MIN, (schedule(static) reduction(| : bad)),
     for (int64_t b = 0; b < nblk; b++) {
         int64_t i0, i1;
         cti_block_range(b, CTI_FRIC_BLOCK, npair, &i0, &i1);
         switch (variant) { CTI_CASES16(CTI_FRIC_CASE) }
     });
 #undef CTI_FRIC_CASE
-    return CT_OK;
+    return bad ? CT_ERR_NONFINITE : CT_OK;
 }
 
 double ct_friction_dissipation(ct_idx npair, const ct_real *dissip)

@@ -22,9 +22,13 @@
  * that the requested vectorisation failed. */
 #if defined(__NO_MATH_ERRNO__)
 #define CTI_SIMD_SQRT _Pragma("omp simd")
+#define CTI_SIMD_SQRT_BAD _Pragma("omp simd reduction(+ : bad)")
 #else
 #define CTI_SIMD_SQRT
+#define CTI_SIMD_SQRT_BAD
 #endif
+/* CTI_SIMD_SQRT_BAD: the same, with the witness sum `bad` of the block's
+ * non-finite check (ct_internal.h) as a reduction. */
 
 /* Loops shorter than this run on one thread. */
 #define CTI_PAR_MIN 8192
@@ -45,6 +49,12 @@ static inline void cti_block_range(int64_t b, int64_t bs, int64_t n, int64_t *i0
     *i1 = hi < n ? hi : n;
 }
 
+/* The scalar parameters of the force and friction kernels: a step dt
+ * finite and >= 0, a damping ratio finite (<= 0: no damping). NaN or
+ * infinite ones are argument errors (CT_ERR_ARG), as a negative step was. */
+static inline int cti_step_ok(ct_real dt) { return dt >= 0 && dt <= CTI_REAL_MAX; }
+static inline int cti_viss_ok(ct_real viss) { return !CTI_NONFINITE(viss); }
+
 /* The reduced mass of the damper: without a segment mass (mm <= 0),
  * ms / (1 + ms/inf) = ms (branch-free). */
 static inline ct_real cti_reduced_mass(ct_real ms, ct_real mm)
@@ -56,24 +66,38 @@ static inline ct_real cti_reduced_mass(ct_real ms, ct_real mm)
 /* The linear penalty with normal damping for one pair: penetration p,
  * stiffness k, (reduced) mass m, damping ratio vs >= 0, normal velocity w,
  * step dt. Returns the normal force fn >= 0 (zero out of contact); *e gets
- * the stored energy and *d the damping dissipation of the step (>= 0). */
+ * the stored energy and *d the damping dissipation of the step (>= 0).
+ * Non-finite check (ct_internal.h): *draw gets the dissipation before its
+ * clamp. The callers' witness sums take the force vector fn n, which is
+ * NaN or infinite whenever a NaN or an overflow reaches fn (the clamp to
+ * >= 0 keeps a NaN) and whenever p is +inf (k p is infinite, or NaN for
+ * k = 0; a NaN or negative p, -inf too, is no contact by the convention of
+ * ct_force.h); and the terms of what may not reach it (a pair out of
+ * contact, a damper that pushes fn to 0): k (when per pair: a scalar is
+ * checked once), m, and w, or the raw dissipation (fe - fn) w dt where it
+ * is asked for, which w always reaches. */
 static inline __attribute__((always_inline)) ct_real
 cti_normal_pair(ct_real p, ct_real k, ct_real m, ct_real vs, ct_real w, ct_real dt,
-                ct_real *e, ct_real *d)
+                ct_real *e, ct_real *d, ct_real *draw)
 {
     ct_real q = p > 0 ? p : 0;
     k = k > 0 ? k : 0;
     ct_real fe = k * q;
     ct_real a = (ct_real)2 * k * m;
     a = a > 0 ? a : 0;
+    /* Without damping c is 0 even where 2 k m overflows (0 times its
+     * infinite root was NaN, and the force with it). */
     ct_real c = vs * CTI_SQRT(a);
+    c = vs > 0 ? c : 0;
     ct_real ft = fe - c * w;
     /* Two selects, not (ft > 0 && q > 0): gcc 12 turns the && into a
-     * select on a bool that it cannot vectorise. */
-    ft = ft > 0 ? ft : 0;
+     * select on a bool that it cannot vectorise. The first keeps a NaN
+     * (ft is never -0: fe >= +0), so that an overflow is seen. */
+    ft = ft < 0 ? 0 : ft;
     ft = q > 0 ? ft : 0;
     *e = (ct_real)0.5 * fe * q;
     ct_real dd = (fe - ft) * w * dt;
+    *draw = dd;
     *d = dd > 0 ? dd : 0;
     return ft;
 }
@@ -83,11 +107,22 @@ cti_normal_pair(ct_real p, ct_real k, ct_real m, ct_real vs, ct_real w, ct_real 
  * step dt, filter factor alpha in (0, 1] (applied when filt is set). On
  * entry (*g0, *g1, *g2) is the previous tangential force, on return the new
  * one (elastic predictor, return to the cone mu fn, optional filter).
- * Returns the friction dissipation of the step (>= 0). */
+ * Returns the friction dissipation of the step (>= 0).
+ * Non-finite check (ct_internal.h): the step's terms are added to the
+ * caller's witness sum *nf; *draw gets the dissipation before its clamp
+ * (for the caller's term, when it is asked for). Two terms cover every
+ * input: fn, mu and kt count as 0 when NaN or negative (-inf too), and
+ * +inf in fn or mu makes the cone mu fn infinite or NaN (0 times
+ * infinity); every other input (n, v, the old force) and +inf in kt reach
+ * the squared trial tt whatever the stiffness and the step (0 times an
+ * infinite slip is NaN), so tt's term covers them and the trial's
+ * overflow. The filtered force's square and the dissipation have terms of
+ * their own (they may overflow where the trial does not). */
 static inline __attribute__((always_inline)) ct_real
 cti_friction_pair(ct_real n0, ct_real n1, ct_real n2, ct_real v0, ct_real v1, ct_real v2,
                   ct_real fn, ct_real mu, ct_real kt, ct_real dt, ct_real alpha,
-                  const int filt, ct_real *g0_, ct_real *g1_, ct_real *g2_)
+                  const int filt, ct_real *g0_, ct_real *g1_, ct_real *g2_, ct_real *nf,
+                  ct_real *draw)
 {
     const ct_real beta = (ct_real)1 - alpha;
     ct_real f = fn > 0 ? fn : 0;
@@ -107,10 +142,7 @@ cti_friction_pair(ct_real n0, ct_real n1, ct_real n2, ct_real v0, ct_real v1, ct
     ct_real t1 = o1 - kd * (v1 - vnn * n1);
     ct_real t2 = o2 - kd * (v2 - vnn * n2);
     ct_real tt = t0 * t0 + t1 * t1 + t2 * t2;
-    /* NaN or overflow anywhere in the trial: no force (below). The flag is
-     * kept as a force, not an int, because gcc 12 cannot vectorise a select
-     * on an int flag built from double compares. */
-    ct_real fok = tt <= CTI_HUGE ? f : 0;
+    *nf = cti_nf_add(cti_nf_add(*nf, lim), tt);
     tt = tt > 0 ? tt : 0; /* lets the compiler drop the errno path of sqrt */
     ct_real tn = CTI_SQRT(tt);
     /* Return to the cone along the trial direction. (Divisions are
@@ -129,6 +161,7 @@ cti_friction_pair(ct_real n0, ct_real n1, ct_real n2, ct_real v0, ct_real v1, ct
         g1 = alpha * g1 + beta * o1;
         g2 = alpha * g2 + beta * o2;
         ct_real gg = g0 * g0 + g1 * g1 + g2 * g2;
+        *nf = cti_nf_add(*nf, gg); /* the filtered force's square may overflow */
         gg = gg > 0 ? gg : 0;
         ct_real gn = CTI_SQRT(gg);
         ct_real gd = gn > lim ? gn : lim;
@@ -142,15 +175,17 @@ cti_friction_pair(ct_real n0, ct_real n1, ct_real n2, ct_real v0, ct_real v1, ct
     ct_real slip = tn - lim;
     ct_real slq = slip / (k > 0 ? k : (ct_real)1);
     slip = (slip > 0 && k > 0) ? slq : 0;
-    /* Out of contact, or a NaN anywhere in the trial: no force. */
-    g0 = fok > 0 ? g0 : 0;
-    g1 = fok > 0 ? g1 : 0;
-    g2 = fok > 0 ? g2 : 0;
+    /* Out of contact: no force. (A NaN or an overflow in the trial is the
+     * check's business: it gave no force, with CT_OK.) */
+    g0 = f > 0 ? g0 : 0;
+    g1 = f > 0 ? g1 : 0;
+    g2 = f > 0 ? g2 : 0;
     *g0_ = g0;
     *g1_ = g1;
     *g2_ = g2;
-    gm = fok > 0 ? gm : 0;
+    gm = f > 0 ? gm : 0;
     ct_real d = gm * slip;
+    *draw = d;
     return d > 0 ? d : 0;
 }
 

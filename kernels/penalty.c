@@ -79,17 +79,24 @@ int ct_penalty_linear(ct_idx npair, const ct_real *p, const ct_real *vn, const c
 {
     int blend = p_prev != NULL;
     if (npair < 0 || !p || !K || !fel || (!p_prev) != (!fcap) || (!p_prev) != (!qjump) ||
-        (blend && !vn) || !(dt >= 0))
+        (blend && !vn) || !cti_step_ok(dt))
         return CT_ERR_ARG;
     const ct_real *restrict pp_ = p, *restrict v = vn, *restrict kk_ = K;
     ct_real *restrict q0 = p0, *restrict pprev = p_prev, *restrict fc = fcap,
                       *restrict qj_ = qjump, *restrict f = fel, *restrict en = energy;
-    CTI_PAR_FOR(npair > CTI_PAR_MIN, (schedule(static)),
+    int bad = 0;
+    CTI_PAR_FOR(npair > CTI_PAR_MIN, (schedule(static) reduction(| : bad)),
     for (ct_idx i = 0; i < npair; i++) {
-        ct_real kk = kk_[i] > 0 ? kk_[i] : 0; /* NaN or negative: no force */
+        /* The witness sum of the pair's checked values (ct_internal.h):
+         * K and the states read NaN or infinite, the values written NaN or
+         * infinite (which a p of +inf makes so: K p is infinite, or NaN for
+         * K = 0; a NaN or negative p, -inf too, is no contact). */
+        ct_real nf = CTI_NF(kk_[i]);
+        ct_real kk = kk_[i] > 0 ? kk_[i] : 0; /* negative: no force */
         ct_real q = pp_[i] > 0 ? pp_[i] : 0;
         if (q0) {
             /* Inacti "subtract": p0 = min(p0, p), force on p - p0. */
+            nf += CTI_NF(q0[i]);
             ct_real a = q0[i] < q ? q0[i] : q;
             a = a > 0 ? a : 0;
             q0[i] = a;
@@ -97,6 +104,7 @@ int ct_penalty_linear(ct_idx npair, const ct_real *p, const ct_real *vn, const c
         }
         ct_real fi = kk * q, ei = (ct_real)0.5 * kk * q * q;
         if (blend) {
+            nf += (CTI_NF(fc[i]) + CTI_NF(qj_[i])) + (CTI_NF(pprev[i]) + CTI_NF(v[i]));
             ct_real c = fc[i], qj = qj_[i], prev = pprev[i] > 0 ? pprev[i] : 0;
             ct_real d = CTI_FABS(v[i]) * dt;
             d = d > 0 ? d : 0;
@@ -121,6 +129,7 @@ int ct_penalty_linear(ct_idx npair, const ct_real *p, const ct_real *vn, const c
             }
             if (c >= 0)
                 cti_blend_law(q, kk, c, qj, &fi, &ei);
+            nf += CTI_NF(c) + CTI_NF(d);
             fc[i] = c;
             qj_[i] = c >= 0 ? qj : 0;
             pprev[i] = q;
@@ -128,8 +137,10 @@ int ct_penalty_linear(ct_idx npair, const ct_real *p, const ct_real *vn, const c
         f[i] = fi;
         if (en)
             en[i] = ei;
+        nf += en ? CTI_NF(fi) + CTI_NF(ei) : CTI_NF(fi);
+        bad |= CTI_NONFINITE(nf);
     });
-    return CT_OK;
+    return bad ? CT_ERR_NONFINITE : CT_OK;
 }
 
 int ct_initial_penetration(ct_idx npair, int mode, const ct_real *p_init, ct_real pen_max,
@@ -197,37 +208,51 @@ ct_real ct_type7_energy(ct_real K0, ct_real g, ct_real p)
  * flags: force, tangent and flag in a branch-free SIMD loop; then, when
  * asked for, the energy in a scalar loop (gcc cannot vectorise its series
  * and log1p) over the pairs in contact only: the others' energy is an
- * exact zero, as the formula gives them. */
-static inline __attribute__((always_inline)) void
+ * exact zero, as the formula gives them. Returns 1 when a checked value of
+ * the block is NaN or infinite (ct_internal.h): p or g infinite, K0 NaN or
+ * infinite, or an output. */
+static inline __attribute__((always_inline)) int
 cti_type7_block(int64_t i0, int64_t i1, const ct_real *restrict p, const ct_real *restrict g,
                 const ct_real *restrict K0, ct_real *restrict fel, ct_real *restrict ktan,
                 ct_real *restrict energy, int32_t *restrict flag, const int has_kt,
                 const int has_e, const int has_flag)
 {
     const ct_real xc = (ct_real)1 - (ct_real)CT_TYPE7_RMIN;
-#pragma omp simd
+    ct_real bad = 0;
+#pragma omp simd reduction(+ : bad)
     for (int64_t i = i0; i < i1; i++) {
         ct_real gi = g[i], k0 = K0[i], q = p[i];
-        /* Selects on floating compares (no int flag: see pair_force_body.h). */
+        /* Selects on floating compares (no int flag: see pair_force_body.h).
+         * An infinite g or K0 is the check's business (it gave no force). */
         ct_real ok = gi > 0 ? (ct_real)1 : 0;
         ok = k0 > 0 ? ok : 0;
         ok = q > 0 ? ok : 0;
-        ok = gi < (ct_real)INFINITY ? ok : 0;
-        ok = k0 < (ct_real)INFINITY ? ok : 0;
         ct_real gs = ok > 0 ? gi : 1, ks = ok > 0 ? k0 : 0;
         ct_real x = ok > 0 ? q / gs : 0;
         ct_real xs = x >= xc ? xc : x, r = (ct_real)1 - xs;
-        fel[i] = ks * gs * xs / r;
-        if (has_kt)
-            ktan[i] = ks / (r * r);
+        ct_real f = ks * gs * xs / r;
+        fel[i] = f;
+        /* The terms of K0, p and g (+inf only: NaN or <= 0, -inf too, is
+         * no contact; the compares are ok's), then of the outputs (short
+         * chains: see cti_normal_block). */
+        ct_real nf = cti_nf_add(cti_nf_add(CTI_NF(k0), q > 0 ? q : 0), gi > 0 ? gi : 0);
+        ct_real out = CTI_NF(f);
+        if (has_kt) {
+            ct_real kt = ks / (r * r);
+            ktan[i] = kt;
+            out = cti_nf_add(out, kt);
+        }
+        nf += out;
         if (has_flag)
             flag[i] = x >= xc ? 1 : 0;
+        bad += nf;
     }
-    if (!has_e)
-        return;
+    int nonfinite = !(bad == 0);
+    if (!has_e || nonfinite)
+        return nonfinite;
     for (int64_t i = i0; i < i1; i++) {
         ct_real gi = g[i], k0 = K0[i], q = p[i];
-        if (!(gi > 0 && k0 > 0 && q > 0 && gi < (ct_real)INFINITY && k0 < (ct_real)INFINITY)) {
+        if (!(gi > 0 && k0 > 0 && q > 0)) {
             energy[i] = 0;
             continue;
         }
@@ -237,7 +262,9 @@ cti_type7_block(int64_t i0, int64_t i1, const ct_real *restrict p, const ct_real
         if (x >= xc)
             e += fel[i] * gi * ((x < 1 ? x : 1) - xc);
         energy[i] = e;
+        nonfinite |= CTI_NONFINITE(e);
     }
+    return nonfinite;
 }
 
 /* Pairs per block of the TYPE7 loop. */
@@ -250,19 +277,20 @@ int ct_penalty_type7(ct_idx npair, const ct_real *p, const ct_real *g, const ct_
         return CT_ERR_ARG;
     const int variant = (ktan != NULL) | (energy != NULL) << 1 | (flag != NULL) << 2;
     const int64_t nblk = ((int64_t)npair + CTI_TYPE7_BLOCK - 1) / CTI_TYPE7_BLOCK;
+    int bad = 0;
 #define CTI_T7_CASE(V)                                                                     \
     case V:                                                                                \
-        cti_type7_block(i0, i1, p, g, K0, fel, ktan, energy, flag, (V)&1, ((V) >> 1) & 1,  \
-                        ((V) >> 2) & 1);                                                   \
+        bad |= cti_type7_block(i0, i1, p, g, K0, fel, ktan, energy, flag, (V)&1,           \
+                               ((V) >> 1) & 1, ((V) >> 2) & 1);                            \
         break;
-    CTI_PAR_FOR(npair > CTI_PAR_MIN, (schedule(static)),
+    CTI_PAR_FOR(npair > CTI_PAR_MIN, (schedule(static) reduction(| : bad)),
     for (int64_t b = 0; b < nblk; b++) {
         int64_t i0, i1;
         cti_block_range(b, CTI_TYPE7_BLOCK, npair, &i0, &i1);
         switch (variant) { CTI_CASES8(CTI_T7_CASE) }
     });
 #undef CTI_T7_CASE
-    return CT_OK;
+    return bad ? CT_ERR_NONFINITE : CT_OK;
 }
 
 /* ---- TYPE6 user curve ----------------------------------------------------- */
@@ -315,11 +343,21 @@ int ct_penalty_type6(ct_idx npair, const ct_real *p, ct_idx ncurve, const ct_rea
     int rc = ct_curve_check(ncurve, cx, cy, diag);
     if (rc != CT_OK)
         return rc;
+    /* The largest penetration (NaN compares false: ignored, as any p <= 0,
+     * -inf too). An infinite p_max is an error, reported at the lowest
+     * index holding it (a second pass, on failure only). */
     ct_real pm = 0;
     CTI_PAR_FOR(npair > CTI_PAR_MIN, (schedule(static) reduction(max : pm)),
     for (ct_idx i = 0; i < npair; i++)
-        pm = p[i] > pm ? p[i] : pm; /* NaN compares false: ignored */
+        pm = p[i] > pm ? p[i] : pm;
     );
+    if (pm > CTI_REAL_MAX) {
+        ct_idx i = 0;
+        while (!(p[i] > CTI_REAL_MAX))
+            i++;
+        return cti_fail(diag, CT_ERR_NONFINITE, i, "TYPE6: penetration %ld is infinite.",
+                        (long)i);
+    }
     ct_real slope = 0, F = 0, kc = 0;
     if (pm > 0) {
         F = ct_curve_eval(ncurve, cx, cy, pm, &slope);
@@ -329,6 +367,22 @@ int ct_penalty_type6(ct_idx npair, const ct_real *p, ct_idx ncurve, const ct_rea
     }
     double sum = npair > 0 ? cti_sum_blocks(npair, p, 1) : 0;
     ct_real scale = sum > 0 ? (ct_real)((double)F / sum) : 0;
+    /* Overflows of finite inputs: the curve's force or stiffness at p_max
+     * (a steep extrapolation), the sum of the penetrations, or the largest
+     * force scale p_max (the other forces are below it). Reported at the
+     * first pair of the largest penetration, or -1 for the sum. */
+    if (!(sum <= DBL_MAX))
+        return cti_fail(diag, CT_ERR_NONFINITE, -1, "TYPE6: the sum of the penetrations "
+                                                    "overflows.");
+    if (CTI_NONFINITE(F) || CTI_NONFINITE(scale * pm) || (kcurve && CTI_NONFINITE(kc))) {
+        ct_idx i = 0;
+        while (!(p[i] == pm))
+            i++;
+        return cti_fail(diag, CT_ERR_NONFINITE, i,
+                        "TYPE6: the curve's force or stiffness at the largest penetration "
+                        "(pair %ld, %g) overflows.",
+                        (long)i, (double)pm);
+    }
     CTI_PAR_FOR_SIMD(npair > CTI_PAR_MIN, (schedule(static)),
     for (ct_idx i = 0; i < npair; i++)
         fel[i] = p[i] > 0 ? scale * p[i] : 0;
@@ -352,8 +406,11 @@ ct_real ct_damping_coef(ct_real viss, ct_real K, ct_real ms, ct_real mm)
 }
 
 /* One block [i0, i1) of ct_normal_finish, inlined with constant has_*
- * flags: a branch-free SIMD loop. */
-static inline __attribute__((always_inline)) void
+ * flags: a branch-free SIMD loop. Returns 1 when a checked value of the
+ * block is NaN or infinite (ct_internal.h): p infinite, fel, kd, vn, the
+ * masses NaN or infinite, and the outputs (the force vector's check covers
+ * the normal and fn, which it multiplies). */
+static inline __attribute__((always_inline)) int
 cti_finish_block(int64_t i0, int64_t i1, const ct_real *restrict pp,
                  const ct_real *restrict fe_, const ct_real *restrict k,
                  const ct_real *restrict v, const ct_real *restrict m1,
@@ -363,28 +420,49 @@ cti_finish_block(int64_t i0, int64_t i1, const ct_real *restrict pp,
                  ct_real *restrict oy, ct_real *restrict oz, ct_real *restrict od,
                  const int has_mm, const int has_fn, const int has_d)
 {
-CTI_SIMD_SQRT
+    ct_real bad = 0;
+CTI_SIMD_SQRT_BAD
     for (int64_t i = i0; i < i1; i++) {
-        ct_real q = pp[i];
-        ct_real fe = fe_[i] > 0 ? fe_[i] : 0;
+        ct_real q = pp[i], f0 = fe_[i], k0 = k[i], w = v[i];
+        ct_real fe = f0 > 0 ? f0 : 0;
         ct_real m = has_mm ? cti_reduced_mass(m1[i], m2[i]) : m1[i];
-        ct_real a = (ct_real)2 * k[i] * m;
+        ct_real a = (ct_real)2 * k0 * m;
         a = a > 0 ? a : 0;
+        /* No damping: c = 0 even where 2 kd m overflows (cti_normal_pair). */
         ct_real c = vs * CTI_SQRT(a);
-        ct_real ft = fe - c * v[i];
-        ft = ft > 0 ? ft : 0;
+        c = vs > 0 ? c : 0;
+        ct_real ft = fe - c * w;
+        ft = ft < 0 ? 0 : ft; /* keeps a NaN (ft is never -0) */
         ft = q > 0 ? ft : 0;
         fe = q > 0 ? fe : 0;
-        ct_real d = (fe - ft) * v[i] * dt;
+        ct_real d = (fe - ft) * w * dt;
+        ct_real draw = d;
         d = d > 0 ? d : 0;
         if (has_fn)
             ofn[i] = ft;
-        ox[i] = ft * ax[i];
-        oy[i] = ft * ay[i];
-        oz[i] = ft * az[i];
+        ct_real fx = ft * ax[i], fy = ft * ay[i], fz = ft * az[i];
+        ox[i] = fx;
+        oy[i] = fy;
+        oz[i] = fz;
         if (has_d)
             od[i] = d;
+        /* The terms: fel, kd, m, p (+inf only: a NaN or negative p, -inf
+         * too, is no contact; the compare is the selects'), and w or the
+         * raw dissipation, which w always reaches, in the inputs' chain;
+         * the force vector (which covers the normal and fn) in the
+         * outputs' (short chains: see cti_normal_block). */
+        ct_real in = cti_nf_add(cti_nf_add(CTI_NF(f0), k0), m);
+        in = cti_nf_add(in, q > 0 ? q : 0);
+        if (!has_d)
+            in = cti_nf_add(in, w);
+        if (has_mm)
+            in = cti_nf_add(in, m2[i]);
+        ct_real out = cti_nf_add(cti_nf_add(CTI_NF(fx), fy), fz);
+        if (has_d)
+            out += CTI_NF(draw);
+        bad += in + out;
     }
+    return !(bad == 0);
 }
 
 /* Pairs per block of the damping loop. */
@@ -396,29 +474,32 @@ int ct_normal_finish(ct_idx npair, const ct_real *p, const ct_real *fel, const c
                      ct_real *fn, ct_real *fx, ct_real *fy, ct_real *fz, ct_real *dissip)
 {
     if (npair < 0 || !p || !fel || !kd || !vn || !ms || !nx || !ny || !nz || !fx || !fy ||
-        !fz || !(dt >= 0))
+        !fz || !cti_step_ok(dt) || !cti_viss_ok(viss))
         return CT_ERR_ARG;
     const ct_real vs = viss > 0 ? viss : 0;
     const int variant = (mm != NULL) | (fn != NULL) << 1 | (dissip != NULL) << 2;
     const int64_t nblk = ((int64_t)npair + CTI_FINISH_BLOCK - 1) / CTI_FINISH_BLOCK;
+    int bad = 0;
 #define CTI_NFIN_CASE(V)                                                                   \
     case V:                                                                                \
-        cti_finish_block(i0, i1, p, fel, kd, vn, ms, mm, vs, dt, nx, ny, nz, fn, fx, fy, fz, \
-                         dissip, (V)&1, ((V) >> 1) & 1, ((V) >> 2) & 1);                   \
+        bad |= cti_finish_block(i0, i1, p, fel, kd, vn, ms, mm, vs, dt, nx, ny, nz, fn, fx,  \
+                                fy, fz, dissip, (V)&1, ((V) >> 1) & 1, ((V) >> 2) & 1);    \
         break;
-    CTI_PAR_FOR(npair > CTI_PAR_MIN, (schedule(static)),
+    CTI_PAR_FOR(npair > CTI_PAR_MIN, (schedule(static) reduction(| : bad)),
     for (int64_t b = 0; b < nblk; b++) {
         int64_t i0, i1;
         cti_block_range(b, CTI_FINISH_BLOCK, npair, &i0, &i1);
         switch (variant) { CTI_CASES8(CTI_NFIN_CASE) }
     });
 #undef CTI_NFIN_CASE
-    return CT_OK;
+    return bad ? CT_ERR_NONFINITE : CT_OK;
 }
 
 /* One block [i0, i1) of ct_normal_force, inlined with constant has_* flags
- * so that every variant is a branch-free SIMD loop. */
-static inline __attribute__((always_inline)) void
+ * so that every variant is a branch-free SIMD loop. Returns 1 when a
+ * checked value of the block is NaN or infinite (cti_normal_pair; the
+ * force vector's check covers the normal and fn). */
+static inline __attribute__((always_inline)) int
 cti_normal_block(int64_t i0, int64_t i1, const ct_real *restrict pp,
                  const ct_real *restrict ax, const ct_real *restrict ay,
                  const ct_real *restrict az, const ct_real *restrict v,
@@ -428,21 +509,41 @@ cti_normal_block(int64_t i0, int64_t i1, const ct_real *restrict pp,
                  ct_real *restrict oe, ct_real *restrict od, const int has_k,
                  const int has_mm, const int has_fn, const int has_e, const int has_d)
 {
-CTI_SIMD_SQRT
+    ct_real bad = 0;
+CTI_SIMD_SQRT_BAD
     for (int64_t i = i0; i < i1; i++) {
         ct_real m = has_mm ? cti_reduced_mass(m1[i], m2[i]) : m1[i];
-        ct_real e, d;
-        ct_real ft = cti_normal_pair(pp[i], has_k ? kk[i] : K0, m, vs, v[i], dt, &e, &d);
-        ox[i] = ft * ax[i];
-        oy[i] = ft * ay[i];
-        oz[i] = ft * az[i];
+        ct_real k = has_k ? kk[i] : K0;
+        ct_real e, d, draw;
+        ct_real ft = cti_normal_pair(pp[i], k, m, vs, v[i], dt, &e, &d, &draw);
+        ct_real fx = ft * ax[i], fy = ft * ay[i], fz = ft * az[i];
+        ox[i] = fx;
+        oy[i] = fy;
+        oz[i] = fz;
         if (has_fn)
             ofn[i] = ft;
         if (has_e)
             oe[i] = e;
         if (has_d)
             od[i] = d;
+        /* The terms (cti_normal_pair says what they cover) in short
+         * chains, the inputs' apart: a chain runs at the latency of its
+         * fused operations, and the outputs' come last. */
+        ct_real in = has_d ? CTI_NF(m) : cti_nf_add(CTI_NF(m), v[i]);
+        if (has_k)
+            in = cti_nf_add(in, k);
+        if (has_mm)
+            in = cti_nf_add(in, m2[i]);
+        ct_real out = cti_nf_add(cti_nf_add(CTI_NF(fx), fy), fz);
+        if (has_e || has_d) {
+            ct_real o2 = has_e ? CTI_NF(e) : CTI_NF(draw);
+            if (has_e && has_d)
+                o2 = cti_nf_add(o2, draw);
+            out += o2;
+        }
+        bad += in + out;
     }
+    return !(bad == 0);
 }
 
 /* Pairs per block of the fused normal-force loop. */
@@ -455,24 +556,27 @@ int ct_normal_force(ct_idx npair, const ct_real *p, const ct_real *nx, const ct_
                     ct_real *dissip)
 {
     if (npair < 0 || !p || !nx || !ny || !nz || !vn || !ms || !fx || !fy || !fz ||
-        !(dt >= 0))
+        !cti_step_ok(dt) || !cti_viss_ok(viss))
         return CT_ERR_ARG;
+    if (!K && CTI_NONFINITE(K0))
+        return CT_ERR_NONFINITE; /* the scalar stands for a per-pair K: checked once */
     const ct_real vs = viss > 0 ? viss : 0;
     const int variant = (K != NULL) | (mm != NULL) << 1 | (fn != NULL) << 2 |
                         (energy != NULL) << 3 | (dissip != NULL) << 4;
     const int64_t nblk = ((int64_t)npair + CTI_NORMAL_BLOCK - 1) / CTI_NORMAL_BLOCK;
+    int bad = 0;
 #define CTI_NF_CASE(V)                                                                     \
     case V:                                                                                \
-        cti_normal_block(i0, i1, p, nx, ny, nz, vn, K, K0, ms, mm, vs, dt, fx, fy, fz, fn,  \
-                         energy, dissip, (V)&1, ((V) >> 1) & 1, ((V) >> 2) & 1,             \
-                         ((V) >> 3) & 1, ((V) >> 4) & 1);                                  \
+        bad |= cti_normal_block(i0, i1, p, nx, ny, nz, vn, K, K0, ms, mm, vs, dt, fx, fy,   \
+                                fz, fn, energy, dissip, (V)&1, ((V) >> 1) & 1,             \
+                                ((V) >> 2) & 1, ((V) >> 3) & 1, ((V) >> 4) & 1);           \
         break;
-    CTI_PAR_FOR(npair > CTI_PAR_MIN, (schedule(static)),
+    CTI_PAR_FOR(npair > CTI_PAR_MIN, (schedule(static) reduction(| : bad)),
     for (int64_t b = 0; b < nblk; b++) {
         int64_t i0, i1;
         cti_block_range(b, CTI_NORMAL_BLOCK, npair, &i0, &i1);
         switch (variant) { CTI_CASES32(CTI_NF_CASE) }
     });
 #undef CTI_NF_CASE
-    return CT_OK;
+    return bad ? CT_ERR_NONFINITE : CT_OK;
 }

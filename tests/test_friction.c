@@ -395,11 +395,14 @@ Test(friction, pair_force_hand_values)
 }
 
 /* A value drawn in [lo, hi), now and then replaced by an awkward one
- * (0, a negative value, NaN) when `odd` is set. */
+ * (0, a negative value, and NaN when `odd` is 1) when `odd` is set. NaN only
+ * where it has a meaning (a penetration, a friction coefficient or
+ * tangential stiffness counting as 0): elsewhere it is CT_ERR_NONFINITE
+ * (test_nonfinite_force.c). */
 static ct_real draw(double lo, double hi, int odd)
 {
     double u = urand();
-    if (odd && u < 0.02)
+    if (odd == 1 && u < 0.02)
         return (ct_real)NAN;
     if (odd && u < 0.05)
         return 0;
@@ -431,11 +434,11 @@ Test(friction, pair_force_fused_bit_identical_to_composition)
         p[i] = draw(-0.01, 0.02, 1);
         vx[i] = draw(-5, 5, 0);
         vy[i] = draw(-5, 5, 0);
-        vz[i] = draw(-5, 5, i % 5 == 0);
-        vn[i] = draw(-2, 2, 1);
-        K[i] = draw(1e2, 1e4, 1);
-        ms[i] = draw(1e-3, 1, 1);
-        mm[i] = draw(1e-3, 1, 1);
+        vz[i] = draw(-5, 5, i % 5 == 0 ? 2 : 0);
+        vn[i] = draw(-2, 2, 2);
+        K[i] = draw(1e2, 1e4, 2);
+        ms[i] = draw(1e-3, 1, 2);
+        mm[i] = draw(1e-3, 1, 2);
         mu[i] = draw(0, 0.6, 1);
         kt[i] = draw(1e2, 1e4, 1);
         h0x[i] = draw(-20, 20, 0);
