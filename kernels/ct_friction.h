@@ -54,7 +54,13 @@ int ct_friction_check(int law, const ct_real coef[7], ct_diag *diag);
 ct_real ct_friction_mu1(int law, const ct_real coef[7], ct_real pressure, ct_real speed);
 
 /* mu[k] for every pair; pressure may be NULL for laws that do not use it
- * (Coulomb, Renard, exponential decay; taken as 0). */
+ * (Coulomb, Renard, exponential decay; taken as 0). CT_ERR_ARG for a NaN or
+ * infinite coefficient (ct_friction_check's other rules are not applied);
+ * CT_ERR_NONFINITE for a NaN or infinite speed (every law but Coulomb) or
+ * pressure (the polynomial and Darmstad laws), or a law whose value
+ * overflows (to +-inf, or NaN through an exponential; ct_friction_mu1 gives
+ * 0 or +inf there): mu is then unspecified. The speed and the pressure are
+ * the kernel's only per-pair inputs; no index is reported. */
 int ct_friction_mu(ct_idx npair, int law, const ct_real coef[7], const ct_real *pressure,
                    const ct_real *speed, ct_real *mu);
 

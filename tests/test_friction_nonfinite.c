@@ -1,13 +1,14 @@
 /*
- * test_friction_nonfinite.c -- the friction step and the fused pair force
- * against NaN and infinite inputs and overflows (suite "friction",
- * docs/fuzz F15): every input array, one bad entry at a time
+ * test_friction_nonfinite.c -- the friction step, the fused pair force and
+ * the friction laws against NaN and infinite inputs and overflows (suite
+ * "friction", docs/fuzz F15): every input array, one bad entry at a time
  * (test_nonfinite.h), the scalars, results that overflow from finite
  * inputs, and finite extreme inputs that must still pass.
  *
  * Each "each_input" test failed before F15 on its first +inf: the kernels
  * returned CT_OK whatever their inputs (the friction step gave no force for
- * a NaN or infinite trial, infinite or NaN forces otherwise).
+ * a NaN or infinite trial, infinite or NaN forces otherwise; the friction
+ * laws clamped a NaN to 0 and let +inf through).
  */
 #include "test_nonfinite.h"
 
@@ -145,6 +146,77 @@ Test(friction, nonfinite_pair_force_each_input)
                          {"p", "nx", "ny", "nz", "vx", "vy", "vz", "ftx", "fty", "ftz", "ms"},
                          1u << PF_P, 0, 0, fill_pair, call_pair_lean, NULL};
     ntf_run(&c2);
+}
+
+/* ---- ct_friction_mu ------------------------------------------------------- */
+
+static const ct_real law_c[CT_FRIC_NLAW][7] = {
+    {0.3, 0, 0, 0, 0, 0, 0},
+    {0.3, 0.01, 0.02, 0.001, 0.0001, 0.001, 0},
+    {0, 0.001, -0.1, 0.01, -0.2, 0.2, -0.05},
+    {0, 0.3, 0.2, 0.5, 0.15, 0.1, 0.5},
+    {0.4, 0.2, 3, 0, 0, 0, 0}};
+static int mu_law;
+
+/* in[0] the speed, in[1] the pressure. */
+static void fill_mu(ct_real **in, ct_idx n)
+{
+    for (ct_idx i = 0; i < n; i++) {
+        in[0][i] = ntf_val(i, 60, 0, 1);
+        in[1][i] = ntf_val(i, 61, 0, 10);
+    }
+}
+
+/* Speeds for Coulomb, which reads none (the harness gives it no array). */
+static ct_real zero_speed[NTF_LONG];
+
+static int call_mu(ct_real **in, ct_real **out, ct_idx n, ct_diag *d)
+{
+    (void)d;
+    const int usep = mu_law == CT_FRIC_POLY || mu_law == CT_FRIC_DARMSTAD;
+    return ct_friction_mu(n, mu_law, law_c[mu_law], usep ? in[1] : NULL,
+                          mu_law == CT_FRIC_COULOMB ? zero_speed : in[0], out[0]);
+}
+
+/* Every law that reads the speed (all but Coulomb) and the pressure (the
+ * polynomial and Darmstad laws): the vector loops of the first two, the
+ * scalar loop and vector check of the others. Coulomb reads neither. */
+Test(friction, nonfinite_mu_each_input)
+{
+    for (mu_law = 0; mu_law < CT_FRIC_NLAW; mu_law++) {
+        const int np = mu_law == CT_FRIC_POLY || mu_law == CT_FRIC_DARMSTAD ? 2
+                       : mu_law == CT_FRIC_COULOMB                          ? 0
+                                                                            : 1;
+        const ntf_case c = {"ct_friction_mu", np, 1, 1, {"speed", "pressure"}, 0, 0, 0,
+                            fill_mu, call_mu, NULL};
+        ntf_run(&c);
+    }
+    ct_real s[3] = {(ct_real)NAN, (ct_real)INFINITY, 1}, mu[3];
+    cr_assert_eq(ct_friction_mu(3, CT_FRIC_COULOMB, law_c[0], s, s, mu), CT_OK);
+    cr_assert(mu[0] == (ct_real)0.3 && mu[1] == (ct_real)0.3);
+    cr_assert_eq(ct_friction_mu(1, CT_FRIC_RENARD, law_c[3], s, s + 2, mu), CT_OK);
+}
+
+/* A law's value that overflows from finite inputs (CT_OK before: +inf, or
+ * NaN clamped to 0), and a non-finite coefficient (read as is before). */
+Test(friction, nonfinite_mu_overflow)
+{
+    const ct_real big = (ct_real)CTT_TOL(1e200, 1e25);
+    const ct_real poly[7] = {0, 0, 0, 0, 1, 0, 0}; /* C4 p^2 */
+    ct_real p[2] = {1, big}, v[2] = {0, 0}, mu[2];
+    cr_assert_eq(ct_friction_mu(1, CT_FRIC_POLY, poly, p, v, mu), CT_OK);
+    cr_assert_eq(ct_friction_mu(2, CT_FRIC_POLY, poly, p, v, mu), CT_ERR_NONFINITE);
+    /* Exponential decay with an unchecked negative rate: exp overflows,
+     * times (Fric - C1) = 0 it is NaN (clamped to 0 before). */
+    const ct_real dec[7] = {0.4, 0.4, -1, 0, 0, 0, 0};
+    ct_real s[2] = {1, 1000};
+    cr_assert_eq(ct_friction_mu(1, CT_FRIC_EXPDECAY, dec, NULL, s, mu), CT_OK);
+    cr_assert_eq(ct_friction_mu(2, CT_FRIC_EXPDECAY, dec, NULL, s, mu), CT_ERR_NONFINITE);
+    ct_real bad[7] = {0.3, 0, 0, 0, 0, 0, 0};
+    bad[3] = (ct_real)NAN;
+    cr_assert_eq(ct_friction_mu(1, CT_FRIC_COULOMB, bad, NULL, s, mu), CT_ERR_ARG);
+    bad[3] = (ct_real)INFINITY;
+    cr_assert_eq(ct_friction_mu(1, CT_FRIC_POLY, bad, p, s, mu), CT_ERR_ARG);
 }
 
 /* ---- Scalars, overflows, extremes ----------------------------------------- */
