@@ -217,11 +217,14 @@ int ct_narrow_edge_edge(ct_idx npair, const ct_idx *ea, const ct_idx *eb,
 
 /*
  * The four nodal forces of edge-edge pairs for a normal force magnitude
- * fmag[k] >= 0 (pushing the edges apart; a NaN, negative or infinite
- * fmag[k] gives zero forces): A1 gets (1-sa) F n, A2 sa F n,
+ * fmag[k] >= 0 (pushing the edges apart; a NaN or negative fmag[k], -inf
+ * too, gives zero forces): A1 gets (1-sa) F n, A2 sa F n,
  * B1 -(1-sb) F n, B2 -sb F n. They sum to zero, and their moment is
  * (Pa - Pb) x F n = 0 since n is along Pa - Pb. Output slots 4k+0..3 are
- * A1, A2, B1, B2 (fx, fy, fz hold 4*npair elements).
+ * A1, A2, B1, B2 (fx, fy, fz hold 4*npair elements). CT_ERR_NONFINITE
+ * (docs/fuzz F15) for fmag = +inf (it gave zero forces), a NaN or infinite
+ * n, sa or sb, or a nodal force that overflows, for any pair: no index is
+ * reported, and the forces are then unspecified.
  */
 int ct_edge_edge_forces(ct_idx npair, const ct_real *fmag,
                         const ct_real *nx, const ct_real *ny,

@@ -99,6 +99,45 @@ int ct_narrow_edge_edge(ct_idx npair, const ct_idx *restrict ea, const ct_idx *r
     return CT_OK;
 }
 
+/* Pairs [k0, k1) of ct_edge_edge_forces; 1 when one of the twelve nodal
+ * forces is NaN or infinite (ct_internal.h): every input reaches them (0
+ * times an infinite value is NaN), but a NaN or negative magnitude, -inf
+ * too, which gives no force. */
+static int cti_ee_forces_block(ct_idx k0, ct_idx k1, const ct_real *restrict fmag,
+                               const ct_real *restrict nx, const ct_real *restrict ny,
+                               const ct_real *restrict nz, const ct_real *restrict sa,
+                               const ct_real *restrict sb, ct_real *restrict fx,
+                               ct_real *restrict fy, ct_real *restrict fz)
+{
+    ct_real bad = 0;
+#pragma omp simd reduction(+ : bad)
+    for (ct_idx k = k0; k < k1; k++) {
+        const ct_real F0 = fmag[k];
+        ct_real F = F0 > 0 ? F0 : 0;
+        ct_real wa2 = sa[k], wa1 = 1 - wa2, wb2 = sb[k], wb1 = 1 - wb2;
+        ct_real Fx = F * nx[k], Fy = F * ny[k], Fz = F * nz[k];
+        ct_real x0 = wa1 * Fx, x1 = wa2 * Fx, x2 = -(wb1 * Fx), x3 = -(wb2 * Fx);
+        ct_real y0 = wa1 * Fy, y1 = wa2 * Fy, y2 = -(wb1 * Fy), y3 = -(wb2 * Fy);
+        ct_real z0 = wa1 * Fz, z1 = wa2 * Fz, z2 = -(wb1 * Fz), z3 = -(wb2 * Fz);
+        fx[4 * k + 0] = x0;
+        fx[4 * k + 1] = x1;
+        fx[4 * k + 2] = x2;
+        fx[4 * k + 3] = x3;
+        fy[4 * k + 0] = y0;
+        fy[4 * k + 1] = y1;
+        fy[4 * k + 2] = y2;
+        fy[4 * k + 3] = y3;
+        fz[4 * k + 0] = z0;
+        fz[4 * k + 1] = z1;
+        fz[4 * k + 2] = z2;
+        fz[4 * k + 3] = z3;
+        bad += (((CTI_NF(x0) + CTI_NF(x1)) + (CTI_NF(x2) + CTI_NF(x3))) +
+                ((CTI_NF(y0) + CTI_NF(y1)) + (CTI_NF(y2) + CTI_NF(y3))) +
+                ((CTI_NF(z0) + CTI_NF(z1)) + (CTI_NF(z2) + CTI_NF(z3))));
+    }
+    return !(bad == 0);
+}
+
 int ct_edge_edge_forces(ct_idx npair, const ct_real *restrict fmag,
                         const ct_real *restrict nx, const ct_real *restrict ny,
                         const ct_real *restrict nz, const ct_real *restrict sa,
@@ -112,30 +151,11 @@ int ct_edge_edge_forces(ct_idx npair, const ct_real *restrict fmag,
     if (!fmag || !nx || !ny || !nz || !sa || !sb || !fx || !fy || !fz)
         return CT_ERR_ARG;
     ct_idx nblock = (ct_idx)((npair + CTI_EE_BLOCK - 1) / CTI_EE_BLOCK);
-    CTI_PAR_FOR(nblock > 1, (schedule(static)),
-    for (ct_idx bi = 0; bi < nblock; bi++) {
-        ct_idx k0 = bi * CTI_EE_BLOCK, k1 = CTI_MIN(npair, k0 + CTI_EE_BLOCK);
-        CTI_NR_SIMD
-        for (ct_idx k = k0; k < k1; k++) {
-            /* A NaN, negative or infinite magnitude gives no force (as a
-             * NaN or non-positive penetration does in ct_force.h). */
-            const ct_real F0 = fmag[k];
-            ct_real F = ((F0 > 0) & (F0 <= CTI_HUGE)) ? F0 : 0;
-            ct_real wa2 = sa[k], wa1 = 1 - wa2, wb2 = sb[k], wb1 = 1 - wb2;
-            ct_real Fx = F * nx[k], Fy = F * ny[k], Fz = F * nz[k];
-            fx[4 * k + 0] = wa1 * Fx;
-            fx[4 * k + 1] = wa2 * Fx;
-            fx[4 * k + 2] = -(wb1 * Fx);
-            fx[4 * k + 3] = -(wb2 * Fx);
-            fy[4 * k + 0] = wa1 * Fy;
-            fy[4 * k + 1] = wa2 * Fy;
-            fy[4 * k + 2] = -(wb1 * Fy);
-            fy[4 * k + 3] = -(wb2 * Fy);
-            fz[4 * k + 0] = wa1 * Fz;
-            fz[4 * k + 1] = wa2 * Fz;
-            fz[4 * k + 2] = -(wb1 * Fz);
-            fz[4 * k + 3] = -(wb2 * Fz);
-        }
-    });
-    return CT_OK;
+    int bad = 0;
+    CTI_PAR_FOR(nblock > 1, (schedule(static) reduction(| : bad)),
+    for (ct_idx bi = 0; bi < nblock; bi++)
+        bad |= cti_ee_forces_block(bi * CTI_EE_BLOCK, CTI_MIN(npair, (bi + 1) * CTI_EE_BLOCK),
+                                   fmag, nx, ny, nz, sa, sb, fx, fy, fz);
+    );
+    return bad ? CT_ERR_NONFINITE : CT_OK;
 }

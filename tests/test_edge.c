@@ -1,10 +1,11 @@
 /*
  * test_edge.c -- edge-to-edge narrow phase and nodal forces (suite "edge"),
- * against brute-force sampled distances and hand-computed cases.
+ * against brute-force sampled distances and hand-computed cases; the nodal
+ * forces' non-finite inputs (test_nonfinite.h).
  */
 #include <string.h>
 
-#include "test_util.h"
+#include "test_nonfinite.h"
 
 typedef struct egeo {
     ct_edge_geo g;
@@ -348,4 +349,49 @@ Test(edge, shifted_pairs_identical)
     egeo_free(&a);
     egeo_free(&b);
     ct_free(x); ct_free(y); ct_free(z); ct_free(e1); ct_free(e2); ct_free(ea); ct_free(eb);
+}
+
+/* ---- Non-finite inputs of the nodal forces (docs/fuzz F15) ------------------- */
+
+static void fill_edge(ct_real **in, ct_idx n)
+{
+    for (ct_idx i = 0; i < n; i++) {
+        in[0][i] = ntf_contact(i) ? ntf_val(i, 70, 1, 2) : (i % 8 == 3 ? -1 : 0);
+        ntf_normal(i, 71, &in[1][i], &in[2][i], &in[3][i]);
+        in[4][i] = ntf_val(i, 74, 0, 1);
+        in[5][i] = ntf_val(i, 75, 0, 1);
+    }
+}
+
+static int call_edge(ct_real **in, ct_real **out, ct_idx n, ct_diag *d)
+{
+    (void)d;
+    return ct_edge_edge_forces(n, in[0], in[1], in[2], in[3], in[4], in[5], out[0], out[1],
+                               out[2]);
+}
+
+static int zero_edge(ct_real **in, ct_real **out, ct_idx k)
+{
+    (void)in;
+    return ntf_all_zero(out, 3, 4, k);
+}
+
+/* Each input, one bad entry at a time (test_nonfinite.h). A NaN or
+ * negative magnitude (-inf too) gives no force, as before; +inf, which gave
+ * none with CT_OK, is an error (this failed first before F15), and so is a
+ * NaN or infinite normal or parameter, which gave NaN forces with CT_OK. */
+Test(edge, nonfinite_forces_each_input)
+{
+    const ntf_case c = {"ct_edge_edge_forces", 6, 3, 4, {"fmag", "nx", "ny", "nz", "sa", "sb"},
+                        1u, 1u, 0, fill_edge, call_edge, zero_edge};
+    ntf_run(&c);
+    /* A magnitude above the old clamp of 1e300 (single 3e38), which gave
+     * no force, is a force; one that overflows at a node is an error. */
+    ct_real F = (ct_real)CTT_TOL(1e308, 3.2e38), nx = 0, ny = 0, nz = 1, sa = 0.5, sb = 0.25;
+    ct_real fx[4], fy[4], fz[4];
+    cr_assert_eq(ct_edge_edge_forces(1, &F, &nx, &ny, &nz, &sa, &sb, fx, fy, fz), CT_OK);
+    cr_assert(fz[0] == F / 2 && fz[1] == F / 2 && fz[3] == -(F / 4));
+    sa = 3; /* a weight of -2 at A1: -2 F */
+    cr_assert_eq(ct_edge_edge_forces(1, &F, &nx, &ny, &nz, &sa, &sb, fx, fy, fz),
+                 CT_ERR_NONFINITE);
 }
