@@ -124,7 +124,7 @@ cti_mu_block(int64_t i0, int64_t i1, const int law, const ct_real *restrict c,
 }
 
 /* Pairs per block of the friction-law loop. */
-#define CTI_MU_BLOCK 2048
+#define CTI_MU_BLOCK 512
 
 int ct_friction_mu(ct_idx npair, int law, const ct_real coef[7], const ct_real *pressure,
                    const ct_real *speed, ct_real *mu)
