@@ -24,9 +24,11 @@
  *    sums use ct_sum_ordered().
  *  - Non-finite values (docs/fuzz F15): the force kernels answer
  *    CT_ERR_NONFINITE when a value they read for a pair, in contact or not,
- *    is NaN or infinite, or when a result overflows (a force, or an energy,
- *    dissipation or state they write, that would be NaN or infinite). The
- *    values these conventions give a meaning keep it: a penetration that is
+ *    is NaN or infinite, or when a force (or a state they write) overflows
+ *    to a NaN or infinite value. Energies and dissipations are diagnostics
+ *    and are not checked: from finite inputs they are finite, or +inf
+ *    where their value exceeds the largest ct_real, never NaN. The values
+ *    these conventions give a meaning keep it: a penetration that is
  *    NaN or <= 0, -inf included, is no contact (only p = +inf is an error),
  *    and so are the values a kernel's description names so. Stiffnesses,
  *    masses, velocities, normals and states must be finite (a stiffness
@@ -168,7 +170,7 @@ int ct_stiffness_pairs(ct_idx npair, int mode, const ct_idx *node, const ct_idx 
  * a negative count, NULL required arrays (vn is required with blending),
  * dt < 0 or not finite, or a partial blending state; CT_ERR_NONFINITE (see
  * the conventions) for a NaN or infinite K, p0, blending state or (with
- * blending) vn, p = +inf, or a force, energy or state that overflows.
+ * blending) vn, p = +inf, or a force or state that overflows.
  */
 int ct_penalty_linear(ct_idx npair, const ct_real *p, const ct_real *vn, const ct_real *K,
                       ct_real dt, ct_real *p0, ct_real *p_prev, ct_real *fcap,
@@ -212,10 +214,10 @@ ct_real ct_type7_energy(ct_real K0, ct_real g, ct_real p);
  * tangent is the one at p_c: a penetration reaching or passing the gap is
  * not an error. p <= 0, NaN p, g <= 0 or NaN g (-inf too), K0 <= 0 give
  * zero force, energy and tangent. CT_ERR_NONFINITE (see the conventions)
- * for p or g = +inf, a NaN or infinite K0, or an output whose value
- * exceeds the largest ct_real (F_max = 999 K0 g; the energy of a gap above
- * 1e154 does not overflow with it); no output is NaN otherwise. ktan,
- * energy and flag may be NULL. (Radioss halves K0 in this law unless
+ * for p or g = +inf, a NaN or infinite K0, or a force or tangent whose
+ * value exceeds the largest ct_real (F_max = 999 K0 g); the energy is
+ * +inf where it does (a gap above 1e154 alone does not make it overflow),
+ * and no output is NaN otherwise. ktan, energy and flag may be NULL. (Radioss halves K0 in this law unless
  * Istf = 1: the caller passes the K0 it wants.)
  */
 int ct_penalty_type7(ct_idx npair, const ct_real *p, const ct_real *g, const ct_real *K0,
@@ -271,7 +273,7 @@ ct_real ct_damping_coef(ct_real viss, ct_real K, ct_real ms, ct_real mm);
  * CT_ERR_ARG for a negative count, NULL required arrays, or dt or viss
  * NaN, infinite or (dt) negative; CT_ERR_NONFINITE (see the conventions)
  * for a NaN or infinite fel, kd, vn, ms, mm or normal, p = +inf, or a
- * force or (asked for) dissipation that overflows.
+ * force that overflows.
  */
 int ct_normal_finish(ct_idx npair, const ct_real *p, const ct_real *fel, const ct_real *kd,
                      const ct_real *vn, const ct_real *ms, const ct_real *mm, ct_real viss,
@@ -284,8 +286,7 @@ int ct_normal_finish(ct_idx npair, const ct_real *p, const ct_real *fel, const c
  * Outputs the force vector on the secondary node, fn (its magnitude), the
  * stored energy K p^2/2 and the damping dissipation; energy and dissip may
  * be NULL. K may be NULL to use the scalar K0 for every pair. Errors as for
- * ct_normal_finish, with K (or K0) in place of fel and kd, and the energy
- * (asked for) among the results that may overflow.
+ * ct_normal_finish, with K (or K0) in place of fel and kd.
  */
 int ct_normal_force(ct_idx npair, const ct_real *p, const ct_real *nx, const ct_real *ny,
                     const ct_real *nz, const ct_real *vn, const ct_real *K, ct_real K0,

@@ -95,10 +95,10 @@ ct_real ct_filter_alpha(int ifiltr, ct_real xfreq, ct_real dt);
  * or negative, or alpha outside (0, 1]. CT_ERR_NONFINITE (docs/fuzz F15)
  * for +inf in fn, mu, kt (or mu0, kt0 standing for them), a NaN or
  * infinite normal, velocity or old force, or an overflow (the trial
- * force's square, the cone mu fn, the filtered force's square, the asked
- * dissipation): checked for every pair, in the loop that computes them;
- * no index is reported, and the forces (the history) are then
- * unspecified: the step is to be discarded.
+ * force's square, the cone mu fn, the filtered force's square): checked
+ * for every pair, in the loop that computes them; no index is reported,
+ * and the forces (the history) are then unspecified: the step is to be
+ * discarded. The dissipation is not checked (ct_force.h: finite or +inf).
  */
 int ct_friction_step(ct_idx npair, const ct_real *nx, const ct_real *ny, const ct_real *nz,
                      const ct_real *vx, const ct_real *vy, const ct_real *vz,

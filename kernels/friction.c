@@ -189,16 +189,16 @@ cti_friction_block(int64_t i0, int64_t i1, const ct_real *restrict ax,
     ct_real bad = 0;
 CTI_SIMD_SQRT_BAD
     for (int64_t i = i0; i < i1; i++) {
-        ct_real g0 = hx[i], g1 = hy[i], g2 = hz[i], nf = 0, draw;
+        ct_real g0 = hx[i], g1 = hy[i], g2 = hz[i], nf = 0;
         ct_real d = cti_friction_pair(ax[i], ay[i], az[i], ux[i], uy[i], uz[i], f_n[i],
                                       has_mu ? m_[i] : mu0, has_kt ? k_[i] : kt0, dt, alpha,
-                                      filt, &g0, &g1, &g2, &nf, &draw);
+                                      filt, &g0, &g1, &g2, &nf);
         hx[i] = g0;
         hy[i] = g1;
         hz[i] = g2;
         if (has_d)
             od[i] = d;
-        bad += has_d ? cti_nf_add(nf, draw) : nf;
+        bad += nf;
     }
     return !(bad == 0);
 }

@@ -22,15 +22,11 @@
 #define CTI_PF_BLOCK 512
 
 /* One block of n pairs; every pointer already points at the block's first
- * pair. has_vn, has_mm, filt and all_out are constants after inlining; ze,
- * zd and ztd are 1 when the energy, the damping work and the friction work
- * are asked for (their overflow is then an error, as in the two kernels),
- * all_out when all three are (their terms then need no select, and the
- * damping work's covers the normal velocity).
- * Returns 1 when a checked value of the block is NaN or infinite: the
- * union of ct_normal_force's and ct_friction_step's checks (the stiffness,
- * friction coefficient and tangential stiffness per pair, the scalars
- * having been checked once as those kernels check them). */
+ * pair. has_vn, has_mm and filt are constants after inlining. Returns 1
+ * when a checked value of the block is NaN or infinite: the union of
+ * ct_normal_force's and ct_friction_step's checks (the stiffness, friction
+ * coefficient and tangential stiffness per pair, the scalars having been
+ * checked once as those kernels check them). */
 static inline __attribute__((always_inline)) int
 cti_pair_force_block(int64_t n, const ct_real *restrict pp, const ct_real *restrict ax,
                      const ct_real *restrict ay, const ct_real *restrict az,
@@ -42,8 +38,8 @@ cti_pair_force_block(int64_t n, const ct_real *restrict pp, const ct_real *restr
                      ct_real *restrict ox, ct_real *restrict oy, ct_real *restrict oz,
                      ct_real *restrict ofn, ct_real *restrict oe, ct_real *restrict od,
                      ct_real *restrict hx, ct_real *restrict hy, ct_real *restrict hz,
-                     ct_real *restrict otd, ct_real ze, ct_real zd, ct_real ztd,
-                     const int has_vn, const int has_mm, const int filt, const int all_out)
+                     ct_real *restrict otd, const int has_vn, const int has_mm,
+                     const int filt)
 {
     ct_real bad = 0;
 CTI_SIMD_SQRT_BAD
@@ -53,8 +49,8 @@ CTI_SIMD_SQRT_BAD
         ct_real w = has_vn ? vnp[i] : v0 * n0 + v1 * n1 + v2 * n2;
         ct_real m = has_mm ? cti_reduced_mass(m1[i], m2[i]) : m1[i];
         ct_real k = kk[i];
-        ct_real e, d, draw;
-        ct_real ft = cti_normal_pair(pp[i], k, m, vs, w, dt, &e, &d, &draw);
+        ct_real e, d;
+        ct_real ft = cti_normal_pair(pp[i], k, m, vs, w, dt, &e, &d);
         ct_real fx = ft * n0, fy = ft * n1, fz = ft * n2;
         ox[i] = fx;
         oy[i] = fy;
@@ -63,39 +59,24 @@ CTI_SIMD_SQRT_BAD
         oe[i] = e;
         od[i] = d;
         /* The terms in short chains (see cti_normal_block): the inputs'
-         * (cti_normal_pair says what they cover), the normal force's, the
-         * friction step's. The optional outputs' terms where asked for:
-         * selects on loop constants. Of the force vector fn n, only the
-         * first component: it covers fn; the normal is covered by the
-         * friction trial, which every component of it reaches; and with a
-         * unit normal, as the conventions require, |fn n_i| <= fn cannot
-         * overflow where fn does not. (The two other terms cost 7 % at
-         * 10^4 pairs.) */
-        ct_real in = cti_nf_add(CTI_NF(m), k);
-        if (!all_out)
-            in = cti_nf_add(in, w);
+         * (cti_normal_pair says what they cover), continued by the
+         * friction step's; the normal force's. Of the force vector fn n,
+         * only the first component: it covers fn; the normal is covered by
+         * the friction trial, which every component of it reaches; and
+         * with a unit normal, as the conventions require, |fn n_i| <= fn
+         * cannot overflow where fn does not. (The two other terms cost 7 %
+         * at 10^4 pairs.) */
+        ct_real in = cti_nf_add(cti_nf_add(CTI_NF(m), w), k);
         if (has_mm)
             in = cti_nf_add(in, m2[i]);
-        ct_real out = CTI_NF(fx);
-        if (all_out) {
-            out = cti_nf_add(cti_nf_add(out, e), draw);
-        } else {
-            out = ze > 0 ? cti_nf_add(out, e) : out;
-            out = zd > 0 ? cti_nf_add(out, draw) : out;
-        }
-        /* Friction on the normal force just computed; its terms continue
-         * the inputs' chain. */
-        ct_real g0 = hx[i], g1 = hy[i], g2 = hz[i], tdraw;
+        /* Friction on the normal force just computed. */
+        ct_real g0 = hx[i], g1 = hy[i], g2 = hz[i];
         otd[i] = cti_friction_pair(n0, n1, n2, v0, v1, v2, ft, m_[i], k_[i], dt, alpha, filt,
-                                   &g0, &g1, &g2, &in, &tdraw);
+                                   &g0, &g1, &g2, &in);
         hx[i] = g0;
         hy[i] = g1;
         hz[i] = g2;
-        if (all_out)
-            out = cti_nf_add(out, tdraw);
-        else
-            out = ztd > 0 ? cti_nf_add(out, tdraw) : out;
-        bad += in + out;
+        bad += in + CTI_NF(fx);
     }
     return !(bad == 0);
 }
@@ -117,9 +98,7 @@ int ct_pair_force_linear_coulomb(
     if ((!K && CTI_NONFINITE(K0)) || (!mu && mu0 > CTI_REAL_MAX) || (!kt && kt0 > CTI_REAL_MAX))
         return CT_ERR_NONFINITE;
     const ct_real vs = viss > 0 ? viss : 0;
-    const ct_real ze = energy ? 1 : 0, zd = dissip ? 1 : 0, ztd = fdissip ? 1 : 0;
-    const int variant = (vn != NULL) | (mm != NULL) << 1 | (alpha < 1) << 2 |
-                        (energy && dissip && fdissip) << 3;
+    const int variant = (vn != NULL) | (mm != NULL) << 1 | (alpha < 1) << 2;
     const int64_t nblk = ((int64_t)npair + CTI_PF_BLOCK - 1) / CTI_PF_BLOCK;
     int bad = 0;
 #pragma omp parallel if (npair > CTI_PAR_MIN) reduction(| : bad)
@@ -148,10 +127,10 @@ int ct_pair_force_linear_coulomb(
         bad |= cti_pair_force_block(len, p + i0, nx + i0, ny + i0, nz + i0, vx + i0,        \
                                     vy + i0, vz + i0, vnb, kb, ms + i0, mmb, vs, mub, ktb,  \
                                     dt, alpha, fx + i0, fy + i0, fz + i0, fnb, eb, db,      \
-                                    ftx + i0, fty + i0, ftz + i0, tdb, ze, zd, ztd, (V)&1,  \
-                                    ((V) >> 1) & 1, ((V) >> 2) & 1, ((V) >> 3) & 1);        \
+                                    ftx + i0, fty + i0, ftz + i0, tdb, (V)&1, ((V) >> 1) & 1, \
+                                    ((V) >> 2) & 1);                                        \
         break;
-            switch (variant) { CTI_CASES16(CTI_PF_CASE) }
+            switch (variant) { CTI_CASES8(CTI_PF_CASE) }
 #undef CTI_PF_CASE
         }
     }

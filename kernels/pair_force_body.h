@@ -67,18 +67,18 @@ static inline ct_real cti_reduced_mass(ct_real ms, ct_real mm)
  * stiffness k, (reduced) mass m, damping ratio vs >= 0, normal velocity w,
  * step dt. Returns the normal force fn >= 0 (zero out of contact); *e gets
  * the stored energy and *d the damping dissipation of the step (>= 0).
- * Non-finite check (ct_internal.h): *draw gets the dissipation before its
- * clamp. The callers' witness sums take the force vector fn n, which is
- * NaN or infinite whenever a NaN or an overflow reaches fn (the clamp to
- * >= 0 keeps a NaN) and whenever p is +inf (k p is infinite, or NaN for
- * k = 0; a NaN or negative p, -inf too, is no contact by the convention of
- * ct_force.h); and the terms of what may not reach it (a pair out of
- * contact, a damper that pushes fn to 0): k (when per pair: a scalar is
- * checked once), m, and w, or the raw dissipation (fe - fn) w dt where it
- * is asked for, which w always reaches. */
+ * Non-finite check (ct_internal.h): the callers' witness sums take the
+ * force vector fn n, which is NaN or infinite whenever a NaN or an
+ * overflow reaches fn (the clamp to >= 0 keeps a NaN) and whenever p is
+ * +inf (k p is infinite, or NaN for k = 0; a NaN or negative p, -inf too,
+ * is no contact by the convention of ct_force.h); and the terms of what
+ * may not reach it (a pair out of contact, a damper that pushes fn to 0):
+ * k (when per pair: a scalar is checked once), m and w. The energy and the
+ * dissipation are not checked: from finite inputs they are finite or
+ * +inf, never NaN. */
 static inline __attribute__((always_inline)) ct_real
 cti_normal_pair(ct_real p, ct_real k, ct_real m, ct_real vs, ct_real w, ct_real dt,
-                ct_real *e, ct_real *d, ct_real *draw)
+                ct_real *e, ct_real *d)
 {
     ct_real q = p > 0 ? p : 0;
     k = k > 0 ? k : 0;
@@ -97,7 +97,6 @@ cti_normal_pair(ct_real p, ct_real k, ct_real m, ct_real vs, ct_real w, ct_real 
     ft = q > 0 ? ft : 0;
     *e = (ct_real)0.5 * fe * q;
     ct_real dd = (fe - ft) * w * dt;
-    *draw = dd;
     *d = dd > 0 ? dd : 0;
     return ft;
 }
@@ -109,20 +108,18 @@ cti_normal_pair(ct_real p, ct_real k, ct_real m, ct_real vs, ct_real w, ct_real 
  * one (elastic predictor, return to the cone mu fn, optional filter).
  * Returns the friction dissipation of the step (>= 0).
  * Non-finite check (ct_internal.h): the step's terms are added to the
- * caller's witness sum *nf; *draw gets the dissipation before its clamp
- * (for the caller's term, when it is asked for). Two terms cover every
- * input: fn, mu and kt count as 0 when NaN or negative (-inf too), and
+ * caller's witness sum *nf. Two terms cover every input: fn, mu and kt count as 0 when NaN or negative (-inf too), and
  * +inf in fn or mu makes the cone mu fn infinite or NaN (0 times
  * infinity); every other input (n, v, the old force) and +inf in kt reach
  * the squared trial tt whatever the stiffness and the step (0 times an
  * infinite slip is NaN), so tt's term covers them and the trial's
- * overflow. The filtered force's square and the dissipation have terms of
- * their own (they may overflow where the trial does not). */
+ * overflow. The filtered force's square has a term of its own (it may
+ * overflow where the trial does not); the dissipation is not checked (from
+ * finite inputs it is finite or +inf). */
 static inline __attribute__((always_inline)) ct_real
 cti_friction_pair(ct_real n0, ct_real n1, ct_real n2, ct_real v0, ct_real v1, ct_real v2,
                   ct_real fn, ct_real mu, ct_real kt, ct_real dt, ct_real alpha,
-                  const int filt, ct_real *g0_, ct_real *g1_, ct_real *g2_, ct_real *nf,
-                  ct_real *draw)
+                  const int filt, ct_real *g0_, ct_real *g1_, ct_real *g2_, ct_real *nf)
 {
     const ct_real beta = (ct_real)1 - alpha;
     ct_real f = fn > 0 ? fn : 0;
@@ -185,7 +182,6 @@ cti_friction_pair(ct_real n0, ct_real n1, ct_real n2, ct_real v0, ct_real v1, ct
     *g2_ = g2;
     gm = f > 0 ? gm : 0;
     ct_real d = gm * slip;
-    *draw = d;
     return d > 0 ? d : 0;
 }
 

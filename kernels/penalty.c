@@ -88,9 +88,10 @@ int ct_penalty_linear(ct_idx npair, const ct_real *p, const ct_real *vn, const c
     CTI_PAR_FOR(npair > CTI_PAR_MIN, (schedule(static) reduction(| : bad)),
     for (ct_idx i = 0; i < npair; i++) {
         /* The witness sum of the pair's checked values (ct_internal.h):
-         * K and the states read NaN or infinite, the values written NaN or
-         * infinite (which a p of +inf makes so: K p is infinite, or NaN for
-         * K = 0; a NaN or negative p, -inf too, is no contact). */
+         * K and the states read NaN or infinite, the force and the states
+         * written NaN or infinite (which a p of +inf makes so: K p is
+         * infinite, or NaN for K = 0; a NaN or negative p, -inf too, is no
+         * contact). */
         ct_real nf = CTI_NF(kk_[i]);
         ct_real kk = kk_[i] > 0 ? kk_[i] : 0; /* negative: no force */
         ct_real q = pp_[i] > 0 ? pp_[i] : 0;
@@ -137,7 +138,7 @@ int ct_penalty_linear(ct_idx npair, const ct_real *p, const ct_real *vn, const c
         f[i] = fi;
         if (en)
             en[i] = ei;
-        nf += en ? CTI_NF(fi) + CTI_NF(ei) : CTI_NF(fi);
+        nf += CTI_NF(fi); /* the energy is not checked (ct_force.h) */
         bad |= CTI_NONFINITE(nf);
     });
     return bad ? CT_ERR_NONFINITE : CT_OK;
@@ -247,6 +248,8 @@ cti_type7_block(int64_t i0, int64_t i1, const ct_real *restrict p, const ct_real
             flag[i] = x >= xc ? 1 : 0;
         bad += nf;
     }
+    /* The energy is not checked (from finite inputs it is finite or +inf:
+     * ct_force.h); its scalar loop is left out after a failure. */
     int nonfinite = !(bad == 0);
     if (!has_e || nonfinite)
         return nonfinite;
@@ -263,12 +266,7 @@ cti_type7_block(int64_t i0, int64_t i1, const ct_real *restrict p, const ct_real
             e += fel[i] * gi * ((x < 1 ? x : 1) - xc);
         energy[i] = e;
     }
-    /* The energies' overflow, checked by a vector loop over the block (in
-     * the scalar loop, the check cost 2 % of the kernel). */
-#pragma omp simd reduction(+ : bad)
-    for (int64_t i = i0; i < i1; i++)
-        bad += CTI_NF(energy[i]);
-    return !(bad == 0);
+    return 0;
 }
 
 /* Pairs per block of the TYPE7 loop. */
@@ -440,7 +438,6 @@ CTI_SIMD_SQRT_BAD
         ft = q > 0 ? ft : 0;
         fe = q > 0 ? fe : 0;
         ct_real d = (fe - ft) * w * dt;
-        ct_real draw = d;
         d = d > 0 ? d : 0;
         if (has_fn)
             ofn[i] = ft;
@@ -450,21 +447,16 @@ CTI_SIMD_SQRT_BAD
         oz[i] = fz;
         if (has_d)
             od[i] = d;
-        /* The terms: fel, kd, m, p (+inf only: a NaN or negative p, -inf
-         * too, is no contact; the compare is the selects'), and w or the
-         * raw dissipation, which w always reaches, in the inputs' chain;
-         * the force vector (which covers the normal and fn) in the
-         * outputs' (short chains: see cti_normal_block). */
+        /* The terms: fel, kd, m, w, p (+inf only: a NaN or negative p,
+         * -inf too, is no contact; the compare is the selects') in the
+         * inputs' chain; the force vector (which covers the normal and fn)
+         * in the outputs' (short chains: see cti_normal_block). The
+         * dissipation is not checked (cti_normal_pair). */
         ct_real in = cti_nf_add(cti_nf_add(CTI_NF(f0), k0), m);
-        in = cti_nf_add(in, q > 0 ? q : 0);
-        if (!has_d)
-            in = cti_nf_add(in, w);
+        in = cti_nf_add(cti_nf_add(in, w), q > 0 ? q : 0);
         if (has_mm)
             in = cti_nf_add(in, m2[i]);
-        ct_real out = cti_nf_add(cti_nf_add(CTI_NF(fx), fy), fz);
-        if (has_d)
-            out += CTI_NF(draw);
-        bad += in + out;
+        bad += in + cti_nf_add(cti_nf_add(CTI_NF(fx), fy), fz);
     }
     return !(bad == 0);
 }
@@ -518,8 +510,8 @@ CTI_SIMD_SQRT_BAD
     for (int64_t i = i0; i < i1; i++) {
         ct_real m = has_mm ? cti_reduced_mass(m1[i], m2[i]) : m1[i];
         ct_real k = has_k ? kk[i] : K0;
-        ct_real e, d, draw;
-        ct_real ft = cti_normal_pair(pp[i], k, m, vs, v[i], dt, &e, &d, &draw);
+        ct_real e, d;
+        ct_real ft = cti_normal_pair(pp[i], k, m, vs, v[i], dt, &e, &d);
         ct_real fx = ft * ax[i], fy = ft * ay[i], fz = ft * az[i];
         ox[i] = fx;
         oy[i] = fy;
@@ -533,19 +525,12 @@ CTI_SIMD_SQRT_BAD
         /* The terms (cti_normal_pair says what they cover) in short
          * chains, the inputs' apart: a chain runs at the latency of its
          * fused operations, and the outputs' come last. */
-        ct_real in = has_d ? CTI_NF(m) : cti_nf_add(CTI_NF(m), v[i]);
+        ct_real in = cti_nf_add(CTI_NF(m), v[i]);
         if (has_k)
             in = cti_nf_add(in, k);
         if (has_mm)
             in = cti_nf_add(in, m2[i]);
-        ct_real out = cti_nf_add(cti_nf_add(CTI_NF(fx), fy), fz);
-        if (has_e || has_d) {
-            ct_real o2 = has_e ? CTI_NF(e) : CTI_NF(draw);
-            if (has_e && has_d)
-                o2 = cti_nf_add(o2, draw);
-            out += o2;
-        }
-        bad += in + out;
+        bad += in + cti_nf_add(cti_nf_add(CTI_NF(fx), fy), fz);
     }
     return !(bad == 0);
 }

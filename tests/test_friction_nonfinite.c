@@ -112,9 +112,8 @@ static int call_pair(ct_real **in, ct_real **out, ct_idx n, ct_diag *d)
         in[PF_FTZ], out[6]);
 }
 
-/* Without vn, K, mm, mu, kt (their scalars), with the filter, without the
- * energy and the friction work: the runtime selects of the optional
- * outputs' terms. */
+/* Without vn (v . n instead), K, mm, mu, kt (their scalars), with the
+ * filter, without the energy and the friction work. */
 static int call_pair_lean(ct_real **in, ct_real **out, ct_idx n, ct_diag *d)
 {
     (void)d;
