@@ -105,23 +105,23 @@ static inline void ctt_cli_free(ctt_cli *r)
 }
 
 /*
- * Run `contact ARGS` in directory dir with OMP_NUM_THREADS=threads. ARGS is
- * a printf format of shell words (the caller quotes what needs quoting).
- * The output and error streams go to dir/.cli_out and dir/.cli_err, read
- * back into r (which is freed first if it holds a previous run).
+ * Run `PREFIX OMP_NUM_THREADS=threads contact ARGS` with the shell in
+ * directory dir: PREFIX is shell text run first in the same shell (e.g.
+ * "ulimit -v 100000;"), "" for none; ARGS is a printf format of shell
+ * words (the caller quotes what needs quoting). The output and error
+ * streams go to dir/.cli_out and dir/.cli_err, read back into r (which is
+ * freed first if it holds a previous run).
  */
-static inline void ctt_cli_run(ctt_cli *r, const char *dir, int threads, const char *fmt, ...)
+static inline void ctt_cli_vrun(ctt_cli *r, const char *dir, const char *prefix, int threads,
+                                const char *fmt, va_list ap)
 {
-    char bin[1100], args[2048], cmd[4400];
+    char bin[1100], args[2048], cmd[4600];
     ctt_contact_path(bin, sizeof bin);
-    va_list ap;
-    va_start(ap, fmt);
     int na = vsnprintf(args, sizeof args, fmt, ap);
-    va_end(ap);
     cr_assert(na >= 0 && (size_t)na < sizeof args, "arguments too long");
     int nc = snprintf(cmd, sizeof cmd,
-                      "cd '%s' && OMP_NUM_THREADS=%d '%s' %s >'%s/.cli_out' 2>'%s/.cli_err'",
-                      dir, threads, bin, args, dir, dir);
+                      "cd '%s' && %s OMP_NUM_THREADS=%d '%s' %s >'%s/.cli_out' 2>'%s/.cli_err'",
+                      dir, prefix, threads, bin, args, dir, dir);
     cr_assert(nc > 0 && (size_t)nc < sizeof cmd, "command too long");
     int st = system(cmd);
     cr_assert(st != -1, "system(%s) failed", cmd);
@@ -134,6 +134,26 @@ static inline void ctt_cli_run(ctt_cli *r, const char *dir, int threads, const c
     r->err = ctt_slurp(p);
     cr_assert(r->out && r->err, "the output of `contact %s` was not captured", args);
     r->status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+}
+
+/* Run `contact ARGS` in directory dir with OMP_NUM_THREADS=threads (see
+ * ctt_cli_vrun). */
+static inline void ctt_cli_run(ctt_cli *r, const char *dir, int threads, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    ctt_cli_vrun(r, dir, "", threads, fmt, ap);
+    va_end(ap);
+}
+
+/* The same behind a shell prefix (see ctt_cli_vrun). */
+static inline void ctt_cli_run_prefix(ctt_cli *r, const char *dir, const char *prefix,
+                                      int threads, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    ctt_cli_vrun(r, dir, prefix, threads, fmt, ap);
+    va_end(ap);
 }
 
 /* The number after "KEY": in a JSON text (the first occurrence), or NAN. */

@@ -270,22 +270,14 @@ Test(cli, search_out_of_memory_exit_5)
 {
     if (ctt_checking())
         cr_skip_test("the sanitizers' shadow memory does not fit under ulimit -v");
-    char dir[64], bin[1100], cmd[1600];
+    char dir[64];
     ctt_tmpdir(dir, "cli");
-    ctt_contact_path(bin, sizeof bin);
-    snprintf(cmd, sizeof cmd,
-             "cd '%s' && ulimit -v 400000 && OMP_NUM_THREADS=1 '%s' search --n 20000000 "
-             "--algo bucket --check off --repeat 1 >.cli_out 2>.cli_err",
-             dir, bin);
-    int st = system(cmd);
-    cr_assert(st != -1 && WIFEXITED(st), "%s", cmd);
-    char p[1200];
-    snprintf(p, sizeof p, "%s/.cli_err", dir);
-    char *err = ctt_slurp(p);
-    cr_assert_not_null(err);
-    cr_expect_eq(WEXITSTATUS(st), 5, "%s", err);
-    cr_expect(strstr(err, "out of memory") != NULL, "%s", err);
-    free(err);
+    ctt_cli r = {0};
+    ctt_cli_run_prefix(&r, dir, "ulimit -v 400000 &&", 1,
+                       "search --n 20000000 --algo bucket --check off --repeat 1");
+    cr_expect_eq(r.status, 5, "%s", r.err);
+    cr_expect(strstr(r.err, "out of memory") != NULL, "%s", r.err);
+    ctt_cli_free(&r);
     ctt_rmtree(dir);
 }
 

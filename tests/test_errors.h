@@ -20,31 +20,7 @@
  * OpenMP thread: PREFIX is shell text run first in the same shell (e.g.
  * "ulimit -v 100000;"), "" for none. As ctt_cli_run otherwise.
  */
-static inline void cte_run(ctt_cli *r, const char *dir, const char *prefix, const char *fmt, ...)
-{
-    char bin[1100], args[2048], cmd[4600];
-    ctt_contact_path(bin, sizeof bin);
-    va_list ap;
-    va_start(ap, fmt);
-    int na = vsnprintf(args, sizeof args, fmt, ap);
-    va_end(ap);
-    cr_assert(na >= 0 && (size_t)na < sizeof args, "arguments too long");
-    int nc = snprintf(cmd, sizeof cmd,
-                      "cd '%s' && %s OMP_NUM_THREADS=1 '%s' %s >'%s/.cli_out' 2>'%s/.cli_err'",
-                      dir, prefix, bin, args, dir, dir);
-    cr_assert(nc > 0 && (size_t)nc < sizeof cmd, "command too long");
-    int st = system(cmd);
-    cr_assert(st != -1, "system(%s) failed", cmd);
-    char p[1200];
-    free(r->out);
-    free(r->err);
-    snprintf(p, sizeof p, "%s/.cli_out", dir);
-    r->out = ctt_slurp(p);
-    snprintf(p, sizeof p, "%s/.cli_err", dir);
-    r->err = ctt_slurp(p);
-    cr_assert(r->out && r->err, "the output of `contact %s` was not captured", args);
-    r->status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-}
+#define cte_run(r, dir, prefix, ...) ctt_cli_run_prefix((r), (dir), (prefix), 1, __VA_ARGS__)
 
 /* The run exited with `code` and its error stream holds `want` (a whole
  * "FILE:LINE: FIELD: ..." prefix) and, when not NULL, `also`. */

@@ -31,41 +31,34 @@
 #include "scene.h"
 #include "test_errors.h"
 
-/* Ten nodes: a unit brick (nodes 1-8, element 7 of part 2 on line 15)
- * and a shell (element 1 of part 1) sharing its edge 2-3. */
-static const char DECK[] =
-    "/NODE\n"
-    "         1                   0                   0                   0\n"
-    "         2                   1                   0                   0\n"
-    "         3                   1                   1                   0\n"
-    "         4                   0                   1                   0\n"
-    "         5                   0                   0                   1\n"
-    "         6                   1                   0                   1\n"
-    "         7                   1                   1                   1\n"
-    "         8                   0                   1                   1\n"
-    "         9                   2                   0                   0\n"
-    "        10                   2                   1                   0\n"
-    "/SHELL/1\n"
+/* Ten nodes and a shell (element 1 of part 1, line 13) on nodes 2, 9, 10
+ * and 3; the decks below add a brick of part 2 on line 15. */
+#define DECK_NODES_SHELL \
+    "/NODE\n" \
+    "         1                   0                   0                   0\n" \
+    "         2                   1                   0                   0\n" \
+    "         3                   1                   1                   0\n" \
+    "         4                   0                   1                   0\n" \
+    "         5                   0                   0                   1\n" \
+    "         6                   1                   0                   1\n" \
+    "         7                   1                   1                   1\n" \
+    "         8                   0                   1                   1\n" \
+    "         9                   2                   0                   0\n" \
+    "        10                   2                   1                   0\n" \
+    "/SHELL/1\n" \
     "         1         2         9        10         3\n"
+
+/* A unit brick (nodes 1-8, element 7 of part 2 on line 15) sharing the
+ * shell's edge 2-3. */
+static const char DECK[] =
+    DECK_NODES_SHELL
     "/BRICK/2\n"
     "         7         1         2         3         4         5         6         7         8\n";
 
 /* The same brick numbered inside out (its bottom face 1 4 3 2): the deck
  * reader accepts it, the element's Jacobian is negative. */
 static const char DECK_INVERTED[] =
-    "/NODE\n"
-    "         1                   0                   0                   0\n"
-    "         2                   1                   0                   0\n"
-    "         3                   1                   1                   0\n"
-    "         4                   0                   1                   0\n"
-    "         5                   0                   0                   1\n"
-    "         6                   1                   0                   1\n"
-    "         7                   1                   1                   1\n"
-    "         8                   0                   1                   1\n"
-    "         9                   2                   0                   0\n"
-    "        10                   2                   1                   0\n"
-    "/SHELL/1\n"
-    "         1         2         9        10         3\n"
+    DECK_NODES_SHELL
     "/BRICK/2\n"
     "         7         1         4         3         2         5         8         7         6\n";
 
