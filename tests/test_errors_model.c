@@ -115,13 +115,19 @@ Test(errors_model, masses)
     ctt_tmpdir(dir, "errm");
     gen_scene(dir, "springs.yaml", "kind: rod, part: 1, cells: [2], to: [0.1, 0, 0]",
               "element: spring, stiffness: 1000, material: {E: 2.1e11, nu: 0.3, rho: 7800}");
-    /* rho 1e-100 (its lower bound) times a brick of 1e-240 m^3: 0. */
-    gen_scene(dir, "tiny.yaml",
-              "kind: block, part: 1, cells: [1, 1, 1], size: [1e-80, 1e-80, 1e-80]",
-              "element: brick, material: {E: 1e-45, nu: 0.3, rho: 1e-100}");
-    gen_scene(dir, "tiny_rigid.yaml",
-              "kind: block, part: 1, cells: [1, 1, 1], size: [1e-80, 1e-80, 1e-80]",
-              "element: rigid, material: {E: 1e-45, nu: 0.3, rho: 1e-100}");
+    /* rho 1e-100 (its lower bound) times a brick of 1e-240 m^3: 0. In
+     * single precision, where 1e-80 and 1e-100 are 0 already (refused as
+     * such), rho 1e-20 times a brick of 1e-30 m^3 (the float minimum is
+     * 1.4e-45). */
+    const int sp = sizeof(ct_real) == sizeof(float);
+    const char *blk = sp ? "kind: block, part: 1, cells: [1, 1, 1], size: [1e-10, 1e-10, 1e-10]"
+                         : "kind: block, part: 1, cells: [1, 1, 1], size: [1e-80, 1e-80, 1e-80]";
+    const char *rho = sp ? "E: 1e-30, nu: 0.3, rho: 1e-20" : "E: 1e-45, nu: 0.3, rho: 1e-100";
+    char mat[128];
+    snprintf(mat, sizeof mat, "element: brick, material: {%s}", rho);
+    gen_scene(dir, "tiny.yaml", blk, mat);
+    snprintf(mat, sizeof mat, "element: rigid, material: {%s}", rho);
+    gen_scene(dir, "tiny_rigid.yaml", blk, mat);
     snprintf(part, sizeof part, "element: rigid, %s", STEEL);
     gen_scene(dir, "rigid_net.yaml", "kind: net, part: 1, cells: [2, 2], size: [0.1, 0.1]", part);
     expect_run_fails(dir, "springs.yaml", CTD_EXIT_BADINPUT,
@@ -131,7 +137,8 @@ Test(errors_model, masses)
     expect_run_fails(dir, "tiny.yaml", CTD_EXIT_BADINPUT,
                      "contact run: tiny.yaml:5: parts[0].material.rho: node 1 of part 1 has a "
                      "mass of 0",
-                     "(rho 1e-100 is too small for its elements)");
+                     sp ? "(rho 1e-20 is too small for its elements)"
+                        : "(rho 1e-100 is too small for its elements)");
     expect_run_fails(dir, "tiny_rigid.yaml", CTD_EXIT_BADINPUT,
                      "contact run: tiny_rigid.yaml:5: parts[0].material.rho: rigid part 1 has a "
                      "mass of 0",
