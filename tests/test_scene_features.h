@@ -18,6 +18,7 @@
 #include "model.h"
 #include "scene.h"
 #include "solver.h"
+#include "test_solve.h"
 #include "test_util.h"
 
 #define PI 3.14159265358979323846
@@ -62,23 +63,10 @@ static inline void sf_load(sf_run *r, const char *yaml)
 /* Build the interfaces and the solver (no files, quiet) with an observer
  * and `threads` threads, run to the end and assert that it ended "ok". */
 static inline void sf_solve(sf_run *r, void (*observe)(void *, const ctd_solver *), void *ctx,
-                     int threads)
+                            int threads)
 {
-    char err[1024] = "";
-    ctd_contact_hook *hooks = NULL;
-    int nhook = 0;
-    cr_assert_eq(ctd_interfaces_build(&r->m, r->sc, &hooks, &nhook, err, sizeof err), CT_OK,
-                 "interfaces: %s", err);
-    ctd_solver_opts o = ctd_solver_default_opts();
-    o.no_output = 1;
-    o.quiet = 1;
-    o.threads = threads;
-    o.observe = observe;
-    o.observe_ctx = ctx;
-    cr_assert_eq(ctd_solver_init(&r->s, &r->m, &o, hooks, nhook, err, sizeof err), CT_OK,
-                 "solver: %s", err);
-    r->solver = 1;
-    cr_assert_eq(ctd_solver_run(&r->s), CTD_EXIT_OK, "run: %s", r->s.message);
+    cr_assert_eq(ctt_solve(&r->m, r->sc, &r->s, observe, ctx, threads, &r->solver), CTD_EXIT_OK,
+                 "run: %s", r->s.message);
 }
 
 static inline void sf_free(sf_run *r)

@@ -16,6 +16,7 @@
 #include "model.h"
 #include "scene.h"
 #include "solver.h"
+#include "test_solve.h"
 #include "test_util.h"
 #include "test_validation.h"
 
@@ -78,21 +79,7 @@ static inline int vf_body(const vf_run *r, int64_t part)
 static inline void vf_solve(vf_run *r, void (*observe)(void *, const ctd_solver *), void *ctx,
                             int threads)
 {
-    char err[1024] = "";
-    ctd_contact_hook *hooks = NULL;
-    int nhook = 0;
-    cr_assert_eq(ctd_interfaces_build(&r->m, r->sc, &hooks, &nhook, err, sizeof err), CT_OK,
-                 "interfaces: %s", err);
-    ctd_solver_opts o = ctd_solver_default_opts();
-    o.no_output = 1;
-    o.quiet = 1;
-    o.observe = observe;
-    o.observe_ctx = ctx;
-    o.threads = threads;
-    cr_assert_eq(ctd_solver_init(&r->s, &r->m, &o, hooks, nhook, err, sizeof err), CT_OK,
-                 "solver: %s", err);
-    r->built = 1;
-    int rc = ctd_solver_run(&r->s);
+    int rc = ctt_solve(&r->m, r->sc, &r->s, observe, ctx, threads, &r->built);
     cr_assert_eq(rc, CTD_EXIT_OK, "%s: %s", r->sc->path, r->s.message);
 }
 
