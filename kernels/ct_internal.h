@@ -126,7 +126,6 @@ static inline ct_idx cti_sample_index(uint64_t m, uint64_t stream, ct_idx n)
 #ifdef CT_SINGLE
 #define CTI_SQRT sqrtf
 #define CTI_FABS fabsf
-#define CTI_EXP expf
 #define CTI_LOG logf
 #define CTI_LOG1P log1pf
 #define CTI_FMIN fminf
@@ -137,7 +136,6 @@ static inline ct_idx cti_sample_index(uint64_t m, uint64_t stream, ct_idx n)
 #else
 #define CTI_SQRT sqrt
 #define CTI_FABS fabs
-#define CTI_EXP exp
 #define CTI_LOG log
 #define CTI_LOG1P log1p
 #define CTI_FMIN fmin
@@ -145,6 +143,18 @@ static inline ct_idx cti_sample_index(uint64_t m, uint64_t stream, ct_idx n)
 #define CTI_EPS 2.220446049250313e-16
 #define CTI_HUGE 1.0e300
 #define CTI_REAL_MAX DBL_MAX
+#endif
+
+/* a * b + c with one rounding where the processor fuses them (FMA).
+ * Written out (the build does not contract on its own, -ffp-contract=off),
+ * so a scalar call and a vector lane compute the same roundings; a build
+ * without FMA rounds twice, the same way in both. */
+#if defined(__FMA__) && defined(CT_SINGLE)
+#define CTI_FMA(a, b, c) fmaf(a, b, c)
+#elif defined(__FMA__)
+#define CTI_FMA(a, b, c) fma(a, b, c)
+#else
+#define CTI_FMA(a, b, c) ((a) * (b) + (c))
 #endif
 
 #define CTI_MIN(a, b) ((a) < (b) ? (a) : (b))

@@ -3,6 +3,7 @@
  * predictor and return to the Coulomb cone, the tangential filter, and the
  * carrying of per-pair history across re-sorts (DESIGN.md section 7).
  */
+#include "exp_vec.h"
 #include "pair_force_body.h"
 
 /* Block of new pairs one binary search serves in ct_pair_match. */
@@ -35,8 +36,11 @@ int ct_friction_check(int law, const ct_real coef[7], ct_diag *diag)
 
 /* The laws, written once for the scalar and the array entry points, before
  * the clamp to mu >= 0. The denominators are guarded so that unchecked
- * coefficients give a finite value rather than a NaN. */
-static inline ct_real cti_mu_raw(int law, const ct_real *restrict c, ct_real p, ct_real v)
+ * coefficients give a finite value rather than a NaN. Always inlined: with
+ * three exponentials clang would call it, and the loop over pairs would
+ * not vectorise. */
+static inline __attribute__((always_inline)) ct_real
+cti_mu_raw(int law, const ct_real *restrict c, ct_real p, ct_real v)
 {
     ct_real mu;
     v = CTI_FABS(v);
@@ -46,8 +50,8 @@ static inline ct_real cti_mu_raw(int law, const ct_real *restrict c, ct_real p, 
         mu = c[0] + c[1] * p + c[2] * v + c[3] * p * v + c[4] * p * p + c[5] * v * v;
         break;
     case CT_FRIC_DARMSTAD:
-        mu = c[1] * CTI_EXP(c[2] * v) * p * p + c[3] * CTI_EXP(c[4] * v) * p +
-             c[5] * CTI_EXP(c[6] * v);
+        mu = c[1] * cti_exp(c[2] * v) * p * p + c[3] * cti_exp(c[4] * v) * p +
+             c[5] * cti_exp(c[6] * v);
         break;
     case CT_FRIC_RENARD: {
         /* The three branches' values by selects and one division: each
@@ -70,7 +74,7 @@ static inline ct_real cti_mu_raw(int law, const ct_real *restrict c, ct_real p, 
         mu = v <= c[5] ? m1 : mu;
         break;
     }
-    case CT_FRIC_EXPDECAY: mu = c[1] + (c[0] - c[1]) * CTI_EXP(-c[2] * v); break;
+    case CT_FRIC_EXPDECAY: mu = c[1] + (c[0] - c[1]) * cti_exp(-c[2] * v); break;
     default: mu = 0;
     }
     return mu;
@@ -85,16 +89,13 @@ ct_real ct_friction_mu1(int law, const ct_real coef[7], ct_real pressure, ct_rea
 }
 
 /* Pairs [i0, i1) of ct_friction_mu for one law (a constant after
- * inlining); 1 when a checked value is NaN or infinite: the speed (every
- * law but Coulomb), the pressure (the polynomial and Darmstad laws), and
- * the law's value before the clamp to >= 0 (an overflow, which the clamp
- * made 0, or let through as +inf). The laws without an exponential run as
- * one vector loop (the law's arithmetic is the same in a vector lane: the
- * same bits; Renard's branches are selects around one division). The two
- * others (exp has no vector form without -ffast-math) compute the law's
- * values in a scalar loop, unclamped, and a vector loop over the block
- * then checks them and clamps them: the check costs the scalar loop
- * nothing (inside it, it cost 5-20 %). */
+ * inlining), one vector loop: the law's arithmetic is the same in a
+ * vector lane (Renard's branches are selects around one division, the
+ * exponential is cti_exp's arithmetic: exp_vec.h), so ct_friction_mu1 gives
+ * the same bits. 1 when a checked value is NaN or infinite: the speed
+ * (every law but Coulomb), the pressure (the polynomial and Darmstad laws),
+ * and the law's value before the clamp to >= 0 (an overflow, which the
+ * clamp made 0, or let through as +inf). */
 static inline __attribute__((always_inline)) int
 cti_mu_block(int64_t i0, int64_t i1, const int law, const ct_real *restrict c,
              const ct_real *restrict pressure, const ct_real *restrict speed,
@@ -102,27 +103,14 @@ cti_mu_block(int64_t i0, int64_t i1, const int law, const ct_real *restrict c,
 {
     const int usep = law == CT_FRIC_POLY || law == CT_FRIC_DARMSTAD;
     const int usev = law != CT_FRIC_COULOMB;
-    const int vec = law == CT_FRIC_COULOMB || law == CT_FRIC_POLY || law == CT_FRIC_RENARD;
     ct_real bad = 0;
-    if (vec) {
-#pragma omp simd reduction(+ : bad)
-        for (int64_t i = i0; i < i1; i++) {
-            ct_real pr = usep ? pressure[i] : 0, v = usev ? speed[i] : 0;
-            ct_real m = cti_mu_raw(law, c, pr, v);
-            mu[i] = m > 0 ? m : 0;
-            ct_real nf = usev ? cti_nf_add(CTI_NF(m), v) : CTI_NF(m);
-            bad += usep ? cti_nf_add(nf, pr) : nf;
-        }
-        return !(bad == 0);
-    }
-    for (int64_t i = i0; i < i1; i++)
-        mu[i] = cti_mu_raw(law, c, usep ? pressure[i] : 0, speed[i]);
 #pragma omp simd reduction(+ : bad)
     for (int64_t i = i0; i < i1; i++) {
-        ct_real m = mu[i];
+        ct_real pr = usep ? pressure[i] : 0, v = usev ? speed[i] : 0;
+        ct_real m = cti_mu_raw(law, c, pr, v);
         mu[i] = m > 0 ? m : 0;
-        ct_real nf = cti_nf_add(CTI_NF(m), speed[i]);
-        bad += usep ? cti_nf_add(nf, pressure[i]) : nf;
+        ct_real nf = usev ? cti_nf_add(CTI_NF(m), v) : CTI_NF(m);
+        bad += usep ? cti_nf_add(nf, pr) : nf;
     }
     return !(bad == 0);
 }

@@ -22,19 +22,8 @@
 #define CTI_STEP static inline
 #endif
 
-/* a * b + c with one rounding where the processor fuses them (FMA): the
- * steps are mostly dot and cross products, which the fused form runs in
- * fewer operations. Written out (the build does not contract on its own,
- * -ffp-contract=off), so the one-pair predicate and the vector lanes
- * compute the same roundings; a build without FMA rounds twice, the same
- * way in both. */
-#if defined(__FMA__) && defined(CT_SINGLE)
-#define CTI_FMA(a, b, c) fmaf(a, b, c)
-#elif defined(__FMA__)
-#define CTI_FMA(a, b, c) fma(a, b, c)
-#else
-#define CTI_FMA(a, b, c) ((a) * (b) + (c))
-#endif
+/* CTI_FMA (ct_internal.h): the steps are mostly dot and cross products,
+ * which the fused form runs in fewer operations. */
 
 /* A point or vector, passed by value (the compiler splits it into
  * scalars, in a vector loop into lanes). */
