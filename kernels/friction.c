@@ -3,7 +3,7 @@
  * predictor and return to the Coulomb cone, the tangential filter, and the
  * carrying of per-pair history across re-sorts (DESIGN.md section 7).
  */
-#include "exp_vec.h"
+#include "math_vec.h"
 #include "pair_force_body.h"
 
 /* Block of new pairs one binary search serves in ct_pair_match. */
@@ -91,7 +91,7 @@ ct_real ct_friction_mu1(int law, const ct_real coef[7], ct_real pressure, ct_rea
 /* Pairs [i0, i1) of ct_friction_mu for one law (a constant after
  * inlining), one vector loop: the law's arithmetic is the same in a
  * vector lane (Renard's branches are selects around one division, the
- * exponential is cti_exp's arithmetic: exp_vec.h), so ct_friction_mu1 gives
+ * exponential is cti_exp's arithmetic: math_vec.h), so ct_friction_mu1 gives
  * the same bits. 1 when a checked value is NaN or infinite: the speed
  * (every law but Coulomb), the pressure (the polynomial and Darmstad laws),
  * and the law's value before the clamp to >= 0 (an overflow, which the
