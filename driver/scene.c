@@ -70,7 +70,10 @@ static cyaml_config_t config(logbuf *b)
     c.log_ctx = b;
     c.mem_fn = cyaml_mem;
     c.log_level = CYAML_LOG_ERROR;
-    c.flags = CYAML_CFG_NO_ALIAS;
+    /* Aliases are allowed: the YAML tree (scene_yaml_read.c) has checked them
+     * (each names an anchor before it, no cycle, a bounded number of
+     * copies) before libcyaml reads the file. */
+    c.flags = 0;
     return c;
 }
 
@@ -191,11 +194,11 @@ int ctd_scene_load_refined(const char *path, int64_t refine, ctd_scene **out,
     cti_errs e = {.file = path ? path : "(null)", .root = NULL, .out = err};
     if (!path || !out)
         return cti_err(&e, CT_ERR_ARG, 0, "", "no scene file given");
-    int line;
+    int line, code;
     char field[256], msg[512];
-    cti_ynode *root = cti_yaml_read(path, &line, field, sizeof field, msg, sizeof msg);
+    cti_ynode *root = cti_yaml_read(path, &code, &line, field, sizeof field, msg, sizeof msg);
     if (!root)
-        return cti_err(&e, CT_ERR_ARG, line, field, "%s", msg);
+        return cti_err(&e, code, line, field, "%s", msg);
     e.root = root;
     if (root->kind != CTI_Y_MAP) {
         char got[96], keys[400];

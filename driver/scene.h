@@ -28,7 +28,15 @@
  *     - {type: 6, main: {part: 3}, secondary: {part: 4}, curve: [[0, 0], [0.01, 1000]]}
  *
  * Keys are case-sensitive; an unknown key is an error (typos are caught).
- * Flow {..} and block style may be mixed freely.
+ * Flow {..} and block style may be mixed freely. A file holds one YAML
+ * document. Anchors and aliases repeat a value:
+ *   parts:
+ *     - {id: 1, element: brick, material: &steel {E: 2.1e11, nu: 0.3, rho: 7800}}
+ *     - {id: 2, element: brick, material: *steel}
+ * An alias names an anchor on a node that ends before it (so no cycles),
+ * and the aliases of a file copy at most 100000 YAML nodes in all. Merge
+ * keys (`<<: *a`) are not supported. An error inside an aliased value
+ * names the line where the value is written (the anchor's).
  *
  * ---- Top level --------------------------------------------------------------
  *   title       string, optional.

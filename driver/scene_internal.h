@@ -23,12 +23,15 @@ typedef struct cti_ynode {
     struct cti_ynode **child;
 } cti_ynode;
 
-/* Parse a YAML file into a tree. On a syntax error returns NULL with the
- * 1-based line, the path of the innermost field being read ("" at the top)
- * and libyaml's description; on an unreadable file returns NULL with line 0
- * and strerror in msg. */
-cti_ynode *cti_yaml_read(const char *path, int *line, char *field, size_t fieldlen, char *msg,
-                         size_t msglen);
+/* Parse a YAML file into a tree, aliases read as copies of their anchors'
+ * nodes. On failure returns NULL with *code CT_ERR_NOMEM (out of memory,
+ * line 0) or CT_ERR_ARG: for a syntax error, an undefined alias, a list as
+ * a key or a second document, the 1-based line, the path of the innermost
+ * field being read ("" at the top) and the description in msg; for an
+ * unreadable file line 0 and strerror in msg; for a file without content
+ * line 1. */
+cti_ynode *cti_yaml_read(const char *path, int *code, int *line, char *field, size_t fieldlen,
+                         char *msg, size_t msglen);
 void cti_ynode_free(cti_ynode *n);
 
 /* The node at a path such as "interfaces[0].main.part" (NULL if absent). */
