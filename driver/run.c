@@ -72,7 +72,9 @@ static int load_scene(const char *who, const char *scene, int64_t refine, ctd_sc
     if (rc != CT_OK)
         ctd_scene_print_errors(stderr, scene, se);
     free(se);
-    return rc == CT_OK ? CTD_EXIT_OK : CTD_EXIT_BADINPUT;
+    /* A scene too large for the memory is exit 5, as a model or a solver
+     * that cannot have its arrays: the file is not wrong. */
+    return rc == CT_OK ? CTD_EXIT_OK : rc == CT_ERR_NOMEM ? CTD_EXIT_OUTPUT : CTD_EXIT_BADINPUT;
 }
 
 /* Build everything; print what fails on stderr after `who`. Returns

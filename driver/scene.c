@@ -268,7 +268,10 @@ void ctd_scene_print_errors(FILE *f, const char *path, const ctd_scene_err *err)
         fprintf(f, "%s\n", err->msg[i].text); /* "FILE:LINE: FIELD: what" */
     if (err->count > shown)
         fprintf(f, "%s: %d more errors not shown\n", p, err->count - shown);
-    fprintf(f, "%s: invalid scene (%d error%s)\n", p, err->count, err->count == 1 ? "" : "s");
+    if (err->code == CT_ERR_NOMEM)
+        fprintf(f, "%s: scene not loaded: out of memory\n", p);
+    else
+        fprintf(f, "%s: invalid scene (%d error%s)\n", p, err->count, err->count == 1 ? "" : "s");
 }
 
 void ctd_scene_print_summary(FILE *f, const char *path, const ctd_scene *sc)

@@ -381,7 +381,8 @@ typedef struct ctd_scene_err {
  * (CT_ERR_ARG: unreadable file, malformed YAML, a field of the wrong type,
  * missing or unknown; CT_ERR_RANGE: a reference to a part, node, group,
  * surface or body that does not exist; CT_ERR_NONFINITE: a NaN or infinite
- * number; other codes from the deck reader), *out is NULL and err (may be
+ * number; CT_ERR_NOMEM: out of memory, `contact` exits 5; other codes
+ * from the deck reader), *out is NULL and err (may be
  * NULL) lists the errors. Imported decks are read here. Nothing is printed.
  */
 int ctd_scene_load(const char *path, ctd_scene **out, ctd_scene_err *err);
@@ -403,7 +404,9 @@ const char *ctd_gen_kind_name(int kind);
 const char *ctd_bc_kind_name(int kind);
 
 /* Print a failed load's messages ("FILE:LINE: FIELD: what", at most
- * CTD_SCENE_MAXERR of them) and a last line counting them. */
+ * CTD_SCENE_MAXERR of them, then how many more were not shown) and a last
+ * line counting them, or saying the scene was not loaded for want of
+ * memory when that was the first error. */
 void ctd_scene_print_errors(FILE *f, const char *path, const ctd_scene_err *err);
 
 /* Print "PATH: ok: ..." (title, end time, meshes, node count, parts,

@@ -3,16 +3,18 @@
  * scene's mapping, and on the YAML features around it (driver/scene_yaml.c,
  * scene_yaml_read.c, scene.c), suite "errors_scene_yaml": files without
  * content, a list or a scalar at the top, anchors and aliases, keys that
- * are not names, a second document and values of the wrong shape. Each
+ * are not names, a second document, values of the wrong shape, and a
+ * scene too large for the memory. Each
  * case is loaded twice: with ctd_scene_load (the code, the line and the
  * field of the first message) and by `contact check` (the exit code and
  * the same "FILE:LINE: FIELD: what" on its error stream).
  *
- * Defects these found (fixed in driver/scene_yaml_read.c and scene.c, see
- * each case): a file of only "---" blamed a line after its end;
+ * Defects these found (fixed in driver/scene_yaml_read.c, scene.c and
+ * run.c, see each case): a file of only "---" blamed a line after its end;
  * a valid alias was refused as "got '*alias'"; a list as a key made the
  * tree read the key's entries as values ("nested deeper than 64 levels"
- * under a path of "?"); a second document was dropped without a word.
+ * under a path of "?"); a second document was dropped without a word; a
+ * scene too large for the memory exited 2 (bad input).
  */
 #include <stdio.h>
 #include <stdlib.h>
@@ -349,3 +351,37 @@ Test(errors_scene_yaml, alias_errors)
     run_ycases(c, sizeof c / sizeof c[0]);
 }
 
+
+/* ---- No memory ---------------------------------------------------------------- */
+
+/* A scene whose YAML tree does not fit in 100 MB of address space: a
+ * list of 1.5 million node ids (3 MB of text, about 150 MB of tree, by
+ * experiment it loads with 200 MB). Exit 5 (out of memory, as for the
+ * model and the solver), a message naming the file, nothing written. It
+ * exited 2, as if the file were wrong (the tree's failure was reported
+ * as CT_ERR_ARG, and any failed load was exit 2). Skipped under the
+ * sanitizers, whose shadow memory needs more address space. */
+Test(errors_scene_yaml, out_of_memory_reading_the_scene)
+{
+    if (ctt_checking())
+        cr_skip_test("address-space limit under a sanitizer");
+    char dir[64], path[128];
+    ctt_tmpdir(dir, "erry");
+    snprintf(path, sizeof path, "%s/big.yaml", dir);
+    FILE *f = fopen(path, "w");
+    cr_assert_not_null(f);
+    fprintf(f, "%sboundary:\n  - {kind: fixed, nodes: {ids: [1", OK_HEAD);
+    for (int i = 1; i < 1500000; i++)
+        fputs(",1", f);
+    fputs("]}}\n", f);
+    cr_assert_eq(fclose(f), 0);
+    ctt_cli r = {0};
+    cte_run(&r, dir, "ulimit -v 100000;", "run big.yaml --out out --quiet");
+    CTE_EXPECT(&r, CTD_EXIT_OUTPUT, "big.yaml: out of memory",
+               "big.yaml: scene not loaded: out of memory\n");
+    cr_expect(!ctt_exists(dir, "out"));
+    cte_run(&r, dir, "ulimit -v 100000;", "check big.yaml");
+    CTE_EXPECT(&r, CTD_EXIT_OUTPUT, "big.yaml: out of memory", NULL);
+    ctt_cli_free(&r);
+    ctt_rmtree(dir);
+}
