@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 #include "scene_internal.h"
 
@@ -77,7 +78,7 @@ static cyaml_config_t config(logbuf *b)
     return c;
 }
 
-/* ---- Numbers read in full ------------------------------------------------------ */
+/* ---- Numbers and booleans read in full ---------------------------------------- */
 
 /* libcyaml (1.3.1) reads a number with strtoll(base 0)/strtod and ignores
  * whatever follows it: `part: 1e3` loads as 1, `cells: [2.5]` as 2,
@@ -102,12 +103,31 @@ static int float_text_ok(const char *s)
     return end != s && *end == '\0';
 }
 
+/* libcyaml reads a boolean as false when it is one of false, no, off,
+ * disable or 0 (in any case) and as true otherwise: `csv: flase` wrote the
+ * history. Only YAML's words are taken. */
+static int bool_text_ok(const char *s)
+{
+    static const char *const words[] = {"true", "false", "yes", "no", "on", "off"};
+    for (size_t i = 0; i < sizeof words / sizeof words[0]; i++)
+        if (strcasecmp(s, words[i]) == 0)
+            return 1;
+    return 0;
+}
+
 static void check_numbers(cti_errs *e, const cti_ynode *n, const cyaml_schema_value_t *v,
                           char *path, size_t plen, size_t cap)
 {
     if (!n || !v || plen >= cap)
         return;
     switch (v->type) {
+    case CYAML_BOOL:
+        if (n->kind == CTI_Y_SCALAR && !bool_text_ok(n->value)) {
+            char q[80];
+            cti_quote_value(n->value, q, sizeof q);
+            cti_err(e, CT_ERR_ARG, n->line, path, "expected true or false, got %s", q);
+        }
+        return;
     case CYAML_INT:
     case CYAML_UINT:
     case CYAML_FLOAT:

@@ -48,7 +48,8 @@
  *                        relative to the working directory; created with
  *                        its missing parents);
  *                 every  number > 0, the output interval (default end_time/100);
- *                 vtu    bool (true): VTU + PVD series;
+ *                 vtu    bool (true): VTU + PVD series (a bool is true or
+ *                        false, or yes/no, on/off, in any case);
  *                 format "binary" (default) or "ascii": the VTU arrays as
  *                        raw bytes in an appended block (exact, fast to
  *                        write) or as "%.9g" text;

@@ -3,8 +3,8 @@
  * scene's mapping, and on the YAML features around it (driver/scene_yaml.c,
  * scene_yaml_read.c, scene.c), suite "errors_scene_yaml": files without
  * content, a list or a scalar at the top, anchors and aliases, keys that
- * are not names, a second document, values of the wrong shape, and a
- * scene too large for the memory. Each
+ * are not names, a second document, values of the wrong shape, booleans,
+ * and a scene too large for the memory. Each
  * case is loaded twice: with ctd_scene_load (the code, the line and the
  * field of the first message) and by `contact check` (the exit code and
  * the same "FILE:LINE: FIELD: what" on its error stream).
@@ -14,7 +14,8 @@
  * a valid alias was refused as "got '*alias'"; a list as a key made the
  * tree read the key's entries as values ("nested deeper than 64 levels"
  * under a path of "?"); a second document was dropped without a word; a
- * scene too large for the memory exited 2 (bad input).
+ * misspelt boolean (`csv: flase`) was read as true; a scene too large for
+ * the memory exited 2 (bad input).
  */
 #include <stdio.h>
 #include <stdlib.h>
@@ -352,7 +353,42 @@ Test(errors_scene_yaml, alias_errors)
 }
 
 
-/* ---- No memory ---------------------------------------------------------------- */
+/* ---- Booleans, no memory --------------------------------------------------------- */
+
+/* libcyaml reads any word but false, no, off, disable and 0 as true: a
+ * typo `csv: flase` wrote the history and exited 0. Only YAML's words
+ * (true/false, yes/no, on/off, any case) are taken now. */
+Test(errors_scene_yaml, booleans_are_words)
+{
+    static const char *const bad[] = {"flase", "3", "enable", "\"\""};
+    char dir[64];
+    ctt_tmpdir(dir, "erry");
+    for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
+        char text[1024], what[96];
+        snprintf(text, sizeof text, "%soutput: {csv: %s}\n", OK_HEAD, bad[k]);
+        snprintf(what, sizeof what, "expected true or false, got '%s'",
+                 bad[k][0] == '"' ? "" : bad[k]);
+        const ycase c = {text, CT_ERR_ARG, 6, "output.csv", what};
+        expect_yaml_error(dir, &c);
+    }
+    /* The words themselves load, with their value. */
+    static const struct {
+        const char *word;
+        bool value;
+    } ok[] = {{"false", 0}, {"No", 0}, {"OFF", 0}, {"true", 1}, {"yes", 1}, {"On", 1}};
+    for (size_t k = 0; k < sizeof ok / sizeof ok[0]; k++) {
+        char text[1024], path[128];
+        snprintf(text, sizeof text, "%soutput: {csv: %s}\n", OK_HEAD, ok[k].word);
+        ctt_write_file(dir, "ok.yaml", text);
+        snprintf(path, sizeof path, "%s/ok.yaml", dir);
+        ctd_scene *sc = NULL;
+        ctd_scene_err e;
+        cr_assert_eq(ctd_scene_load(path, &sc, &e), CT_OK, "%s: %s", ok[k].word, e.msg[0].text);
+        cr_expect_eq(sc->output->csv, ok[k].value, "%s", ok[k].word);
+        ctd_scene_free(sc);
+    }
+    ctt_rmtree(dir);
+}
 
 /* A scene whose YAML tree does not fit in 100 MB of address space: a
  * list of 1.5 million node ids (3 MB of text, about 150 MB of tree, by
