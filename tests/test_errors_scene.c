@@ -34,7 +34,7 @@ static const char MESH_TAIL[] =
     "  - {id: 1, element: shell, thickness: 0.001, material: {E: 2.1e11, nu: 0.3, rho: 7800}}\n";
 
 typedef struct scase {
-    const char *text; /* after BASE, or the mesh entry when mesh is 1 */
+    const char *text; /* after BASE, the mesh entry when mesh is 1, the file when 2 */
     int mesh;
     int line;
     const char *field, *what;
@@ -44,7 +44,9 @@ typedef struct scase {
 static void expect_scene_error(const char *dir, const scase *c)
 {
     char text[2048], path[128];
-    if (c->mesh)
+    if (c->mesh == 2)
+        snprintf(text, sizeof text, "%s", c->text);
+    else if (c->mesh)
         snprintf(text, sizeof text, "%s%s%s", MESH_HEAD, c->text, MESH_TAIL);
     else
         snprintf(text, sizeof text, "%s%s", BASE, c->text);
@@ -218,4 +220,78 @@ Test(errors_scene, layers_of_another_kind_are_refused)
          "mesh[0].generate.layers", "not used by kind plate"},
     };
     run_cases(c, 1);
+}
+
+#define WHERE_EXPECT                                                                         \
+    "expected at most 6 clauses like 'z < 0.001' (x|y|z, <|<=|>|>=, a number) joined by 'and', " \
+    "got "
+
+/* Checks no other case reached (a coverage run of the test suite found
+ * them unexecuted): each is one error on its line and field. */
+Test(errors_scene, checks_found_unexecuted)
+{
+    static const scase c[] = {
+        {"  - {id: 1, element: brick, material: {E: 2.1e11, nu: 0.3, rho: 7800}}\n", 0, 8,
+         "parts[2].id", "part 1 is defined twice (first at line 6), expected a new id"},
+        {"boundary:\n  - {kind: fixed, nodes: {part: 1, ids: [1]}}\n", 0, 9, "boundary[0].nodes",
+         "expected only one of part, parts, surf, group, ids"},
+        {"boundary:\n  - {kind: pressure, surface: {part: 1}}\n", 0, 9, "boundary[0].pressure",
+         "required field missing for kind pressure (expected a finite number, Pa)"},
+        {"boundary:\n  - {kind: clamp, nodes: {part: 1}}\n", 0, 9, "boundary[0].kind",
+         "expected one of fixed, velocity, initial_velocity, gravity, force, pressure, got "
+         "'clamp'"},
+        {"boundary:\n  - {kind: fixed, nodes: {part: 1, where: \"z = 1\"}}\n", 0, 9,
+         "boundary[0].nodes.where", WHERE_EXPECT "'z = 1'"},
+        {"boundary:\n  - {kind: fixed, nodes: {part: 1, where: \"z < 1 or x > 0\"}}\n", 0, 9,
+         "boundary[0].nodes.where", WHERE_EXPECT "'z < 1 or x > 0'"},
+        {"  - generate: {kind: block, part: 1, cells: [1, 1, 1], size: [1, 1, 1]}\n", 1, 3,
+         "mesh[0].generate.part",
+         "part 1 has element shell, which a block mesh cannot have (expected brick or rigid)"},
+        {"  - generate: {kind: plate, part: 1, cells: [200000, 1], size: [1, 1]}\n"
+         "refine: 1000\n",
+         1, 3, "mesh[0].generate.cells[0]",
+         "cells times refine is 200000000, expected at most 1e8"},
+        {"  - {}\n", 1, 3, "mesh[0]", "expected one of generate, import, got neither"},
+        {"  - {import: {file: a.rad}, generate: {kind: plate, part: 1, cells: [1, 1],"
+         " size: [1, 1]}}\n",
+         1, 3, "mesh[0]", "expected only one of generate, import, got both"},
+        {"end_time: 1\nmesh:\n  - generate: {kind: rod, part: 1, cells: [2]}\nparts:\n"
+         "  - {id: 1, element: truss, area: 1.0e-4, material: {E: 2.1e11, nu: 0.3, rho: 7800}}\n",
+         2, 3, "mesh[0].generate.to",
+         "required field missing for kind rod (expected a list of 3 numbers)"},
+        {"end_time: 1\nmesh:\n  - generate: {kind: rod, part: 1, cells: [2], origin: [1, 2, 3],"
+         " to: [1, 2, 3]}\nparts:\n"
+         "  - {id: 1, element: truss, area: 1.0e-4, material: {E: 2.1e11, nu: 0.3, rho: 7800}}\n",
+         2, 3, "mesh[0].generate.to", "expected a point other than origin"},
+    };
+    run_cases(c, sizeof c / sizeof c[0]);
+}
+
+/* An imported deck whose node ids a generated mesh listed before it has
+ * taken (the generated block's nodes are 1..8, the deck's 1..4): the
+ * import is blamed, with the deck's line and the mesh it clashes with. */
+Test(errors_scene, import_after_a_generated_mesh_clashes)
+{
+    char dir[64];
+    ctt_tmpdir(dir, "errv");
+    ctt_write_file(dir, "quad.rad",
+                   "/NODE\n"
+                   "         1                   0                   0                   0\n"
+                   "         2                   1                   0                   0\n"
+                   "         3                   1                   1                   0\n"
+                   "         4                   0                   1                   0\n"
+                   "/SHELL/1\n"
+                   "         1         1         2         3         4\n");
+    const scase c = {
+        "end_time: 1\nmesh:\n"
+        "  - generate: {kind: block, part: 2, cells: [1, 1, 1], size: [1, 1, 1]}\n"
+        "  - import: {file: quad.rad}\n"
+        "parts:\n"
+        "  - {id: 1, element: shell, thickness: 0.001, material: {E: 2.1e11, nu: 0.3, rho: 7800}}\n"
+        "  - {id: 2, element: brick, material: {E: 2.1e11, nu: 0.3, rho: 7800}}\n",
+        2, 4, "mesh[1].import.file",
+        "node id 1 of the deck (line 2) is already used by mesh[0] (expected distinct node ids; "
+        "list imports before generated meshes)"};
+    expect_scene_error(dir, &c);
+    ctt_rmtree(dir);
 }

@@ -4,7 +4,7 @@
  * scene_yaml_read.c, scene.c), suite "errors_scene_yaml": files without
  * content, a list or a scalar at the top, anchors and aliases, keys that
  * are not names, a second document, values of the wrong shape, booleans,
- * and a scene too large for the memory. Each
+ * more errors than are shown, and a scene too large for the memory. Each
  * case is loaded twice: with ctd_scene_load (the code, the line and the
  * field of the first message) and by `contact check` (the exit code and
  * the same "FILE:LINE: FIELD: what" on its error stream).
@@ -352,8 +352,7 @@ Test(errors_scene_yaml, alias_errors)
     run_ycases(c, sizeof c / sizeof c[0]);
 }
 
-
-/* ---- Booleans, no memory --------------------------------------------------------- */
+/* ---- Booleans, many errors, no memory ---------------------------------------- */
 
 /* libcyaml reads any word but false, no, off, disable and 0 as true: a
  * typo `csv: flase` wrote the history and exited 0. Only YAML's words
@@ -387,6 +386,52 @@ Test(errors_scene_yaml, booleans_are_words)
         cr_expect_eq(sc->output->csv, ok[k].value, "%s", ok[k].word);
         ctd_scene_free(sc);
     }
+    ctt_rmtree(dir);
+}
+
+/* Twenty errors: the first CTD_SCENE_MAXERR (16) are printed, then how
+ * many more there were, and the count; exit 2. */
+Test(errors_scene_yaml, more_errors_than_shown)
+{
+    char dir[64], text[4096];
+    size_t off = (size_t)snprintf(text, sizeof text,
+                                  "end_time: 1.0e-5\n"
+                                  "mesh:\n"
+                                  "  - generate: {kind: block, part: 1, cells: [1, 1, 1],"
+                                  " size: [0.01, 0.01, 0.01]}\n"
+                                  "parts:\n");
+    for (int i = 1; i <= 20; i++)
+        off += (size_t)snprintf(text + off, sizeof text - off,
+                                "  - {id: %d, element: brick, material: {E: 2.1e11, nu: 0.5,"
+                                " rho: 7800}}\n",
+                                i);
+    ctt_tmpdir(dir, "erry");
+    ctt_write_file(dir, "many.yaml", text);
+    char path[128];
+    snprintf(path, sizeof path, "%s/many.yaml", dir);
+    ctd_scene *sc = NULL;
+    ctd_scene_err e;
+    cr_expect_eq(ctd_scene_load(path, &sc, &e), CT_ERR_ARG);
+    cr_expect_eq(e.count, 20);
+    cr_expect_str_eq(e.msg[CTD_SCENE_MAXERR - 1].field, "parts[15].material.nu");
+    ctt_cli r = {0};
+    cte_run(&r, dir, "", "check many.yaml");
+    CTE_EXPECT(&r, CTD_EXIT_BADINPUT, "many.yaml: 4 more errors not shown\n",
+               "many.yaml: invalid scene (20 errors)\n");
+    /* Parts 0..15 on lines 5..20, in order, and none after. */
+    const char *p = r.err;
+    for (int i = 0; i < 16; i++) {
+        char want[128];
+        snprintf(want, sizeof want,
+                 "many.yaml:%d: parts[%d].material.nu: expected a number in (-1, 0.5), got 0.5\n",
+                 5 + i, i);
+        const char *q = strstr(p, want);
+        cr_expect(q != NULL, "lacks \"%s\" in order: %s", want, r.err);
+        p = q ? q + strlen(want) : p;
+    }
+    cr_expect(strstr(r.err, "parts[16]") == NULL, "%s", r.err);
+    cr_expect_eq(count_lines(r.err), 18, "%s", r.err);
+    ctt_cli_free(&r);
     ctt_rmtree(dir);
 }
 
