@@ -378,41 +378,51 @@ static int seg_has_edge(const ct_mesh *m, ct_idx s, ct_idx a, ct_idx b)
     return 0;
 }
 
+/* The topology of m against brute force: node -> segment lists exactly the
+ * segments containing the node, ascending; edge -> segment the segments
+ * having that edge, ascending; every segment edge listed. Returns the
+ * number of edge -> segment entries. */
+static int64_t check_topology_brute_force(const ct_mesh *m)
+{
+    check_sorted_edges(m);
+    /* Node -> segment: exactly the segments containing the node, ascending. */
+    for (ct_idx i = 0; i < m->nodes.n; i++) {
+        ct_idx k = m->node_seg_off[i];
+        for (ct_idx s = 0; s < m->nseg; s++)
+            if (seg_has(m, s, i)) {
+                cr_assert_lt(k, m->node_seg_off[i + 1]);
+                cr_assert_eq(m->node_seg[k], s);
+                k++;
+            }
+        cr_assert_eq(k, m->node_seg_off[i + 1]);
+    }
+    /* Edge -> segment: exactly the segments having that edge, ascending; and
+     * every segment edge is listed. */
+    int64_t total = 0;
+    for (ct_idx e = 0; e < m->nedge; e++) {
+        ct_idx k = m->edge_seg_off[e];
+        for (ct_idx s = 0; s < m->nseg; s++)
+            if (seg_has_edge(m, s, m->e1[e], m->e2[e])) {
+                cr_assert_eq(m->edge_seg[k], s);
+                k++;
+            }
+        cr_assert_eq(k, m->edge_seg_off[e + 1]);
+        total += k - m->edge_seg_off[e];
+    }
+    int64_t expect = 0;
+    for (ct_idx s = 0; s < m->nseg; s++)
+        expect += (m->n3[s] == m->n4[s]) ? 3 : 4;
+    cr_assert_eq(total, expect);
+    return total;
+}
+
 Test(mesh, topology_brute_force_and_threads)
 {
     ct_mesh m;
     scrambled(&m, 14, 12345);
     ctt_threads(1);
     cr_assert_eq(ct_mesh_build_topology(&m, NULL), CT_OK);
-    check_sorted_edges(&m);
-    /* Node -> segment: exactly the segments containing the node, ascending. */
-    for (ct_idx i = 0; i < m.nodes.n; i++) {
-        ct_idx k = m.node_seg_off[i];
-        for (ct_idx s = 0; s < m.nseg; s++)
-            if (seg_has(&m, s, i)) {
-                cr_assert_lt(k, m.node_seg_off[i + 1]);
-                cr_assert_eq(m.node_seg[k], s);
-                k++;
-            }
-        cr_assert_eq(k, m.node_seg_off[i + 1]);
-    }
-    /* Edge -> segment: exactly the segments having that edge, ascending; and
-     * every segment edge is listed. */
-    int64_t total = 0;
-    for (ct_idx e = 0; e < m.nedge; e++) {
-        ct_idx k = m.edge_seg_off[e];
-        for (ct_idx s = 0; s < m.nseg; s++)
-            if (seg_has_edge(&m, s, m.e1[e], m.e2[e])) {
-                cr_assert_eq(m.edge_seg[k], s);
-                k++;
-            }
-        cr_assert_eq(k, m.edge_seg_off[e + 1]);
-        total += k - m.edge_seg_off[e];
-    }
-    int64_t expect = 0;
-    for (ct_idx s = 0; s < m.nseg; s++)
-        expect += (m.n3[s] == m.n4[s]) ? 3 : 4;
-    cr_assert_eq(total, expect);
+    int64_t total = check_topology_brute_force(&m);
     cr_assert_eq(m.nodes.n - m.nedge + m.nseg, 1); /* still a disk */
 
     /* The same bytes with 2 threads. */
@@ -430,6 +440,43 @@ Test(mesh, topology_brute_force_and_threads)
                      sizeof(ct_idx) * (size_t)m.node_seg_off[m.nodes.n]);
     ct_mesh_destroy(&r);
     ct_mesh_destroy(&m);
+}
+
+Test(mesh, topology_fan_of_many_segments)
+{
+    /* A fan of 48 triangles around node 0, listed in a scrambled order: the
+     * apex is in more than 32 segments and is the low node of 96 edge
+     * entries, where the topology sorts its lists by qsort rather than by
+     * insertion (at most 32). Against brute force, 1 and 2 threads. */
+    enum { NT = 48 };
+    for (int t = 1; t <= 2; t++) {
+        ct_mesh m;
+        cr_assert_eq(ct_mesh_init(&m, NT + 1, NT), CT_OK);
+        for (int i = 0; i < NT; i++) {
+            double a = 2 * M_PI * i / NT;
+            m.nodes.x[1 + i] = (ct_real)cos(a);
+            m.nodes.y[1 + i] = (ct_real)sin(a);
+            m.nodes.z[1 + i] = (ct_real)0.2;
+        }
+        for (int k = 0; k < NT; k++) {
+            int i = (k * 29) % NT; /* 29 is prime to 48: every triangle once */
+            m.n1[k] = 0;
+            m.n2[k] = 1 + i;
+            m.n3[k] = m.n4[k] = 1 + (i + 1) % NT;
+        }
+        cr_assert_eq(ct_mesh_validate(&m, NULL), CT_OK);
+        ctt_threads(t);
+        cr_assert_eq(ct_mesh_build_topology(&m, NULL), CT_OK);
+        cr_assert_eq(m.node_seg_off[1] - m.node_seg_off[0], NT);
+        cr_assert_eq(m.nedge, 2 * NT); /* spokes and rim */
+        int64_t total = check_topology_brute_force(&m);
+        cr_assert_eq(total, 3 * NT);
+        for (ct_idx e = 0; e < m.nedge; e++) /* spokes two segments, the rim one */
+            cr_assert_eq(m.edge_seg_off[e + 1] - m.edge_seg_off[e], m.e1[e] == 0 ? 2 : 1,
+                         "edge %d", (int)e);
+        cr_assert_eq(m.nodes.n - m.nedge + m.nseg, 1); /* a disk */
+        ct_mesh_destroy(&m);
+    }
 }
 
 Test(mesh, topology_rejects_range)

@@ -118,6 +118,37 @@ Test(select, vertex_of_four_segments_carries_once)
     cr_assert_float_eq(c.g.pen[2], 0.4, CTT_TOL(1e-14, 1e-6));
 }
 
+/* Skipped pairs (flagged degenerate or non-finite by the narrow phase)
+ * never carry: over the shared vertex with pairs 0 and 1 flagged, the
+ * first of the others carries; with every pair of the node flagged, none
+ * does and every penetration is rewritten to 0 (here stale values put
+ * there on purpose), carry 0, no active pair. */
+Test(select, skipped_pairs_never_carry)
+{
+    static sel_case c;
+    int64_t active = -1;
+    for (int all = 0; all < 2; all++) {
+        sel_init(&c, 0, 0, (ct_real)0.3);
+        four_quads(&c);
+        sel_narrow(&c, (ct_real)0.5, 0);
+        for (int k = 0; k < 4; k++) {
+            if (all || k < 2)
+                c.flag[k] = k % 2 ? CT_NARROW_NONFINITE : CT_NARROW_DEGENERATE;
+            c.g.pen[k] = (ct_real)0.2;
+            c.carry[k] = 7;
+        }
+        cr_assert_eq(ct_select_pairs(c.np, c.node, c.x, c.y, c.z, 0, &c.g, NULL, c.carry,
+                                     NULL, &active),
+                     CT_OK);
+        cr_assert_eq(active, all ? 0 : 1);
+        for (int k = 0; k < 4; k++) {
+            int carrier = !all && k == 2;
+            cr_assert_eq(c.carry[k], carrier, "all %d pair %d", all, k);
+            cr_assert_eq(c.g.pen[k], carrier ? (ct_real)0.2 : 0, "all %d pair %d", all, k);
+        }
+    }
+}
+
 /* A valley along y: two faces meeting at x = 0, z = 0, normals up and
  * inward. A node 0.1 below the bottom line lies behind both faces and
  * outside both footprints: no pair reports a penetration, yet the node is
