@@ -348,3 +348,42 @@ Test(search_topo, reset_forces_full_search)
     ct_search_destroy(w);
     ctt_scene_free(&s);
 }
+
+/*
+ * An empty main side (no segment: the coverage run found the full
+ * search's "no main node" branch unexecuted), then the surface given, in
+ * one search object: no pair, then direct's pairs (the empty first call
+ * leaves no history that hides them). And no secondary node.
+ */
+Test(search_topo, empty_main_side_then_full)
+{
+    curve_a = 0;
+    ctt_scene s;
+    ctt_scene_init(&s, 600, 400);
+    ts_main(&s, 10, 10);
+    for (int i = 0; i < 5; i++)
+        s.sec[s.nsec++] = ctt_scene_node(&s, 1.3 + i, 2.4, 0.1);
+    ct_search_params p = ct_search_default_params(CT_SEARCH_TOPO);
+    ct_search *w;
+    cr_assert_eq(ct_search_init(&w, &p), CT_OK);
+    ct_search_input in = ctt_scene_input(&s, 0.2, 0.1, 0);
+    ct_pairs got, ref;
+    ct_pairs_init(&got, 0);
+    ct_pairs_init(&ref, 0);
+    const ct_idx nseg = in.nseg;
+    in.nseg = 0;
+    cr_assert_eq(ct_search_run(w, &in, &got), CT_OK);
+    cr_assert_eq(got.n, 0);
+    in.nseg = nseg;
+    cr_assert_eq(ct_search_run(w, &in, &got), CT_OK);
+    ctt_search(CT_SEARCH_DIRECT, &in, &ref);
+    cr_assert_gt(ref.n, 0);
+    cr_assert(ctt_same_pairs(&got, &ref), "%d pairs, direct %d", (int)got.n, (int)ref.n);
+    in.nsec = 0;
+    cr_assert_eq(ct_search_run(w, &in, &got), CT_OK);
+    cr_assert_eq(got.n, 0);
+    ct_pairs_destroy(&got);
+    ct_pairs_destroy(&ref);
+    ct_search_destroy(w);
+    ctt_scene_free(&s);
+}
