@@ -63,6 +63,18 @@ static int fail(ctd_loads *L, char *err, size_t len, int code, const ctd_scene *
     return code;
 }
 
+/* A selection that selects nothing: the field's path, as the scene's
+ * errors name it (model.c says the same of the other conditions). */
+static int fail_empty(ctd_loads *L, char *err, size_t len, const ctd_scene *sc,
+                      const ctd_scene_bc *bc, unsigned i, const char *field, const char *what)
+{
+    if (err && len)
+        snprintf(err, len, "%s:%d: boundary[%u].%s: selects no %s (kind %s)", sc->path, bc->line,
+                 i, field, what, bc->kind_name);
+    ctd_loads_destroy(L);
+    return CT_ERR_ARG;
+}
+
 /* Give node i a slot (the order of first appearance). */
 static ct_idx slot_of(ctd_loads *L, ct_idx i)
 {
@@ -118,7 +130,7 @@ int ctd_loads_init(ctd_loads *L, const ctd_model *m, char *err, size_t errlen)
             for (int d = 0; d < 3; d++)
                 ld->value[d] = bc->value[d];
             if (ld->n == 0)
-                return fail(L, err, errlen, CT_ERR_ARG, sc, bc, i, "nodes selects no node");
+                return fail_empty(L, err, errlen, sc, bc, i, "nodes", "node");
         } else {
             ct_surface su = {0, NULL};
             if ((rc = ctd_model_select_surface(m, bc->surface, &su, msg, sizeof msg)) != CT_OK)
@@ -136,8 +148,7 @@ int ctd_loads_init(ctd_loads *L, const ctd_model *m, char *err, size_t errlen)
                 return fail(L, err, errlen, CT_ERR_NOMEM, sc, bc, i, "out of memory");
             ld->value[0] = bc->pressure;
             if (ld->n == 0)
-                return fail(L, err, errlen, CT_ERR_ARG, sc, bc, i,
-                            "surface selects no segment");
+                return fail_empty(L, err, errlen, sc, bc, i, "surface", "segment");
         }
     }
     size_t n1 = (size_t)L->nnode + 1;

@@ -337,8 +337,8 @@ static int build_bcs(cti_mbuild *b)
         if (ns.n == 0) {
             ct_nodeset_destroy(&ns);
             return cti_model_err(b->err, b->len, CT_ERR_ARG,
-                                 "%s:%d: boundary[%u] (%s): nodes selects no node", sc->path,
-                                 bc->line, i, bc->kind_name);
+                                 "%s:%d: boundary[%u].nodes: selects no node (kind %s)",
+                                 sc->path, bc->line, i, bc->kind_name);
         }
         for (ct_idx k = 0; k < ns.n; k++) {
             ct_idx n = ns.node[k];

@@ -277,7 +277,7 @@ Test(errors_model, load_on_no_node)
                    "  - {kind: fixed, nodes: {part: 2}}\n"
                    "  - {kind: force, nodes: {part: 1, where: \"z > 5\"}, value: [1, 0, 0]}\n");
     expect_run_fails(dir, "load.yaml", CTD_EXIT_BADINPUT,
-                     "contact run: load.yaml:9: boundary[1] (force): nodes selects no node", NULL);
+                     "contact run: load.yaml:9: boundary[1].nodes: selects no node (kind force)", NULL);
     ctt_rmtree(dir);
 }
 

@@ -149,8 +149,8 @@ Test(loads, empty_selection_is_an_error)
     ctd_loads L;
     int rc = ctd_loads_init(&L, &m, err, sizeof err);
     cr_expect_neq(rc, CT_OK);
-    cr_expect(strstr(err, "loads_block_pressure.yaml:12: boundary[0] (pressure)") != NULL &&
-                  strstr(err, "selects no segment") != NULL,
+    cr_expect(strstr(err, "loads_block_pressure.yaml:12: boundary[0].surface: selects no "
+                          "segment (kind pressure)") != NULL,
               "message: %s", err);
     ctd_model_destroy(&m);
     ctd_scene_free(sc);

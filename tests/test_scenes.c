@@ -252,7 +252,7 @@ Test(scenes, condition_on_no_node_is_an_error, .init = cr_redirect_stderr)
     ctd_model m;
     cr_assert_eq(ctd_model_build(&m, sc, err, sizeof err), CT_ERR_ARG);
     char want[1200];
-    snprintf(want, sizeof want, "%s:13: boundary[1] (velocity): nodes selects no node", p);
+    snprintf(want, sizeof want, "%s:13: boundary[1].nodes: selects no node (kind velocity)", p);
     cr_assert_str_eq(err, want);
     ctd_scene_free(sc);
     char *argv[] = {p, "--quiet"};
