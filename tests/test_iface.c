@@ -608,5 +608,29 @@ Test(iface, secondary_node_area)
     cr_expect(ctt_rel(a9[0], 2.0 / 24) <= tol, "triangles: corner %.17g", a9[0]);
     cr_expect(ctt_rel(a9[2], 1.0 / 24) <= tol, "triangles: corner %.17g", a9[2]);
     ctd_iface_destroy(it);
+    /* The model's surface holding every triangle twice, the copy turned
+     * the other way (a shell glued on a brick's face on the same nodes):
+     * the same areas, a node stands for its surface once. */
+    ct_idx q2[4][16];
+    for (int k = 0; k < 8; k++)
+        for (int c = 0; c < 4; c++) {
+            q2[c][k] = q[c][k];
+            q2[c][8 + k] = q[c == 1 ? 2 : c == 2 || c == 3 ? 1 : 0][k];
+        }
+    for (int k = 0; k < 8; k++)
+        q2[3][8 + k] = q2[2][8 + k];
+    d.nmseg = 16;
+    d.m1 = q2[0];
+    d.m2 = q2[1];
+    d.m3 = q2[2];
+    d.m4 = q2[3];
+    cr_assert_eq(ctd_iface_init(&it, &cfg, &d, &diag), CT_OK, "%s", diag.msg);
+    cr_expect_eq(it->narea_seg, 8);
+    ct_real b9[9];
+    sum = areas_for_normal(it, &t, 0, 0, -1, b9);
+    cr_expect(ctt_rel(sum, 1) <= tol, "repeated triangles: sum %.17g", sum);
+    for (int i = 0; i < 9; i++)
+        cr_expect_eq(b9[i], a9[i], "node %d: %.17g against %.17g", i, b9[i], a9[i]);
+    ctd_iface_destroy(it);
     tn_free(&t);
 }

@@ -23,11 +23,16 @@
  * otherwise count them too. A node none of whose segments faces the
  * contact (it touches with an edge or a corner) takes all of them. Both
  * from the current geometry, evaluated for the pairs in contact only.
+ * Segments with the same corners as another (a shell glued on a brick's
+ * face on the same nodes: the model's surface holds both) count once: a
+ * node stands for the area of the surface, not of each part that covers
+ * it.
  */
 #include "iface_internal.h"
 
 #include "ct_internal.h"
 
+#include <stdlib.h>
 #include <string.h>
 
 void ctdi_area_free(ctd_iface *it)
@@ -45,6 +50,56 @@ size_t ctdi_area_memory(const ctd_iface *it)
         return 0;
     return ((size_t)it->nnode + 2 + (size_t)it->narea_ent + 1 + 4 * (size_t)it->narea_seg + 1) *
            sizeof(ct_idx);
+}
+
+/* A segment's corners, sorted (a triangle's third once, then -1), and the
+ * segment: the key that finds segments repeating another's corners. */
+typedef struct area_key {
+    ct_idx c[4], s;
+} area_key;
+
+static int area_key_cmp(const void *pa, const void *pb)
+{
+    const area_key *a = pa, *b = pb;
+    for (int i = 0; i < 4; i++)
+        if (a->c[i] != b->c[i])
+            return a->c[i] < b->c[i] ? -1 : 1;
+    return (a->s > b->s) - (a->s < b->s);
+}
+
+/* rep[s] = 1 for each segment among the ns with a corner marked whose
+ * corners (in any order) are those of an earlier segment; 0 otherwise.
+ * Corners are in range (checked by the caller). */
+static int area_mark_repeats(ct_idx ns, const ct_idx *const q[4], const uint8_t *mark,
+                             uint8_t *rep)
+{
+    ct_idx nk = 0;
+    for (ct_idx s = 0; s < ns; s++)
+        nk += mark[q[0][s]] | mark[q[1][s]] | mark[q[2][s]] | mark[q[3][s]];
+    area_key *k = ct_calloc((size_t)nk + 1, sizeof *k);
+    if (!k)
+        return CT_ERR_NOMEM;
+    ct_idx n = 0;
+    for (ct_idx s = 0; s < ns; s++) {
+        if (!(mark[q[0][s]] | mark[q[1][s]] | mark[q[2][s]] | mark[q[3][s]]))
+            continue;
+        const int tri = q[3][s] == q[2][s];
+        ct_idx c[4] = {q[0][s], q[1][s], q[2][s], tri ? -1 : q[3][s]};
+        const int m = tri ? 3 : 4;
+        for (int i = 1; i < m; i++) /* insertion sort of 3 or 4 */
+            for (int j = i; j > 0 && c[j - 1] > c[j]; j--) {
+                const ct_idx t = c[j];
+                c[j] = c[j - 1];
+                c[j - 1] = t;
+            }
+        memcpy(k[n].c, c, sizeof c);
+        k[n++].s = s;
+    }
+    qsort(k, (size_t)n, sizeof *k, area_key_cmp);
+    for (ct_idx i = 1; i < n; i++)
+        rep[k[i].s] = memcmp(k[i].c, k[i - 1].c, sizeof k[i].c) == 0;
+    ct_free(k);
+    return CT_OK;
 }
 
 int ctdi_area_setup(ctd_iface *it, const ctd_iface_data *d, ct_diag *diag)
@@ -70,17 +125,24 @@ int ctdi_area_setup(ctd_iface *it, const ctd_iface_data *d, ct_diag *diag)
     for (int i = 0; i < it->npass; i++)
         for (ct_idx k = 0; k < it->pass[i].nsec; k++)
             mark[it->pass[i].sec[k]] = 1;
-    ct_idx nkeep = 0;
-    int64_t nent = 0;
     int rc = CT_OK;
-    for (ct_idx s = 0; s < ns && rc == CT_OK; s++) {
-        int keep = 0;
-        for (int c = 0; c < 4; c++) {
-            const ct_idx v = q[c][s];
-            if ((uint32_t)v >= (uint32_t)nn) {
+    for (ct_idx s = 0; s < ns && rc == CT_OK; s++)
+        for (int c = 0; c < 4; c++)
+            if ((uint32_t)q[c][s] >= (uint32_t)nn) {
                 rc = ctdi_fail(diag, CT_ERR_RANGE, s, "A model segment's node is out of range.");
                 break;
             }
+    uint8_t *rep = rc == CT_OK ? ct_calloc((size_t)ns + 1, 1) : NULL;
+    if (rc == CT_OK && !rep)
+        rc = CT_ERR_NOMEM;
+    if (rc == CT_OK)
+        rc = area_mark_repeats(ns, q, mark, rep);
+    ct_idx nkeep = 0;
+    int64_t nent = 0;
+    for (ct_idx s = 0; s < ns && rc == CT_OK; s++) {
+        int keep = 0;
+        for (int c = 0; c < 4 && !rep[s]; c++) {
+            const ct_idx v = q[c][s];
             if (c == 3 && v == q[2][s])
                 continue;
             if (mark[v]) {
@@ -109,6 +171,7 @@ int ctdi_area_setup(ctd_iface *it, const ctd_iface_data *d, ct_diag *diag)
     if (rc != CT_OK) {
         ct_free(off);
         ct_free(mark);
+        ct_free(rep);
         ct_free(seg);
         ct_free(cq);
         return rc;
@@ -120,7 +183,7 @@ int ctdi_area_setup(ctd_iface *it, const ctd_iface_data *d, ct_diag *diag)
     ct_idx local = 0;
     for (ct_idx s = 0; s < ns; s++) {
         int keep = 0;
-        for (int c = 0; c < 4; c++) {
+        for (int c = 0; c < 4 && !rep[s]; c++) {
             const ct_idx v = q[c][s];
             if ((c == 3 && v == q[2][s]) || !mark[v])
                 continue;
@@ -137,6 +200,7 @@ int ctdi_area_setup(ctd_iface *it, const ctd_iface_data *d, ct_diag *diag)
         off[v] = off[v - 1];
     off[0] = 0;
     ct_free(mark);
+    ct_free(rep);
     it->area_off = off;
     it->area_seg = seg;
     it->area_q = cq;
