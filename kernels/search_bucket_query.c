@@ -234,6 +234,113 @@ static inline void bk_cands_batch(const bk_ctx *restrict k, ct_idx node, ct_idx 
     }
 }
 
+/* The most entries a cell may have for its nodes to be queried in twos
+ * (bk_cands_batch2's buffer). */
+enum { BK_PAIR_MAX = 256 };
+
+/* Two secondaries A and B (at secondary positions pa_ and pb_) of one
+ * cell, entries e0 to e1 - 1 (at most BK_PAIR_MAX), into the batch pb as
+ * bk_cands_batch would put them node after node: each entry's segment
+ * number and float box are read once for both nodes. A's candidates join
+ * the batch as they are found (decided whenever it fills), B's are kept in
+ * a buffer and join it after A's; the sink has room for pb's pending pairs
+ * and twice the entries. */
+static inline void bk_cands_batch2(const bk_ctx *restrict k, ct_idx na, ct_idx pa_,
+                                   bk_fpoint pa, ct_idx nb_, ct_idx pb_, bk_fpoint pvb,
+                                   ct_idx e0, ct_idx e1, cti_pair_batch *restrict pb,
+                                   bk_sink *o)
+{
+    const ct_idx *restrict ent = k->ent;
+    ct_idx *restrict sg = pb->seg, *restrict nd = pb->node, *restrict bp = o->bpos;
+    ct_idx sb[BK_PAIR_MAX];
+    int mb = 0;
+    ct_idx e = e0;
+    while (e < e1) {
+        int m = pb->n;
+        const int m0 = m;
+        const ct_idx ec = e1 - e < CTI_PAIR_BATCH - m ? e1 : e + (CTI_PAIR_BATCH - m);
+        for (; e < ec; e++) {
+            const ct_idx j = ent[e];
+            sg[m] = j;
+            sb[mb] = j;
+            m += bk_pretest_box(k, pa, j);
+            mb += bk_pretest_box(k, pvb, j);
+        }
+        if (k->self) {
+            int w = m0;
+            for (int q = m0; q < m; q++) {
+                const ct_idx j = sg[q];
+                sg[w] = j;
+                w += bk_not_own(k, na, j);
+            }
+            m = w;
+        }
+        for (int q = m0; q < m; q++) {
+            nd[q] = na;
+            bp[q] = pa_;
+        }
+        pb->n = m;
+        if (m > CTI_PAIR_BATCH - BK_BATCH_SLACK)
+            bk_sink_flush(k, pb, o);
+    }
+    if (k->self) {
+        int w = 0;
+        for (int q = 0; q < mb; q++) {
+            const ct_idx j = sb[q];
+            sb[w] = j;
+            w += bk_not_own(k, nb_, j);
+        }
+        mb = w;
+    }
+    for (int q = 0; q < mb;) {
+        const int m = pb->n;
+        const int c = mb - q < CTI_PAIR_BATCH - m ? mb - q : CTI_PAIR_BATCH - m;
+        for (int t = 0; t < c; t++) {
+            sg[m + t] = sb[q + t];
+            nd[m + t] = nb_;
+            bp[m + t] = pb_;
+        }
+        pb->n = m + c;
+        q += c;
+        if (pb->n > CTI_PAIR_BATCH - BK_BATCH_SLACK)
+            bk_sink_flush(k, pb, o);
+    }
+}
+
+/* A secondary located in the grid: its node, coordinates and cell. */
+typedef struct bk_loc {
+    ct_idx node;
+    ct_real X, Y, Z;
+    ct_idx ic[3];
+} bk_loc;
+
+/* bk_locate's answer for a node outside the grid (no error: it pairs with
+ * nothing). */
+enum { BK_OUTSIDE = 16 };
+
+/* Locate node `node` (a secondary): 0 and *l filled when it is a valid
+ * node inside the grid; otherwise BK_ERANGE, BK_ENONFINITE or
+ * BK_OUTSIDE. */
+static inline int bk_locate(const ct_real *restrict x, const ct_real *restrict y,
+                            const ct_real *restrict z, ct_idx node, uint32_t nnode,
+                            const bk_grid *g, bk_loc *l)
+{
+    if ((uint32_t)node >= nnode)
+        return BK_ERANGE;
+    const ct_real X = x[node], Y = y[node], Z = z[node];
+    if (!((X - X) + (Y - Y) + (Z - Z) == 0))
+        return BK_ENONFINITE;
+    if (X < g->lo[0] || X > g->hi[0] || Y < g->lo[1] || Y > g->hi[1] || Z < g->lo[2] ||
+        Z > g->hi[2])
+        return BK_OUTSIDE;
+    l->node = node;
+    l->X = X, l->Y = Y, l->Z = Z;
+    l->ic[0] = bk_cell1(X, g->lo[0], g->inv[0], g->n[0] - 1);
+    l->ic[1] = bk_cell1(Y, g->lo[1], g->inv[1], g->n[1] - 1);
+    l->ic[2] = bk_cell1(Z, g->lo[2], g->inv[2], g->n[2] - 1);
+    return 0;
+}
+
 /* Pass 6, secondary order: blocks of consecutive positions; block 0 writes
  * into o[0] (the output's arrays), block b > 0 into o[b]. Also checks the
  * secondaries' indices and coordinates. Returns BK_E* bits. */
@@ -243,7 +350,7 @@ int cti_bucket_query_direct(const bk_state *st, const ct_search_input *in, const
     const ct_real *restrict x = in->x, *restrict y = in->y, *restrict z = in->z;
     const ct_idx *restrict sec = in->sec;
     const ct_idx *restrict start = st->start;
-    const ct_idx nx = g->n[0], ny = g->n[1], nz = g->n[2];
+    const ct_idx nx = g->n[0], ny = g->n[1];
     const ct_idx nsec = in->nsec;
     const uint32_t nnode = (uint32_t)in->nnode;
     bk_ctx k;
@@ -260,27 +367,35 @@ int cti_bucket_query_direct(const bk_state *st, const ct_search_input *in, const
         cti_pair_batch_init(&pb);
         ct_idx lo = (ct_idx)((int64_t)nsec * b / nb);
         ct_idx hi = (ct_idx)((int64_t)nsec * (b + 1) / nb);
+        /* The next secondary, when the pair test below located it in
+         * another cell. */
+        int have = 0;
+        bk_loc nl = {0, 0, 0, 0, {0, 0, 0}};
         for (ct_idx i = lo; i < hi; i++) {
-            const ct_idx node = sec[i];
-            if ((uint32_t)node >= nnode) {
-                err |= BK_ERANGE;
-                continue;
+            bk_loc l;
+            if (have) {
+                l = nl;
+                have = 0;
+            } else {
+                const int r = bk_locate(x, y, z, sec[i], nnode, g, &l);
+                if (r) {
+                    err |= r & ~BK_OUTSIDE;
+                    continue;
+                }
             }
-            const ct_real X = x[node], Y = y[node], Z = z[node];
-            if (!((X - X) + (Y - Y) + (Z - Z) == 0)) {
-                err |= BK_ENONFINITE;
-                continue;
+            const ct_idx node = l.node;
+            const ct_real X = l.X, Y = l.Y, Z = l.Z;
+            const size_t c = ((size_t)l.ic[2] * ny + l.ic[1]) * nx + l.ic[0];
+            const ct_idx e0 = start[c], e1 = start[c + 1];
+            /* Room for every candidate of this cell and the batch's (twice
+             * the cell's when two nodes share it). */
+            int two = 0;
+            if (batch && i + 1 < hi && e1 - e0 <= BK_PAIR_MAX &&
+                !bk_locate(x, y, z, sec[i + 1], nnode, g, &nl)) {
+                two = nl.ic[0] == l.ic[0] && nl.ic[1] == l.ic[1] && nl.ic[2] == l.ic[2];
+                have = !two;
             }
-            if (X < g->lo[0] || X > g->hi[0] || Y < g->lo[1] || Y > g->hi[1] ||
-                Z < g->lo[2] || Z > g->hi[2])
-                continue;
-            ct_idx ix = bk_cell1(X, g->lo[0], g->inv[0], nx - 1);
-            ct_idx iy = bk_cell1(Y, g->lo[1], g->inv[1], ny - 1);
-            ct_idx iz = bk_cell1(Z, g->lo[2], g->inv[2], nz - 1);
-            size_t c = ((size_t)iz * ny + iy) * nx + ix;
-            ct_idx e0 = start[c], e1 = start[c + 1];
-            /* Room for every candidate of this cell and the batch's. */
-            const size_t need = w.n + (size_t)pb.n + (size_t)(e1 - e0);
+            const size_t need = w.n + (size_t)pb.n + (size_t)(1 + two) * (size_t)(e1 - e0);
             /* A block that kept more pairs than the limit: so does the
              * whole search (stop before growing). */
             if (need > w.cap && (int64_t)w.n > st->max_pairs) {
@@ -290,6 +405,12 @@ int cti_bucket_query_direct(const bk_state *st, const ct_search_input *in, const
             if (need > w.cap && cti_bucket_out_grow(&w, need)) {
                 err |= BK_ENOMEM;
                 break;
+            }
+            if (two) {
+                bk_cands_batch2(&k, node, i, bk_fpoint_of(X, Y, Z), nl.node, i + 1,
+                                bk_fpoint_of(nl.X, nl.Y, nl.Z), e0, e1, &pb, &sink);
+                i++;
+                continue;
             }
             if (batch) {
                 bk_cands_batch(&k, node, i, X, Y, Z, e0, e1, &pb, &sink);
@@ -374,10 +495,20 @@ int cti_bucket_query_cells(const bk_state *st, const ct_search_input *in, int nb
             const size_t c = (size_t)ordc[q];
             const ct_idx e0 = start[c], e1 = start[c + 1];
             const size_t s0 = col->len[t];
-            const size_t need = (size_t)pb.n + (size_t)(e1 - e0);
+            /* The cell's next node, if any, is queried with this one. */
+            const int two =
+                batch && q + 1 < hi && (size_t)ordc[q + 1] == c && e1 - e0 <= BK_PAIR_MAX;
+            const size_t need = (size_t)pb.n + (size_t)(1 + two) * (size_t)(e1 - e0);
             if (col->cap[t] - s0 < need && cti_collect_room(col, t, need) != CT_OK) {
                 err |= BK_ENOMEM;
                 break;
+            }
+            if (two) {
+                const ct_idx i2 = ord[q + 1], n2 = sec[i2];
+                bk_cands_batch2(&k, node, i, bk_fpoint_of(x[node], y[node], z[node]), n2, i2,
+                                bk_fpoint_of(x[n2], y[n2], z[n2]), e0, e1, &pb, &sink);
+                q++;
+                continue;
             }
             if (batch) {
                 bk_cands_batch(&k, node, i, x[node], y[node], z[node], e0, e1, &pb, &sink);
