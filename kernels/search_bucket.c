@@ -36,6 +36,8 @@
  *       its segments' records would all be random accesses): the
  *       secondaries counting-sorted by cell, visited with prefetching, and
  *       the collector (pairs.c) restores the secondary order.
+ *     Two nodes of one cell that come one after the other (in either
+ *     order) read the cell's entries and float boxes once for both.
  *     Per candidate: the float pre-test, then CT_FILTER_HULL: the shared
  *     predicate (cti_pair_test_f); CT_FILTER_BOX: the predicate's first
  *     step exactly, its sum of squares, and the predicate itself

@@ -151,3 +151,34 @@ Test(search_bucket, scattered_numbering, .timeout = 120)
     free(t);
     ctt_scene_free(&s);
 }
+
+/* Two nodes of one cell are queried together (bk_cands_batch2): cells of
+ * 36 to 289 entries (across the 256 of its buffer and the batch's 128), a
+ * node's candidates filling the batch more than once, in secondary order,
+ * in cell order (shuffled), and in self contact (own segments left out). */
+Test(search_bucket, two_nodes_of_a_long_cell, .timeout = 120)
+{
+    const int sides[4] = {6, 12, 15, 17};
+    for (int k = 0; k < 4; k++) {
+        const int n = sides[k];
+        for (int shuf = 0; shuf < 2; shuf++) {
+            ctt_scene s;
+            two_plates(&s, n, 0.05, 0, 0.1, 0);
+            if (shuf)
+                shuffle_sec(&s, 7 + (uint64_t)k);
+            ct_search_input in = ctt_scene_input(&s, 0.3, 0.2, 0);
+            for (int64_t cells = 1; cells <= 8; cells *= 8)
+                cr_assert_gt(check_same_cells(&in, cells), 0);
+            ctt_scene_free(&s);
+        }
+        ctt_scene s;
+        two_plates(&s, n, 0.05, 0, 0.1, 0);
+        for (ct_idx i = 0; i < s.nn; i++)
+            s.sec[i] = i;
+        s.nsec = s.nn;
+        ct_search_input in = ctt_scene_input(&s, 0.1, 0.05, 1);
+        for (int64_t cells = 1; cells <= 8; cells *= 8)
+            cr_assert_gt(check_same_cells(&in, cells), 0);
+        ctt_scene_free(&s);
+    }
+}
