@@ -362,6 +362,7 @@ Test(search_bsp, box_filter_matches_direct)
             in.filter = CT_FILTER_BOX;
             snprintf(what, sizeof what, "plates (tri %d, gap %g), box", tri, gaps[g]);
             cr_assert_geq(check_bsp(&in, what), hull, "%s: fewer pairs than the hull", what);
+            ctt_scene_free(&s);
         }
     for (int seed = 1; seed <= (small() ? 6 : 24); seed++) {
         rng_state = 777 + (uint64_t)seed * 104729;
