@@ -25,23 +25,14 @@
  * The arguments are clamped first to the interval past whose ends the
  * result is +inf or 0 anyway, a NaN computed as 0 and returned as itself.
  *
- * cti_log1p(y) = log(1 + y), the same way: u = 1 + y = 2^e m with m in
- * [sqrt(2)/2, sqrt(2)) read from u's bits (e made a floating-point number
- * by the bits of 1.5 2^52 + e, again no conversion), f = m - 1 (exact),
- * s = f / (2 + f), log(1 + f) = f - (f^2/2 - s (f^2/2 + R)), R = 2 s^2/3 +
- * 2 s^4/5 + ... (the series of 2 atanh s, whose terms past the first are
- * R; to s^22 in double, s^12 in single, where the next is below the
- * rounding at |s| = 0.1716): f enters exactly and the rest is a small
- * correction. The rounding of u = 1 + y is corrected to first order by
- * (y - (u - 1)) / u. e ln2 is added in two parts as in cti_exp.
- *
  * Every operation is one a vector lane computes with the same rounding as
  * a scalar (CTI_FMA is fused or not in both): a pair's value has the same
- * bits whichever path computes it, so ct_friction_mu and ct_friction_mu1,
- * ct_penalty_type7's energies and ct_type7_energy, agree bit for bit.
- * Accuracy against the long double functions, and the edges (overflow,
- * underflow, subnormal results, infinities, NaN, -1) are measured by
- * tests/test_math_vec.c.
+ * bits whichever path computes it, so ct_friction_mu and ct_friction_mu1
+ * agree bit for bit. Accuracy against expl, and the edges (overflow,
+ * underflow, subnormal results, infinities, NaN) are measured by
+ * tests/test_math_vec.c. (A log1p written the same way made TYPE7's
+ * energy a vector loop, slower on the benchmark's pairs than the scalar
+ * loop over the pairs in contact: DESIGN-CHANGES §7.)
  */
 #ifndef CT_MATH_VEC_H
 #define CT_MATH_VEC_H
@@ -84,36 +75,6 @@ static inline float cti_exp(float x)
     return x == x ? y : x;
 }
 
-static inline float cti_log1p(float y)
-{
-    float ys = y > -1.0f ? y : 0.0f; /* y <= -1, NaN, +inf: computed on 0 */
-    ys = ys <= FLT_MAX ? ys : 0.0f;
-    float u = 1.0f + ys;
-    float c = (ys - (u - 1.0f)) / u; /* u's rounding, to first order */
-    uint32_t b, mb, eb;
-    memcpy(&b, &u, sizeof b);
-    mb = (b & UINT32_C(0x007FFFFF)) | UINT32_C(0x3F800000);
-    eb = UINT32_C(0x4B400000) + (b >> 23); /* 1.5 2^23 + the biased exponent */
-    float m, e;
-    memcpy(&m, &mb, sizeof m);
-    memcpy(&e, &eb, sizeof e);
-    e = (e - 0x1.8p23f) - 127.0f;
-    e = m > 0x1.6a09e6p+0f ? e + 1.0f : e; /* m above sqrt(2): m / 2 */
-    m = m > 0x1.6a09e6p+0f ? 0.5f * m : m;
-    float f = m - 1.0f, s = f / (2.0f + f), z = s * s, hf = 0.5f * f * f;
-    float r = 2.0f / 13;
-    r = CTI_FMA(r, z, 2.0f / 11);
-    r = CTI_FMA(r, z, 2.0f / 9);
-    r = CTI_FMA(r, z, 2.0f / 7);
-    r = CTI_FMA(r, z, 2.0f / 5);
-    r = CTI_FMA(r, z, 2.0f / 3);
-    r *= z;
-    float lo = CTI_FMA(e, 0x1.0bfbe8p-15f, c);
-    float res = CTI_FMA(e, 0x1.62ep-1f, -((hf - CTI_FMA(s, hf + r, lo)) - f));
-    res = y > -1.0f ? res : (y == -1.0f ? -INFINITY : NAN);
-    res = y == 0.0f ? y : res; /* -0 stays -0 */
-    return y <= FLT_MAX ? res : y; /* +inf, and NaN as itself */
-}
 
 #else
 
@@ -152,41 +113,6 @@ static inline double cti_exp(double x)
     return x == x ? y : x;
 }
 
-static inline double cti_log1p(double y)
-{
-    double ys = y > -1.0 ? y : 0.0; /* y <= -1, NaN, +inf: computed on 0 */
-    ys = ys <= DBL_MAX ? ys : 0.0;
-    double u = 1.0 + ys;
-    double c = (ys - (u - 1.0)) / u; /* u's rounding, to first order */
-    uint64_t b, mb, eb;
-    memcpy(&b, &u, sizeof b);
-    mb = (b & UINT64_C(0x000FFFFFFFFFFFFF)) | UINT64_C(0x3FF0000000000000);
-    eb = UINT64_C(0x4338000000000000) + (b >> 52); /* 1.5 2^52 + the biased exponent */
-    double m, e;
-    memcpy(&m, &mb, sizeof m);
-    memcpy(&e, &eb, sizeof e);
-    e = (e - 0x1.8p52) - 1023.0;
-    e = m > 0x1.6a09e667f3bcdp+0 ? e + 1.0 : e; /* m above sqrt(2): m / 2 */
-    m = m > 0x1.6a09e667f3bcdp+0 ? 0.5 * m : m;
-    double f = m - 1.0, s = f / (2.0 + f), z = s * s, hf = 0.5 * f * f;
-    double r = 2.0 / 23;
-    r = CTI_FMA(r, z, 2.0 / 21);
-    r = CTI_FMA(r, z, 2.0 / 19);
-    r = CTI_FMA(r, z, 2.0 / 17);
-    r = CTI_FMA(r, z, 2.0 / 15);
-    r = CTI_FMA(r, z, 2.0 / 13);
-    r = CTI_FMA(r, z, 2.0 / 11);
-    r = CTI_FMA(r, z, 2.0 / 9);
-    r = CTI_FMA(r, z, 2.0 / 7);
-    r = CTI_FMA(r, z, 2.0 / 5);
-    r = CTI_FMA(r, z, 2.0 / 3);
-    r *= z;
-    double lo = CTI_FMA(e, 0x1.a39ef35793c76p-33, c);
-    double res = CTI_FMA(e, 0x1.62e42fee00000p-1, -((hf - CTI_FMA(s, hf + r, lo)) - f));
-    res = y > -1.0 ? res : (y == -1.0 ? -INFINITY : NAN);
-    res = y == 0.0 ? y : res; /* -0 stays -0 */
-    return y <= DBL_MAX ? res : y; /* +inf, and NaN as itself */
-}
 
 #endif
 

@@ -4,7 +4,6 @@
  * law, the TYPE6 user curve, normal damping, and the fused linear fast path
  * (DESIGN.md section 7). The formulas are documented in ct_force.h.
  */
-#include "math_vec.h"
 #include "pair_force_body.h"
 
 /* Blocks of the deterministic sums (fixed: the order depends on n only). */
@@ -166,44 +165,32 @@ int ct_initial_penetration(ct_idx npair, int mode, const ct_real *p_init, ct_rea
 /* ---- TYPE7 ---------------------------------------------------------------- */
 
 /* r - 1 - ln r with r = 1 - x, 0 <= x < 1: the series sum_{n>=2} x^n/n for
- * small x (the closed form cancels there), -x - log1p(-x) otherwise. Both
- * are computed and one selected: no branch, so the energy loop vectorises
- * (cti_log1p: math_vec.h). */
+ * small x (the closed form cancels there), -x - log1p(-x) otherwise. */
 static inline ct_real cti_type7_series(ct_real x)
 {
-    /* sum_{n=2}^{15} x^(n-2) / n in Horner form, unrolled by hand: gcc
-     * left the loop form in place and then would not vectorise the energy
-     * loop around it. */
     ct_real s = (ct_real)(1.0 / 15);
-    s = (ct_real)1 / 14 + x * s;
-    s = (ct_real)1 / 13 + x * s;
-    s = (ct_real)1 / 12 + x * s;
-    s = (ct_real)1 / 11 + x * s;
-    s = (ct_real)1 / 10 + x * s;
-    s = (ct_real)1 / 9 + x * s;
-    s = (ct_real)1 / 8 + x * s;
-    s = (ct_real)1 / 7 + x * s;
-    s = (ct_real)1 / 6 + x * s;
-    s = (ct_real)1 / 5 + x * s;
-    s = (ct_real)1 / 4 + x * s;
-    s = (ct_real)1 / 3 + x * s;
-    return (ct_real)1 / 2 + x * s;
+    for (int k = 14; k >= 2; k--)
+        s = (ct_real)1 / (ct_real)k + x * s;
+    return s;
+}
+
+static inline ct_real cti_type7_phi(ct_real x)
+{
+    if (x < (ct_real)(1.0 / 32))
+        return x * x * cti_type7_series(x);
+    return -x - CTI_LOG1P(-x);
 }
 
 /* K0 g^2 phi(x), x = p / g < 1 - RMIN: as K0 g g phi(x), and where g^2
  * overflows (g above about 1.3e154, single 1.8e19) while the energy does
  * not, as K0 p^2 s(x) (phi(x) = x^2 s(x) below x = 1/32; above it p is as
  * large as g / 32 and the energy overflows itself). */
-static inline __attribute__((always_inline)) ct_real cti_type7_e(ct_real K0, ct_real g,
-                                                                 ct_real p, ct_real x)
+static inline ct_real cti_type7_e(ct_real K0, ct_real g, ct_real p, ct_real x)
 {
-    /* Selects on floating compares only: with an int flag and &&, gcc 12
-     * made a select on a bool it cannot vectorise (pair_force_body.h). */
-    ct_real ser = cti_type7_series(x);
-    ct_real phi = x < (ct_real)(1.0 / 32) ? x * x * ser : -x - cti_log1p(-x);
-    ct_real e = K0 * g * g * phi;
-    ct_real alt = x < (ct_real)(1.0 / 32) ? K0 * (p * p) * ser : e;
-    return e <= CTI_HUGE ? e : alt;
+    ct_real e = K0 * g * g * cti_type7_phi(x);
+    if (!(e <= CTI_HUGE) && x < (ct_real)(1.0 / 32))
+        e = K0 * (p * p) * cti_type7_series(x);
+    return e;
 }
 
 ct_real ct_type7_energy(ct_real K0, ct_real g, ct_real p)
@@ -218,16 +205,16 @@ ct_real ct_type7_energy(ct_real K0, ct_real g, ct_real p)
      * point is the work of the force the kernel gives. */
     ct_real fmax = K0 * g * xc / ((ct_real)1 - xc);
     ct_real xe = x < 1 ? x : 1;
-    return cti_type7_e(K0, g, g * xc, xc) + fmax * g * (xe - xc);
+    return K0 * g * g * cti_type7_phi(xc) + fmax * g * (xe - xc);
 }
 
 /* One block [i0, i1) of ct_penalty_type7, inlined with constant has_*
  * flags: force, tangent and flag in a branch-free SIMD loop; then, when
- * asked for, the energy in a second one (cti_type7_e, the same bits as
- * ct_type7_energy); the pairs out of contact get an exact zero, as the
- * formula gives them. Returns 1 when a checked value of the block is NaN or
- * infinite (ct_internal.h): p or g infinite, K0 NaN or infinite, or an
- * output. */
+ * asked for, the energy in a scalar loop (gcc cannot vectorise its series
+ * and log1p) over the pairs in contact only: the others' energy is an
+ * exact zero, as the formula gives them. Returns 1 when a checked value of
+ * the block is NaN or infinite (ct_internal.h): p or g infinite, K0 NaN or
+ * infinite, or an output. */
 static inline __attribute__((always_inline)) int
 cti_type7_block(int64_t i0, int64_t i1, const ct_real *restrict p, const ct_real *restrict g,
                 const ct_real *restrict K0, ct_real *restrict fel, ct_real *restrict ktan,
@@ -265,23 +252,22 @@ cti_type7_block(int64_t i0, int64_t i1, const ct_real *restrict p, const ct_real
         bad += nf;
     }
     /* The energy is not checked (from finite inputs it is finite or +inf:
-     * ct_force.h); its loop is left out after a failure. */
+     * ct_force.h); its scalar loop is left out after a failure. */
     int nonfinite = !(bad == 0);
     if (!has_e || nonfinite)
         return nonfinite;
-#pragma omp simd
     for (int64_t i = i0; i < i1; i++) {
         ct_real gi = g[i], k0 = K0[i], q = p[i];
-        ct_real ok = gi > 0 ? (ct_real)1 : 0;
-        ok = k0 > 0 ? ok : 0;
-        ok = q > 0 ? ok : 0;
-        ct_real gs = ok > 0 ? gi : 1, ks = ok > 0 ? k0 : 0, qs = ok > 0 ? q : 0;
-        ct_real x = qs / gs;
+        if (!(gi > 0 && k0 > 0 && q > 0)) {
+            energy[i] = 0;
+            continue;
+        }
+        ct_real x = q / gi;
         ct_real xs = x >= xc ? xc : x;
-        ct_real e = cti_type7_e(ks, gs, qs, xs);
-        ct_real past = fel[i] * gs * ((x < 1 ? x : 1) - xc);
-        e = x >= xc ? e + past : e;
-        energy[i] = ok > 0 ? e : 0;
+        ct_real e = cti_type7_e(k0, gi, q, xs);
+        if (x >= xc)
+            e += fel[i] * gi * ((x < 1 ? x : 1) - xc);
+        energy[i] = e;
     }
     return 0;
 }

@@ -1,12 +1,11 @@
 /*
- * test_math_vec.c -- the kernels' vector exp and log1p (kernels/math_vec.h)
- * against the long double expl and log1pl: within one unit in the last
- * place of the result everywhere (faithful rounding: the result is one of
- * the two floating-point numbers around the true value), subnormal results
- * included; the edges (overflow, underflow, infinities, NaN, -1, -0); and
- * the kernels that use them (the friction laws, TYPE7's energy), whose
- * array forms (vector loops) must give the same bits as the one-pair forms
- * for every pair.
+ * test_math_vec.c -- the kernels' vector exp (kernels/math_vec.h) against
+ * the long double expl: within one unit in the last place of the result
+ * everywhere (faithful rounding: the result is one of the two
+ * floating-point numbers around the true value), subnormal results
+ * included; the edges (overflow, underflow, infinities, NaN, -0); the
+ * friction laws that use it, whose array form (a vector loop) must give
+ * the same bits as the one-pair form for every pair.
  */
 #include <float.h>
 #include <math.h>
@@ -118,60 +117,6 @@ Test(math_vec, exp_edges)
     }
 }
 
-Test(math_vec, log1p_within_one_ulp_of_log1pl)
-{
-    /* (-1, 0], (-1, 3), +-2^-60 .. 2^60 and 2^0 .. 2^200 (2^0 .. 2^100 in
-     * single): where u = 1 + y rounds, where the reduction's m crosses
-     * sqrt(2), tiny arguments (log1p y = y) and large ones. */
-    uint64_t s = 0x2545f4914f6cdd1du;
-    long double worst = 0;
-    double wx = 0;
-    for (long i = 0; i < 2000000; i++) {
-        uint64_t b = xorshift(&s);
-        double f = (double)(b >> 11) * 0x1p-53;
-        double y;
-        switch (i % 4) {
-        case 0: y = -f; break;
-        case 1: y = 4 * f - 2 > -1 ? 4 * f - 2 : -f / 2; break;
-        case 2: y = ldexp(f, (int)(b % 120) - 60) * (b >> 8 & 1 ? 1 : -1); break;
-        default: y = ldexp(1 + f, (int)(b % (sizeof(ct_real) == 4 ? 100 : 200)));
-        }
-        ct_real x = (ct_real)y;
-        if (!(x > -1))
-            continue;
-        long double e = ulps(cti_log1p(x), log1pl((long double)x));
-        if (e > worst) {
-            worst = e;
-            wx = (double)x;
-        }
-    }
-    cr_log_info("cti_log1p: worst %.3Lf ulp at y = %.17g", worst, wx);
-    cr_assert_lt(worst, 1.0L, "%.3Lf ulp at y = %.17g", worst, wx);
-}
-
-Test(math_vec, log1p_edges)
-{
-    cr_assert_eq(cti_log1p(0), 0);
-    cr_assert(signbit(cti_log1p(-(ct_real)0)), "log1p(-0) is -0");
-    cr_assert_eq(cti_log1p(-1), -(ct_real)INFINITY);
-    cr_assert(isnan(cti_log1p(-2)));
-    cr_assert(isnan(cti_log1p(-(ct_real)INFINITY)));
-    cr_assert(isnan(cti_log1p((ct_real)NAN)));
-    cr_assert_eq(cti_log1p((ct_real)INFINITY), (ct_real)INFINITY);
-    /* The largest finite argument, a tiny one (the result is the argument)
-     * and a subnormal one. */
-    cr_assert(isfinite(cti_log1p(CTI_REAL_MAX)));
-    cr_assert_eq(cti_log1p((ct_real)1e-30), (ct_real)1e-30);
-    cr_assert_eq(cti_log1p(EXP_MIN / 4), EXP_MIN / 4);
-    /* exp and log1p invert each other within a few ulps. */
-    for (int i = 1; i < 300; i++) {
-        ct_real x = (ct_real)i * (ct_real)0.0123;
-        ct_real back = cti_log1p(cti_exp(x) - 1);
-        cr_assert_leq(CTI_FABS(back - x), 4 * CTI_EPS * x + 2 * CTI_EPS, "x = %g: %g",
-                      (double)x, (double)back);
-    }
-}
-
 Test(math_vec, friction_laws_array_equals_one_pair)
 {
     /* 1037 pairs: whole vector iterations, a remainder and blocks of the
@@ -213,45 +158,6 @@ Test(math_vec, friction_laws_array_equals_one_pair)
                 cr_assert_leq(fabs((double)mu[i] - w), 8 * CTI_EPS * fabs(w) + 1e-300,
                               "law %d pair %d: %.17g against %.17g", law, i, (double)mu[i], w);
             }
-        }
-    }
-}
-
-Test(math_vec, type7_energy_array_equals_one_pair)
-{
-    /* TYPE7's energies from the array kernel (a vector loop: the series
-     * below x = p/g = 1/32, -x - log1p(-x) above, selected per lane) and
-     * from ct_type7_energy (one pair) for 1037 pairs: x over (0, 1.2),
-     * both sides of 1/32 and of the deactivation point, pairs out of
-     * contact; gaps over twelve decades. The same bits below the
-     * deactivation point; past it the kernel adds its own force times the
-     * rest of the way, within a few roundings of the one-pair form. */
-    enum { N = 1037 };
-    static ct_real p[N], g[N], k0[N], fel[N], e[N];
-    uint64_t s = 777;
-    for (int i = 0; i < N; i++) {
-        g[i] = (ct_real)ldexp(1 + (double)(xorshift(&s) % 1000) / 1000.0,
-                              (int)(xorshift(&s) % 40) - 30);
-        k0[i] = (ct_real)ldexp(1, (int)(xorshift(&s) % 30));
-        double x = i % 3 == 0 ? (double)(xorshift(&s) % 1000) / 1000.0 * 1.2
-                              : (double)(xorshift(&s) % 1000) / 1000.0 / 16;
-        p[i] = (ct_real)(x * (double)g[i]);
-        if (i % 11 == 0)
-            p[i] = -p[i];
-    }
-    const ct_real xc = 1 - (ct_real)CT_TYPE7_RMIN;
-    for (int t = 1; t <= 2; t++) {
-        omp_set_num_threads(t);
-        cr_assert_eq(ct_penalty_type7(N, p, g, k0, fel, NULL, e, NULL), CT_OK);
-        for (int i = 0; i < N; i++) {
-            ct_real one = ct_type7_energy(k0[i], g[i], p[i]);
-            if (p[i] / g[i] < xc)
-                cr_assert_eq(e[i], one, "pair %d: x = %g: %a against %a", i,
-                             (double)(p[i] / g[i]), (double)e[i], (double)one);
-            else
-                cr_assert_leq(CTI_FABS(e[i] - one), 8 * CTI_EPS * one, "pair %d", i);
-            if (!(p[i] > 0))
-                cr_assert_eq(e[i], 0);
         }
     }
 }

@@ -529,3 +529,52 @@ Test(penalty, relative_velocity_hand_and_rigid_rotation)
         ct_free(S[j]);
     ct_free(vnr);
 }
+
+/* A 64-bit xorshift step. */
+static uint64_t t7_rand(uint64_t *s)
+{
+    *s ^= *s << 13;
+    *s ^= *s >> 7;
+    *s ^= *s << 17;
+    return *s;
+}
+
+#define T7_EPS (sizeof(ct_real) == 4 ? 1.1920929e-07 : 2.220446049250313e-16)
+
+Test(penalty, type7_energy_array_equals_one_pair)
+{
+    /* TYPE7's energies from the array kernel and from ct_type7_energy
+     * (one pair) for 1037 pairs: x over (0, 1.2),
+     * both sides of 1/32 and of the deactivation point, pairs out of
+     * contact; gaps over twelve decades. The same bits below the
+     * deactivation point; past it the kernel adds its own force times the
+     * rest of the way, within a few roundings of the one-pair form. */
+    enum { N = 1037 };
+    static ct_real p[N], g[N], k0[N], fel[N], e[N];
+    uint64_t s = 777;
+    for (int i = 0; i < N; i++) {
+        g[i] = (ct_real)ldexp(1 + (double)(t7_rand(&s) % 1000) / 1000.0,
+                              (int)(t7_rand(&s) % 40) - 30);
+        k0[i] = (ct_real)ldexp(1, (int)(t7_rand(&s) % 30));
+        double x = i % 3 == 0 ? (double)(t7_rand(&s) % 1000) / 1000.0 * 1.2
+                              : (double)(t7_rand(&s) % 1000) / 1000.0 / 16;
+        p[i] = (ct_real)(x * (double)g[i]);
+        if (i % 11 == 0)
+            p[i] = -p[i];
+    }
+    const ct_real xc = 1 - (ct_real)CT_TYPE7_RMIN;
+    for (int t = 1; t <= 2; t++) {
+        omp_set_num_threads(t);
+        cr_assert_eq(ct_penalty_type7(N, p, g, k0, fel, NULL, e, NULL), CT_OK);
+        for (int i = 0; i < N; i++) {
+            ct_real one = ct_type7_energy(k0[i], g[i], p[i]);
+            if (p[i] / g[i] < xc)
+                cr_assert_eq(e[i], one, "pair %d: x = %g: %a against %a", i,
+                             (double)(p[i] / g[i]), (double)e[i], (double)one);
+            else
+                cr_assert_leq(fabs((double)(e[i] - one)), 8 * T7_EPS * (double)one, "pair %d", i);
+            if (!(p[i] > 0))
+                cr_assert_eq(e[i], 0);
+        }
+    }
+}
