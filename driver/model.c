@@ -6,7 +6,6 @@
  * masses in model_parts.c.
  */
 #include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -39,16 +38,6 @@ void cti_vec_free(cti_vec *v)
     memset(v, 0, sizeof *v);
 }
 
-int cti_model_err(char *err, size_t len, int code, const char *fmt, ...)
-{
-    if (err && len) {
-        va_list ap;
-        va_start(ap, fmt);
-        vsnprintf(err, len, fmt, ap);
-        va_end(ap);
-    }
-    return code;
-}
 
 /* ---- Collecting the meshes ------------------------------------------------ */
 
@@ -79,10 +68,10 @@ static int collect_generate(cti_mcollect *c, const ctd_scene *sc, unsigned i, ch
     cti_gen gen;
     int rc = cti_generate(&gen, g);
     if (rc != CT_OK)
-        return cti_model_err(err, len, rc, "%s:%d: mesh[%u]: cannot generate the %s mesh: %s",
+        return ctd_errf(err, len, rc, "%s:%d: mesh[%u]: cannot generate the %s mesh: %s",
                              sc->path, me->line, i, g->kind_name, ct_strerror(rc));
     if (me->nnode >= 0 && gen.mesh.nodes.n != me->nnode) {
-        rc = cti_model_err(err, len, CT_ERR_ARG,
+        rc = ctd_errf(err, len, CT_ERR_ARG,
                            "%s:%d: mesh[%u]: the %s generator made %d nodes, the scene's "
                            "numbering expects %lld", sc->path, me->line, i, g->kind_name,
                            gen.mesh.nodes.n, (long long)me->nnode);
@@ -115,7 +104,7 @@ static int collect_generate(cti_mcollect *c, const ctd_scene *sc, unsigned i, ch
         }
     }
     if (rc)
-        rc = cti_model_err(err, len, rc, "out of memory");
+        rc = ctd_errf(err, len, rc, "out of memory");
 done:
     cti_gen_destroy(&gen);
     return rc;
@@ -143,7 +132,7 @@ static int collect_import(cti_mcollect *c, const ctd_scene *sc, unsigned i, char
         h.deck = b;
         rc = cti_vec_push(&c->hex, &h, sizeof h);
     }
-    return rc ? cti_model_err(err, len, rc, "out of memory") : CT_OK;
+    return rc ? ctd_errf(err, len, rc, "out of memory") : CT_OK;
 }
 
 /* ---- Building ---------------------------------------------------------------- */
@@ -188,12 +177,12 @@ static int build_segments(cti_mbuild *b)
     for (unsigned p = 0; p < sc->parts_count; p++)
         nseg += b->faces[p].n;
     if (nseg > INT32_MAX / 2)
-        return cti_model_err(b->err, b->len, CT_ERR_TOOBIG, "too many segments");
+        return ctd_errf(b->err, b->len, CT_ERR_TOOBIG, "too many segments");
     /* The mesh holds the nodes already: move them into a new one. */
     ct_mesh nm;
     int rc = ct_mesh_init(&nm, 0, (ct_idx)nseg);
     if (rc)
-        return cti_model_err(b->err, b->len, rc, "out of memory");
+        return ctd_errf(b->err, b->len, rc, "out of memory");
     ct_nodes keep = m->mesh.nodes;
     memset(&m->mesh.nodes, 0, sizeof m->mesh.nodes);
     ct_mesh_destroy(&m->mesh);
@@ -211,7 +200,7 @@ static int build_segments(cti_mbuild *b)
     m->seg_set = calloc(ns, sizeof *m->seg_set);
     if (!m->seg_part || !m->seg_src || !m->seg_shell || !m->seg_thick || !m->seg_deck ||
         !m->seg_mesh || !m->seg_brick || !m->seg_set)
-        return cti_model_err(b->err, b->len, CT_ERR_NOMEM, "out of memory");
+        return ctd_errf(b->err, b->len, CT_ERR_NOMEM, "out of memory");
     ct_idx k = 0;
     for (size_t e = 0; e < b->c.quad.n; e++, k++) {
         const ctd_scene_part *pt = ctd_scene_part_by_id(sc, quad[e].part);
@@ -280,7 +269,7 @@ static int build_cells(cti_mbuild *b)
     m->cell_part = malloc(sizeof(int32_t) * (nh + nq + nl + 1));
     if (!m->l1 || !m->l2 || !m->line_part || !m->cell_type || !m->cell_off || !m->cell_node ||
         !m->cell_part)
-        return cti_model_err(b->err, b->len, CT_ERR_NOMEM, "out of memory");
+        return ctd_errf(b->err, b->len, CT_ERR_NOMEM, "out of memory");
     ct_idx c = 0, o = 0;
     m->cell_off[0] = 0;
     for (size_t e = 0; e < nh; e++, c++) {
@@ -336,7 +325,7 @@ static int build_bcs(cti_mbuild *b)
          * without it. As loads.c tells an empty load. */
         if (ns.n == 0) {
             ct_nodeset_destroy(&ns);
-            return cti_model_err(b->err, b->len, CT_ERR_ARG,
+            return ctd_errf(b->err, b->len, CT_ERR_ARG,
                                  "%s:%d: boundary[%u].nodes: selects no node (kind %s)",
                                  sc->path, bc->line, i, bc->kind_name);
         }
@@ -371,7 +360,7 @@ static int build_bodies(cti_mbuild *b)
     if (!m->body || !list || !mark) {
         free(list);
         free(mark);
-        return cti_model_err(b->err, b->len, CT_ERR_NOMEM, "out of memory");
+        return ctd_errf(b->err, b->len, CT_ERR_NOMEM, "out of memory");
     }
     int rc = CT_OK;
     for (unsigned p = 0; p < sc->parts_count && !rc; p++) {
@@ -388,7 +377,7 @@ static int build_bodies(cti_mbuild *b)
         for (ct_idx i = 0; i < nn; i++)
             if (mark[i]) {
                 if (m->node_body[i] >= 0) {
-                    rc = cti_model_err(b->err, b->len, CT_ERR_ARG,
+                    rc = ctd_errf(b->err, b->len, CT_ERR_ARG,
                                        "%s:%d: parts[%u]: node %lld belongs to two rigid parts "
                                        "(%lld and %lld); expected each node in one rigid body "
                                        "at most", sc->path, pt->line, p, (long long)m->node_id[i],
@@ -414,7 +403,7 @@ static int build_bodies(cti_mbuild *b)
         for (ct_idx k = 0; k < n; k++)
             mass += nd->m[list[k]];
         if (!(mass > 0)) {
-            rc = cti_model_err(b->err, b->len, CT_ERR_ARG,
+            rc = ctd_errf(b->err, b->len, CT_ERR_ARG,
                                "%s:%d: parts[%u].material.rho: rigid part %lld has a mass of %g "
                                "(rho %g is too small for its elements); expected a rho that "
                                "gives its elements a mass > 0", sc->path, pt->line, p,
@@ -424,7 +413,7 @@ static int build_bodies(cti_mbuild *b)
         rc = ctd_rigid_init(&bd->rigid, n, list, nn, nd->m, nd->x, nd->y, nd->z, nd->vx, nd->vy,
                             nd->vz);
         if (rc) {
-            rc = cti_model_err(b->err, b->len, rc, "%s:%d: parts[%u]: cannot make the rigid "
+            rc = ctd_errf(b->err, b->len, rc, "%s:%d: parts[%u]: cannot make the rigid "
                                "body of part %lld: %s", sc->path, pt->line, p,
                                (long long)pt->id, ct_strerror(rc));
             break;
@@ -464,20 +453,20 @@ int ctd_model_build(ctd_model *m, const ctd_scene *sc, char *err, size_t errlen)
     int rc = CT_OK;
     m->mesh_node_off = calloc(sc->mesh_count + 1, sizeof *m->mesh_node_off);
     if (!m->mesh_node_off)
-        rc = cti_model_err(err, errlen, CT_ERR_NOMEM, "out of memory");
+        rc = ctd_errf(err, errlen, CT_ERR_NOMEM, "out of memory");
     for (unsigned i = 0; i < sc->mesh_count && !rc; i++) {
         m->mesh_node_off[i] = (ct_idx)b.c.x.n;
         rc = sc->mesh[i].generate ? collect_generate(&b.c, sc, i, err, errlen)
                                   : collect_import(&b.c, sc, i, err, errlen);
         if (!rc && b.c.x.n > (size_t)INT32_MAX / 2)
-            rc = cti_model_err(err, errlen, CT_ERR_TOOBIG, "too many nodes");
+            rc = ctd_errf(err, errlen, CT_ERR_TOOBIG, "too many nodes");
     }
     if (rc)
         goto fail;
     ct_idx nn = (ct_idx)b.c.x.n;
     m->mesh_node_off[sc->mesh_count] = nn;
     if ((rc = ct_mesh_init(&m->mesh, nn, 0)) != CT_OK) {
-        rc = cti_model_err(err, errlen, rc, "out of memory");
+        rc = ctd_errf(err, errlen, rc, "out of memory");
         goto fail;
     }
     const double *cx = b.c.x.data, *cy = b.c.y.data, *cz = b.c.z.data;
@@ -494,7 +483,7 @@ int ctd_model_build(ctd_model *m, const ctd_scene *sc, char *err, size_t errlen)
         m->bc_v[d] = ct_calloc((size_t)nn + 1, sizeof(ct_real));
     if (!m->node_id || !m->node_part || !m->node_body || !m->bc_mask || !m->bc_v[0] ||
         !m->bc_v[1] || !m->bc_v[2]) {
-        rc = cti_model_err(err, errlen, CT_ERR_NOMEM, "out of memory");
+        rc = ctd_errf(err, errlen, CT_ERR_NOMEM, "out of memory");
         goto fail;
     }
     if (nn)
@@ -513,14 +502,14 @@ int ctd_model_build(ctd_model *m, const ctd_scene *sc, char *err, size_t errlen)
                 p++;
             const ctd_scene_part *pt = p < sc->parts_count ? &sc->parts[p] : NULL;
             if (pt && pt->element != CTD_ELEM_SPRING)
-                rc = cti_model_err(err, errlen, CT_ERR_ARG,
+                rc = ctd_errf(err, errlen, CT_ERR_ARG,
                                    "%s:%d: parts[%u].material.rho: node %lld of part %lld has "
                                    "a mass of %g (rho %g is too small for its elements)",
                                    sc->path, pt->line, p, (long long)m->node_id[i],
                                    (long long)pt->id, (double)m->mesh.nodes.m[i],
                                    pt->material.rho);
             else
-                rc = cti_model_err(err, errlen, CT_ERR_ARG,
+                rc = ctd_errf(err, errlen, CT_ERR_ARG,
                                    "%s:%d: parts[%u]: node %lld (part %d) has no mass: only "
                                    "springs attach it (expected a truss, brick, shell or rigid "
                                    "part on it)", sc->path, pt ? pt->line : 0, p,

@@ -9,6 +9,7 @@
 #include <stddef.h>
 
 #include "contact.h"
+#include "errf.h"
 #include "import_radioss.h"
 #include "model.h"
 #include "scene.h"
@@ -21,10 +22,6 @@ typedef struct cti_vec {
 
 int cti_vec_push(cti_vec *v, const void *item, size_t size);
 void cti_vec_free(cti_vec *v);
-
-/* Write a message into err (if not NULL) and return code. */
-int cti_model_err(char *err, size_t len, int code, const char *fmt, ...)
-    __attribute__((format(printf, 4, 5)));
 
 /* One generated mesh entry: nodes (mesh.nodes) and either surface segments
  * (mesh.n1..n4), bricks (hex8, 8 per element, ctd_block's order) or lines

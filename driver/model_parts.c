@@ -209,7 +209,7 @@ static int parts_build(cti_mbuild *b, part_index *ix)
     b->faces = calloc(sc->parts_count + 1, sizeof *b->faces);
     b->face_set = calloc(sc->parts_count + 1, sizeof *b->face_set);
     if (!m->set || !b->faces || !b->face_set)
-        return cti_model_err(b->err, b->len, CT_ERR_NOMEM, "out of memory");
+        return ctd_errf(b->err, b->len, CT_ERR_NOMEM, "out of memory");
     int rc = CT_OK;
     for (unsigned p = 0; p < sc->parts_count && !rc; p++) {
         const ctd_scene_part *pt = &sc->parts[p];
@@ -229,7 +229,7 @@ static int parts_build(cti_mbuild *b, part_index *ix)
         else if ((el == CTD_ELEM_TRUSS || el == CTD_ELEM_SPRING) && nh + nq)
             bad = nh ? "bricks" : "shells";
         if (bad)
-            return cti_model_err(b->err, b->len, CT_ERR_ARG,
+            return ctd_errf(b->err, b->len, CT_ERR_ARG,
                                  "%s:%d: parts[%u]: part %lld has element %s but its meshes "
                                  "give it %s (expected %s elements only)", sc->path, pt->line,
                                  p, (long long)pt->id, elem_name(el), bad, elem_name(el));
@@ -238,7 +238,7 @@ static int parts_build(cti_mbuild *b, part_index *ix)
         ct_idx *conn = malloc(sizeof(ct_idx) * (size_t)(8 * (int64_t)nh + 4 * (int64_t)nq +
                                                         2 * (int64_t)nl + 1));
         if (!conn)
-            return cti_model_err(b->err, b->len, CT_ERR_NOMEM, "out of memory");
+            return ctd_errf(b->err, b->len, CT_ERR_NOMEM, "out of memory");
         ct_idx *hc = conn, *qc = conn + 8 * (int64_t)nh, *lc = qc + 4 * (int64_t)nq;
         for (ct_idx k = 0; k < nh; k++)
             memcpy(hc + 8 * (int64_t)k, hex[ih[k]].n, 8 * sizeof(ct_idx));
@@ -268,14 +268,14 @@ static int parts_build(cti_mbuild *b, part_index *ix)
             }
             if (nq && !(pt->thickness > 0)) {
                 free(conn);
-                return cti_model_err(b->err, b->len, CT_ERR_ARG,
+                return ctd_errf(b->err, b->len, CT_ERR_ARG,
                                      "%s:%d: parts[%u].thickness: rigid part %lld has surface "
                                      "elements, whose mass is rho A t: expected a thickness > 0",
                                      sc->path, pt->line, p, (long long)pt->id);
             }
             if (nl && !(pt->area > 0)) {
                 free(conn);
-                return cti_model_err(b->err, b->len, CT_ERR_ARG,
+                return ctd_errf(b->err, b->len, CT_ERR_ARG,
                                      "%s:%d: parts[%u].area: rigid part %lld has line elements, "
                                      "whose mass is rho A L: expected an area > 0", sc->path,
                                      pt->line, p, (long long)pt->id);
@@ -315,7 +315,7 @@ static int parts_build(cti_mbuild *b, part_index *ix)
             ct_idx *n1 = malloc(sizeof(ct_idx) * 4 * (size_t)nq);
             if (!n1) {
                 free(conn);
-                return cti_model_err(b->err, b->len, CT_ERR_NOMEM, "out of memory");
+                return ctd_errf(b->err, b->len, CT_ERR_NOMEM, "out of memory");
             }
             for (ct_idx e = 0; e < nq; e++)
                 for (int a = 0; a < 4; a++)
@@ -332,7 +332,7 @@ static int parts_build(cti_mbuild *b, part_index *ix)
             ct_idx *n1 = malloc(sizeof(ct_idx) * 2 * (size_t)nl);
             if (!n1) {
                 free(conn);
-                return cti_model_err(b->err, b->len, CT_ERR_NOMEM, "out of memory");
+                return ctd_errf(b->err, b->len, CT_ERR_NOMEM, "out of memory");
             }
             for (ct_idx e = 0; e < nl; e++) {
                 n1[e] = lc[2 * (int64_t)e];
@@ -363,7 +363,7 @@ static int parts_build(cti_mbuild *b, part_index *ix)
         char origin[512] = "";
         if (bad_brick && d.index >= 0 && d.index < nh)
             brick_origin(b, ih[d.index], origin, sizeof origin);
-        return cti_model_err(b->err, b->len, rc,
+        return ctd_errf(b->err, b->len, rc,
                              "%s:%d: parts[%u]: cannot build the %s elements of part %lld%s: "
                              "%s%s%s",
                              sc->path, pt->line, p, elem_name(el), (long long)pt->id, origin,
@@ -380,7 +380,7 @@ int cti_model_parts(cti_mbuild *b)
     if (rc == CT_OK)
         rc = parts_build(b, &ix);
     else
-        rc = cti_model_err(b->err, b->len, rc, "out of memory");
+        rc = ctd_errf(b->err, b->len, rc, "out of memory");
     index_free(&ix);
     return rc;
 }

@@ -53,7 +53,7 @@ int ctd_model_select_nodes(const ctd_model *m, const ctd_scene_sel *sel, ct_node
     ct_idx nn = m->mesh.nodes.n;
     unsigned char *mark = calloc((size_t)nn + 1, 1);
     if (!mark)
-        return cti_model_err(err, errlen, CT_ERR_NOMEM, "out of memory");
+        return ctd_errf(err, errlen, CT_ERR_NOMEM, "out of memory");
     int any = 0;
     if (sel->part || sel->parts_count) {
         any = 1;
@@ -76,7 +76,7 @@ int ctd_model_select_nodes(const ctd_model *m, const ctd_scene_sel *sel, ct_node
         }
         if (!found) {
             free(mark);
-            return cti_model_err(err, errlen, CT_ERR_RANGE, "%s:%d: node group %lld is in no "
+            return ctd_errf(err, errlen, CT_ERR_RANGE, "%s:%d: node group %lld is in no "
                                  "imported deck", sc->path, sel->line, (long long)sel->group);
         }
     }
@@ -85,7 +85,7 @@ int ctd_model_select_nodes(const ctd_model *m, const ctd_scene_sel *sel, ct_node
         ct_idx n = ctd_model_node(m, sel->ids[k]);
         if (n < 0) {
             free(mark);
-            return cti_model_err(err, errlen, CT_ERR_RANGE, "%s:%d: node %lld does not exist",
+            return ctd_errf(err, errlen, CT_ERR_RANGE, "%s:%d: node %lld does not exist",
                                  sc->path, sel->line, (long long)sel->ids[k]);
         }
         mark[n] = 1;
@@ -100,7 +100,7 @@ int ctd_model_select_nodes(const ctd_model *m, const ctd_scene_sel *sel, ct_node
     out->node = ct_calloc((size_t)cnt + 1, sizeof(ct_idx));
     if (!out->node) {
         free(mark);
-        return cti_model_err(err, errlen, CT_ERR_NOMEM, "out of memory");
+        return ctd_errf(err, errlen, CT_ERR_NOMEM, "out of memory");
     }
     for (ct_idx i = 0; i < nn; i++)
         if (mark[i])
@@ -121,7 +121,7 @@ int ctd_model_select_surface(const ctd_model *m, const ctd_scene_sel *sel, ct_su
     ct_idx ns = me->nseg;
     unsigned char *mark = calloc((size_t)ns + 1, 1);
     if (!mark)
-        return cti_model_err(err, errlen, CT_ERR_NOMEM, "out of memory");
+        return ctd_errf(err, errlen, CT_ERR_NOMEM, "out of memory");
     if (sel->part || sel->parts_count) {
         for (ct_idx s = 0; s < ns; s++)
             mark[s] = m->seg_src[s] != CTD_SEGSRC_DECK && in_parts(sel, m->seg_part[s]);
@@ -137,7 +137,7 @@ int ctd_model_select_surface(const ctd_model *m, const ctd_scene_sel *sel, ct_su
             unsigned char *want = calloc((size_t)d->mesh.nseg + 1, 1);
             if (!want) {
                 free(mark);
-                return cti_model_err(err, errlen, CT_ERR_NOMEM, "out of memory");
+                return ctd_errf(err, errlen, CT_ERR_NOMEM, "out of memory");
             }
             for (ct_idx k = 0; k < su->s.n; k++)
                 want[su->s.seg[k]] = 1;
@@ -148,7 +148,7 @@ int ctd_model_select_surface(const ctd_model *m, const ctd_scene_sel *sel, ct_su
         }
         if (!found) {
             free(mark);
-            return cti_model_err(err, errlen, CT_ERR_RANGE, "%s:%d: surface %lld is in no "
+            return ctd_errf(err, errlen, CT_ERR_RANGE, "%s:%d: surface %lld is in no "
                                  "imported deck", sc->path, sel->line, (long long)sel->surf);
         }
     }
@@ -165,7 +165,7 @@ int ctd_model_select_surface(const ctd_model *m, const ctd_scene_sel *sel, ct_su
     out->seg = ct_calloc((size_t)cnt + 1, sizeof(ct_idx));
     if (!out->seg) {
         free(mark);
-        return cti_model_err(err, errlen, CT_ERR_NOMEM, "out of memory");
+        return ctd_errf(err, errlen, CT_ERR_NOMEM, "out of memory");
     }
     for (ct_idx s = 0; s < ns; s++)
         if (mark[s])

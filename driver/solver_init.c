@@ -5,10 +5,10 @@
  * solver.c.
  */
 #include <math.h>
-#include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "errf.h"
 #include "solver.h"
 #include "solver_internal.h"
 
@@ -20,19 +20,6 @@ ctd_solver_opts ctd_solver_default_opts(void)
     memset(&o, 0, sizeof o);
     o.progress = -1;
     return o;
-}
-
-static int err_out(char *err, size_t len, int code, const char *fmt, ...)
-    __attribute__((format(printf, 4, 5)));
-static int err_out(char *err, size_t len, int code, const char *fmt, ...)
-{
-    if (err && len) {
-        va_list ap;
-        va_start(ap, fmt);
-        vsnprintf(err, len, fmt, ap);
-        va_end(ap);
-    }
-    return code;
 }
 
 void ctd_solver_destroy(ctd_solver *s)
@@ -82,7 +69,7 @@ int ctd_solver_init(ctd_solver *s, ctd_model *m, const ctd_solver_opts *opts,
     s->hooks = hooks;
     s->nhook = hooks ? nhook : 0;
     if (!m || !m->scene || nhook < 0)
-        return err_out(err, errlen, CT_ERR_ARG, "no model to run");
+        return ctd_errf(err, errlen, CT_ERR_ARG, "no model to run");
     const ctd_scene *sc = m->scene;
     s->model = m;
     s->opts = opts ? *opts : ctd_solver_default_opts();
@@ -108,14 +95,14 @@ int ctd_solver_init(ctd_solver *s, ctd_model *m, const ctd_solver_opts *opts,
     size_t n1 = (size_t)nn + 1;
     cti_solver_work *w = s->w = calloc(1, sizeof *w);
     if (!w)
-        return err_out(err, errlen, CT_ERR_NOMEM, "out of memory");
+        return ctd_errf(err, errlen, CT_ERR_NOMEM, "out of memory");
     ct_real **arr[] = {&s->x, &s->y, &s->z, &s->vx, &s->vy, &s->vz, &w->vox, &w->voy,
                        &w->voz, &w->fx, &w->fy, &w->fz, &w->fcx, &w->fcy, &w->fcz, &w->pen,
                        &w->vmx, &w->vmy, &w->vmz, &w->gx, &w->gy, &w->gz, &w->gvx, &w->gvy,
                        &w->gvz};
     for (size_t k = 0; k < sizeof arr / sizeof arr[0]; k++)
         if (!(*arr[k] = ct_calloc(n1, sizeof(ct_real))))
-            return err_out(err, errlen, CT_ERR_NOMEM, "out of memory");
+            return ctd_errf(err, errlen, CT_ERR_NOMEM, "out of memory");
     w->nact = ct_calloc(n1, sizeof(int32_t));
     w->free_node = calloc(n1, 1);
     w->bc_node = malloc(sizeof(ct_idx) * n1);
@@ -135,10 +122,10 @@ int ctd_solver_init(ctd_solver *s, ctd_model *m, const ctd_solver_opts *opts,
         !s->rep ||
         !s->if_force_max || !s->if_active_max || !w->if_force || !w->if_active ||
         !w->if_resorts || !w->if_names)
-        return err_out(err, errlen, CT_ERR_NOMEM, "out of memory");
+        return ctd_errf(err, errlen, CT_ERR_NOMEM, "out of memory");
     for (int i = 0; i < nh; i++) {
         if (!s->hooks[i].contact_step)
-            return err_out(err, errlen, CT_ERR_ARG, "interface %d has no contact_step", i);
+            return ctd_errf(err, errlen, CT_ERR_ARG, "interface %d has no contact_step", i);
         w->if_names[i] = s->hooks[i].name ? s->hooks[i].name : "interface";
     }
     const ct_nodes *nd = &m->mesh.nodes;
@@ -159,7 +146,7 @@ int ctd_solver_init(ctd_solver *s, ctd_model *m, const ctd_solver_opts *opts,
          * caller (run.c reported every init failure as exit 5, "an output
          * file could not be written"). */
         s->exit_code = lrc == CT_ERR_NOMEM ? CTD_EXIT_OUTPUT : CTD_EXIT_BADINPUT;
-        return lrc == CT_ERR_NOMEM ? err_out(err, errlen, lrc, "out of memory") : lrc;
+        return lrc == CT_ERR_NOMEM ? ctd_errf(err, errlen, lrc, "out of memory") : lrc;
     }
     /* Driven bodies start with their imposed velocity and no spin. */
     for (int b = 0; b < m->nbody; b++) {
@@ -179,10 +166,10 @@ int ctd_solver_init(ctd_solver *s, ctd_model *m, const ctd_solver_opts *opts,
         char msg[512];
         int rc = ctd_output_open(&w->out, &oo, msg, sizeof msg);
         if (rc)
-            return err_out(err, errlen, rc, "%s", msg);
+            return ctd_errf(err, errlen, rc, "%s", msg);
         snprintf(s->out_dir, sizeof s->out_dir, "%s", ctd_output_dir(w->out));
         if (sc->output->csv && (rc = ctd_output_csv_begin(w->out, nh, w->if_names)))
-            return err_out(err, errlen, rc, "%s", ctd_output_error(w->out));
+            return ctd_errf(err, errlen, rc, "%s", ctd_output_error(w->out));
     }
     return CT_OK;
 }

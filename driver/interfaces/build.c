@@ -6,11 +6,11 @@
 #include "build.h"
 
 #include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "errf.h"
 #include "iface_internal.h"
 
 /* One hook's context: the interface and the element stiffness it borrows
@@ -21,18 +21,6 @@ typedef struct hook_ctx {
     int own_kelem;
     ct_idx nnode; /* kelem's length */
 } hook_ctx;
-
-static int fail(char *err, size_t len, int code, const char *fmt, ...)
-    __attribute__((format(printf, 4, 5)));
-static int fail(char *err, size_t len, int code, const char *fmt, ...)
-{
-    va_list ap;
-    va_start(ap, fmt);
-    if (err && len)
-        vsnprintf(err, len, fmt, ap);
-    va_end(ap);
-    return code;
-}
 
 static int hook_step(void *ctx, const ctd_state *s, ct_real *fx, ct_real *fy, ct_real *fz,
                      ctd_contact_report *rep)
@@ -214,9 +202,9 @@ static int resolve(const ctd_model *m, const ctd_scene_interface *f, resolved *r
         (rc = lines_of(m, f->main, &r->ea1, &r->ea2, &r->nea)) != CT_OK)
         return rc;
     if (t != 11 && r->main.n == 0)
-        return fail(err, len, CT_ERR_ARG, "%s: main selects no surface segment", where);
+        return ctd_errf(err, len, CT_ERR_ARG, "%s: main selects no surface segment", where);
     if (t == 11 && r->main.n == 0 && r->nea == 0)
-        return fail(err, len, CT_ERR_ARG, "%s: main selects no segment and no line", where);
+        return ctd_errf(err, len, CT_ERR_ARG, "%s: main selects no segment and no line", where);
     if (f->secondary) {
         int surf = t == 3 || t == 6 || t == 11 || t == 24;
         if (surf && (rc = select_surface(m, f->secondary, &r->sec_segs, err, len)) != CT_OK)
@@ -225,15 +213,15 @@ static int resolve(const ctd_model *m, const ctd_scene_interface *f, resolved *r
             (rc = lines_of(m, f->secondary, &r->eb1, &r->eb2, &r->neb)) != CT_OK)
             return rc;
         if (t == 3 && r->sec_segs.n == 0)
-            return fail(err, len, CT_ERR_ARG, "%s: secondary selects no surface segment",
+            return ctd_errf(err, len, CT_ERR_ARG, "%s: secondary selects no surface segment",
                         where);
         if ((t == 5 || t == 7 || t == 6 || t == 24) && (t != 24 || r->sec_segs.n == 0) &&
             (rc = ctd_model_select_nodes(m, f->secondary, &r->sec, err, len)) != CT_OK)
             return rc;
         if ((t == 5 || t == 6 || t == 24) && r->sec_segs.n == 0 && r->sec.n == 0)
-            return fail(err, len, CT_ERR_ARG, "%s: secondary selects no node", where);
+            return ctd_errf(err, len, CT_ERR_ARG, "%s: secondary selects no node", where);
         if (t == 11 && r->sec_segs.n == 0 && r->neb == 0)
-            return fail(err, len, CT_ERR_ARG, "%s: secondary selects no segment and no line",
+            return ctd_errf(err, len, CT_ERR_ARG, "%s: secondary selects no segment and no line",
                         where);
     }
     if (f->grnd_IDs &&
@@ -407,7 +395,7 @@ static int parea_check(const ctd_model *m, const ctd_scene_interface *f, unsigne
     const ct_mesh *me = &m->mesh;
     uint8_t *on = calloc((size_t)me->nodes.n + 1, 1);
     if (!on)
-        return fail(err, len, CT_ERR_NOMEM, "%s: out of memory", m->scene->path);
+        return ctd_errf(err, len, CT_ERR_NOMEM, "%s: out of memory", m->scene->path);
     const ct_idx *const q[4] = {me->n1, me->n2, me->n3, me->n4};
     for (ct_idx s = 0; s < me->nseg; s++)
         for (int c = 0; c < 4; c++)
@@ -418,7 +406,7 @@ static int parea_check(const ctd_model *m, const ctd_scene_interface *f, unsigne
     for (int i = 0; i < 2 && rc == CT_OK; i++)
         for (ct_idx k = 0; k < set[i]->n; k++)
             if (!on[set[i]->node[k]]) {
-                rc = fail(err, len, CT_ERR_ARG,
+                rc = ctd_errf(err, len, CT_ERR_ARG,
                           "%s:%d: interfaces[%u].pressure_area: node %lld of the %s "
                           "selection is a corner of no surface segment (shell or solid "
                           "face), so it has no area for the pressure; expected main, or "
@@ -515,7 +503,7 @@ static int build_one(const ctd_model *m, const ctd_scene_interface *f, unsigned 
         if (t == 11 && c.Istf != 1) {
             d.K = mean_seg_stiffness(bd, &r.main, msu.seg);
             if (!(d.K > 0))
-                rc = fail(err, len, CT_ERR_ARG,
+                rc = ctd_errf(err, len, CT_ERR_ARG,
                           "%s: edges of lines have no stiffness of their own: give Istf: 1 "
                           "and Stfac: the contact stiffness (N/m)", where);
         }
@@ -535,7 +523,7 @@ static int build_one(const ctd_model *m, const ctd_scene_interface *f, unsigned 
             d.mass_min = type6_mass_min(m, &r);
             rc = curve_of(f, &c, &curve_p, &curve_f);
             if (rc != CT_OK)
-                fail(err, len, rc, "%s: out of memory", where);
+                ctd_errf(err, len, rc, "%s: out of memory", where);
         }
     }
     ctd_iface *it = NULL;
@@ -543,7 +531,7 @@ static int build_one(const ctd_model *m, const ctd_scene_interface *f, unsigned 
         ct_diag dg = {0, -1, ""};
         rc = ctd_iface_init(&it, &c, &d, &dg);
         if (rc != CT_OK)
-            fail(err, len, rc, "%s: %s%s%s", where, ct_strerror(rc), dg.msg[0] ? ": " : "",
+            ctd_errf(err, len, rc, "%s: %s%s%s", where, ct_strerror(rc), dg.msg[0] ? ": " : "",
                  dg.msg);
     }
     if (rc == CT_OK) {
@@ -551,7 +539,7 @@ static int build_one(const ctd_model *m, const ctd_scene_interface *f, unsigned 
         rc = ctd_iface_check_reach(it, m->mesh.nodes.x, m->mesh.nodes.y, m->mesh.nodes.z, msg,
                                    sizeof msg);
         if (rc != CT_OK) {
-            fail(err, len, rc, "%s: %s", where, msg);
+            ctd_errf(err, len, rc, "%s: %s", where, msg);
             ctd_iface_destroy(it);
         }
     }
@@ -567,7 +555,7 @@ static int build_one(const ctd_model *m, const ctd_scene_interface *f, unsigned 
     hook_ctx *h = calloc(1, sizeof *h);
     if (!h) {
         ctd_iface_destroy(it);
-        return fail(err, len, CT_ERR_NOMEM, "%s: out of memory", where);
+        return ctd_errf(err, len, CT_ERR_NOMEM, "%s: out of memory", where);
     }
     h->it = it;
     h->kelem = kelem;
@@ -590,7 +578,7 @@ int ctd_interfaces_build(const ctd_model *m, const ctd_scene *sc, ctd_contact_ho
     *hooks = NULL;
     *nhook = 0;
     if (!m || !sc)
-        return fail(err, errlen, CT_ERR_ARG, "no model or scene");
+        return ctd_errf(err, errlen, CT_ERR_ARG, "no model or scene");
     unsigned n = sc->interfaces_count;
     if (n == 0)
         return CT_OK;
@@ -599,7 +587,7 @@ int ctd_interfaces_build(const ctd_model *m, const ctd_scene *sc, ctd_contact_ho
     int rc = h ? ctd_build_data_init(&bd, m) : CT_ERR_NOMEM;
     if (rc != CT_OK) {
         free(h);
-        return fail(err, errlen, rc, "%s: out of memory building the interfaces", sc->path);
+        return ctd_errf(err, errlen, rc, "%s: out of memory building the interfaces", sc->path);
     }
     /* The first hook owns the element stiffness; the others borrow it. */
     ct_real *kelem = bd.kelem;
