@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "errf.h"
 #include "meshgen.h"
 #include "output.h"
 #include "scene_validate_internal.h"
@@ -40,15 +41,16 @@ int cti_vnum(vctx *v, const char *path, double x, double lo, int lo_open, double
 {
     if (!isfinite(x)) {
         if (strcmp(expect, "a finite number") == 0)
-            cti_err(v->e, CT_ERR_NONFINITE, 0, path, "expected a finite number, got %g", x);
+            cti_err(v->e, CT_ERR_NONFINITE, 0, path, "expected a finite number, got %s",
+                    ctd_num(x).s);
         else
-            cti_err(v->e, CT_ERR_NONFINITE, 0, path, "expected a finite number (%s), got %g",
-                    expect, x);
+            cti_err(v->e, CT_ERR_NONFINITE, 0, path, "expected a finite number (%s), got %s",
+                    expect, ctd_num(x).s);
         return 0;
     }
     int ok = (lo_open ? x > lo : x >= lo) && (hi_open ? x < hi : x <= hi);
     if (!ok)
-        cti_err(v->e, CT_ERR_ARG, 0, path, "expected %s, got %.17g", expect, x);
+        cti_err(v->e, CT_ERR_ARG, 0, path, "expected %s, got %s", expect, ctd_num(x).s);
     return ok;
 }
 
@@ -324,8 +326,8 @@ static void check_load(vctx *v, unsigned i, ctd_scene_bc *b)
                  INFINITY, 0, "a finite factor");
         if (k > 0 && !(b->curve[k][0] > b->curve[k - 1][0]))
             cti_err(v->e, CT_ERR_ARG, 0, cti_vpath(v, "boundary[%u].curve[%u][0]", i, k),
-                    "expected times in strictly ascending order, got %g after %g", b->curve[k][0],
-                    b->curve[k - 1][0]);
+                    "expected times in strictly ascending order, got %s after %s",
+                    ctd_num(b->curve[k][0]).s, ctd_num(b->curve[k - 1][0]).s);
     }
 }
 

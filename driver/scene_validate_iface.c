@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "ct_internal.h"
+#include "errf.h"
 #include "meshgen.h"
 #include "scene_validate_internal.h"
 
@@ -75,8 +76,8 @@ void cti_vcheck_interface(vctx *v, unsigned i, ctd_scene_interface *f)
                  "a force >= 0");
         if (k > 0 && !(f->curve[k][0] > f->curve[k - 1][0]))
             cti_err(v->e, CT_ERR_ARG, 0, cti_vpath(v, "%s.curve[%u][0]", b, k),
-                    "expected penetrations in strictly ascending order, got %g after %g",
-                    f->curve[k][0], f->curve[k - 1][0]);
+                    "expected penetrations in strictly ascending order, got %s after %s",
+                    ctd_num(f->curve[k][0]).s, ctd_num(f->curve[k - 1][0]).s);
     }
     /* Search. */
     static const char *const search_names[] = {"direct", "topological", "bucket", "bsp"};
@@ -127,7 +128,8 @@ void cti_vcheck_interface(vctx *v, unsigned i, ctd_scene_interface *f)
                  "a number >= 0 (0: no limit)") &&
         f->Stmax > 0 && f->Stmax < f->Stmin)
         cti_err(v->e, CT_ERR_ARG, 0, cti_vpath(v, "%s.Stmax", b),
-                "expected a number >= Stmin (%g), got %g", f->Stmin, f->Stmax);
+                "expected a number >= Stmin (%s), got %s", ctd_num(f->Stmin).s,
+                ctd_num(f->Stmax).s);
     cti_vnum(v, cti_vpath(v, "%s.gap", b), f->gap, 0, 0, INFINITY, 0,
              "a number >= 0 (0: automatic)");
     cti_vnum(v, cti_vpath(v, "%s.Gap_max_s", b), f->Gap_max_s, 0, 0, INFINITY, 0, "a number >= 0");
@@ -147,15 +149,15 @@ void cti_vcheck_interface(vctx *v, unsigned i, ctd_scene_interface *f)
         cti_vnum(v, cti_vpath(v, "%s.C%d", b, k + 1), C[k], -huge, 0, huge, 0, ex[1]);
     if (f->Ifric == 3 && !(f->C4 <= f->C2))
         cti_err(v->e, CT_ERR_ARG, 0, cti_vpath(v, "%s.C4", b),
-                "Renard friction (Ifric 3) expects C4 = mu_min <= C2 = mu_d, got C4 = %g, "
-                "C2 = %g", f->C4, f->C2);
+                "Renard friction (Ifric 3) expects C4 = mu_min <= C2 = mu_d, got C4 = %s, "
+                "C2 = %s", ctd_num(f->C4).s, ctd_num(f->C2).s);
     if (f->Ifric == 3 && !(f->C5 > 0 && f->C6 > f->C5))
         cti_err(v->e, CT_ERR_ARG, 0, cti_vpath(v, "%s.C5", b),
-                "Renard friction (Ifric 3) expects 0 < C5 < C6, got C5 = %g, C6 = %g", f->C5,
-                f->C6);
+                "Renard friction (Ifric 3) expects 0 < C5 < C6, got C5 = %s, C6 = %s",
+                ctd_num(f->C5).s, ctd_num(f->C6).s);
     if (f->Ifric == 4 && f->C2 < 0)
         cti_err(v->e, CT_ERR_ARG, 0, cti_vpath(v, "%s.C2", b),
-                "Ifric 4 expects a decay rate C2 >= 0, got %g", f->C2);
+                "Ifric 4 expects a decay rate C2 >= 0, got %s", ctd_num(f->C2).s);
     const char *px = cti_vpath(v, "%s.Xfreq", b);
     char pxs[96];
     snprintf(pxs, sizeof pxs, "%s", px);
@@ -173,5 +175,6 @@ void cti_vcheck_interface(vctx *v, unsigned i, ctd_scene_interface *f)
                  "a time >= 0 (0: never)") &&
         f->Tstop > 0 && !(f->Tstop > f->Tstart))
         cti_err(v->e, CT_ERR_ARG, 0, cti_vpath(v, "%s.Tstop", b),
-                "expected a time > Tstart (%g), got %g", f->Tstart, f->Tstop);
+                "expected a time > Tstart (%s), got %s", ctd_num(f->Tstart).s,
+                ctd_num(f->Tstop).s);
 }

@@ -295,3 +295,25 @@ Test(errors_scene, import_after_a_generated_mesh_clashes)
     expect_scene_error(dir, &c);
     ctt_rmtree(dir);
 }
+
+/* A number in a message reads as the shortest text that is the same
+ * double: 1.1, not 1.1000000000000001 (%.17g, as range errors printed it
+ * before); and a value just past a bound keeps the digits that show it is
+ * past (%g printed both Tstart and Tstop below as 0.1). */
+Test(errors_scene, numbers_in_messages_shortest_exact)
+{
+    static const scase c[] = {
+        {"interfaces:\n  - {type: 7, main: {part: 2}, Ifiltr: 1, Xfreq: 1.1}\n", 0, 9,
+         "interfaces[0].Xfreq", "expected a number in (0, 1] for Ifiltr 1, got 1.1"},
+        {"interfaces:\n  - {type: 7, main: {part: 2}, Ifiltr: 1, Xfreq: 1.0000000000000002}\n", 0,
+         9, "interfaces[0].Xfreq",
+         "expected a number in (0, 1] for Ifiltr 1, got 1.0000000000000002"},
+        {"interfaces:\n  - {type: 7, main: {part: 2}, Tstart: 0.1, Tstop: 0.09999999999999999}\n",
+         0, 9, "interfaces[0].Tstop", "expected a time > Tstart (0.1), got 0.09999999999999999"},
+        {"interfaces:\n  - {type: 6, main: {part: 2}, secondary: {part: 2},\n"
+         "     curve: [[0, 0], [2e-3, 1], [1.9e-3, 2]]}\n",
+         0, 10, "interfaces[0].curve[2][0]",
+         "expected penetrations in strictly ascending order, got 0.0019 after 0.002"},
+    };
+    run_cases(c, sizeof c / sizeof c[0]);
+}
