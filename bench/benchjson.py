@@ -4,7 +4,9 @@ and bench/plots.py.
 collect() turns the rows of a file into one record per run: its name (the
 run name without Google Benchmark's timing suffix), the median time in ns (the
 "median" aggregate when present, else the median of the repetition rows),
-every numeric user counter, the label, or the error. precision_of() tells the
+the coefficient of variation of the repetitions' times (the "cv" aggregate,
+else computed from two or more repetition rows; None without either), every
+numeric user counter, the label, or the error. precision_of() tells the
 precision of a file, split_named() splits the records whose name matches a
 pattern and adds the pattern's fields to them, and the patterns of the run
 names that both scripts read (the searches and the peers) are here.
@@ -60,7 +62,7 @@ def collect(benchmarks):
     for b in benchmarks:
         key = b.get("run_name", b.get("name", ""))
         if key not in runs:
-            runs[key] = {"median": None, "reps": [], "error": None}
+            runs[key] = {"median": None, "cv": None, "reps": [], "error": None}
             order.append(key)
         r = runs[key]
         if b.get("error_occurred"):
@@ -68,13 +70,18 @@ def collect(benchmarks):
         elif b.get("run_type") == "aggregate":
             if b.get("aggregate_name") == "median":
                 r["median"] = b
+            elif b.get("aggregate_name") == "cv" and numeric(b.get("real_time")):
+                r["cv"] = float(b["real_time"])
         else:
             r["reps"].append(b)
     out = []
     for key in order:
         r = runs[key]
         rec = {"name": base_name(key), "error": None, "label": "", "time_ns": None,
-               "counters": {}}
+               "cv": r["cv"], "counters": {}}
+        times = [row_time_ns(x) for x in r["reps"]]
+        if rec["cv"] is None and len(times) >= 2 and statistics.mean(times) > 0:
+            rec["cv"] = statistics.stdev(times) / statistics.mean(times)
         if r["median"] is not None:
             src = r["median"]
             rec["time_ns"] = row_time_ns(src)

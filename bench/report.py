@@ -16,6 +16,8 @@ Of each run it takes the median of the repetitions (the "median" aggregate
 when present, else the median of the repetition rows; bench/benchjson.py)
 and prints, in this order:
   - the provenance block (the context the benchmark program stored);
+  - the speed targets of the issues (bench/report_targets.py) and how
+    steady the host was: the spread of the repetitions (bench/report_noise.py);
   - per file, the search tables: the headline, the cost per family, the
     scaling exponent and the speed-up (bench/report_search.py);
   - the kernels, the kernels against the memory floor, the single-precision
@@ -36,6 +38,7 @@ from benchjson import SEARCH_RE, collect, precision_of, split_named
 from report_driver import (ELEM_RE, SCENE_RE, parse_cycle, print_cycle, print_elements,
                            print_scenes)
 from report_fmt import fmt_time, prec_rank
+from report_noise import print_noise
 from report_kernels import (EFF_RE, print_eff, print_floor, print_interleaved,
                             print_kernel_floor, print_kernels, split_records)
 from report_search import PAIRED_RE, parse_peers, print_paired, print_peers, report_search
@@ -90,7 +93,8 @@ def report(datas, names=None, compare=None, inter=None):
         while tag in [f["tag"] for f in files]:
             tag = "%s#%d" % (prec, k)
             k += 1
-        search, rest = split_named(collect(data.get("benchmarks", [])), SEARCH_RE)
+        recs = collect(data.get("benchmarks", []))
+        search, rest = split_named(list(recs), SEARCH_RE)
         kern, flo, other = split_records(rest, tag)
         peers, other = parse_peers(other)
         trade, other = parse_trade(other, tag)
@@ -99,7 +103,7 @@ def report(datas, names=None, compare=None, inter=None):
         eff, other = split_named(other, EFF_RE)
         elem, other = split_named(other, ELEM_RE)
         scen, other = split_named(other, SCENE_RE)
-        files.append({"tag": tag, "name": name, "data": data, "search": search,
+        files.append({"tag": tag, "name": name, "data": data, "recs": recs, "search": search,
                       "kern": kern, "flo": flo, "other": other, "peers": peers,
                       "trade": trade, "cycle": cyc, "paired": paired, "eff": eff,
                       "elem": elem, "scene": scen})
@@ -112,6 +116,7 @@ def report(datas, names=None, compare=None, inter=None):
                   main["peers"], [r for f in files for r in f["kern"]],
                   [r for f in files for r in f["eff"]], [r for f in files for r in f["cycle"]],
                   inter, out)
+    print_noise([(f["tag"], f["recs"]) for f in files], out)
     for f in files:
         if multi and f["search"]:
             out.append("# Search benchmarks, %s precision\n" % f["tag"])

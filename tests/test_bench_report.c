@@ -8,7 +8,8 @@
  * (cycle/folded/t1/100000 from a real run, its t2 row made up), and three
  * paired medians and two efficiency medians of a real run (bench_paired.c,
  * bench_eff.c), and two shell element medians of a real run
- * (bench_elements.c); with
+ * (bench_elements.c), and three cv aggregates added by hand (the bucket
+ * 1000 row, the 1-thread cycle and shell rows); with
  * tests/data/interleaved_sample.json, a real bench/interleave.py output. The
  * expected numbers are worked out by hand from the JSON values and written
  * next to each check.
@@ -22,6 +23,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "test_cli.h"
 #include "test_run.h"
 #include "test_util.h"
 
@@ -372,4 +374,52 @@ Test(bench_report, targets_table_from_sample)
     const char *t = strstr(out, "## Speed targets"), *h = strstr(out, "## Headline");
     cr_expect(t && h && t < h, "the targets are not before the headline:\n%s", out);
     free(out);
+}
+
+/* How steady the host was (bench/report_noise.py): the sample's three cv
+ * aggregates, 4.12 % (bucket t1/1000), 12.16 % (cycle folded t1), 1.65 %
+ * (shell elements t1). Sorted 0.0165, 0.0412, 0.1216: median 4.1 %; 90th
+ * percentile at rank 0.9 * 2 = 1.8, 0.0412 + 0.8 * 0.0804 = 0.1055, 10.6 %;
+ * largest 12.2 %; one row above 10 %, named. */
+Test(bench_report, noise_table_from_sample)
+{
+    char *out = sample_report("");
+    expect_line(out, "## How steady the host was during this run");
+    expect_line(out, "| precision | rows | median cv | 90th percentile | largest | rows above "
+                     "10 % |");
+    expect_line(out, "| double | 3 | 4.1 % | 10.6 % | 12.2 % | 1 |");
+    expect_line(out, "Noisiest rows, double: cycle/folded/t1/100000 (12.2 %).");
+    cr_expect(strstr(out, "search/plates/bucket/natural/t1/1000 (") == NULL,
+              "a row below 10 %% named as noisy:\n%s", out);
+    free(out);
+}
+
+/* Without a cv aggregate (a run kept with its repetition rows), the cv is
+ * that of the rows' times: 80, 100, 120 ns have mean 100 and sample
+ * standard deviation 20, a cv of 20.0 %. */
+Test(bench_report, noise_from_repetition_rows)
+{
+    char dir[64];
+    ctt_tmpdir(dir, "noise");
+    static const char row[] =
+        "{\"name\": \"kernels/x/t1/10/real_time\", \"run_name\": \"kernels/x/t1/10/real_time\", "
+        "\"run_type\": \"iteration\", \"repetitions\": 3, \"repetition_index\": %d, "
+        "\"iterations\": 1, \"real_time\": %d, \"cpu_time\": %d, \"time_unit\": \"ns\"}";
+    char rows[3][400], text[1400];
+    const int t[3] = {80, 120, 100};
+    for (int i = 0; i < 3; i++)
+        snprintf(rows[i], sizeof rows[i], row, i, t[i], t[i]);
+    snprintf(text, sizeof text,
+             "{\"context\": {\"ct_precision\": \"single\"}, \"benchmarks\": [%s, %s, %s]}\n",
+             rows[0], rows[1], rows[2]);
+    ctt_write_file(dir, "reps.json", text);
+    char arg[128];
+    snprintf(arg, sizeof arg, "%s/reps.json", dir);
+    int status = -1;
+    char *out = run_report(arg, &status);
+    cr_assert_eq(status, 0, "report.py failed:\n%s", out);
+    expect_line(out, "| single | 1 | 20.0 % | 20.0 % | 20.0 % | 1 |");
+    expect_line(out, "Noisiest rows, single: kernels/x/t1/10 (20.0 %).");
+    free(out);
+    ctt_rmtree(dir);
 }
