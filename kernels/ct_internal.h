@@ -504,6 +504,14 @@ struct ct_search {
     size_t (*algo_memory)(const void *state);
 };
 
+/* The algorithm state of s whose free function is fr: the one kept from
+ * the last call, or a new zeroed one of size bytes (with fr and mem
+ * installed) when there is none or it belongs to another algorithm (the
+ * parameters changed; that one is dropped with ct_search_reset). NULL when
+ * out of memory. */
+void *cti_search_state(ct_search *s, size_t size, void (*fr)(void *),
+                       size_t (*mem)(const void *));
+
 /* The search's pair limit: ct_search_params.max_pairs within (0, 2^31 - 1]. */
 static inline int64_t cti_search_max_pairs(const ct_search *s)
 {

@@ -56,6 +56,22 @@ int ct_search_init(ct_search **s, const ct_search_params *p)
     return CT_OK;
 }
 
+void *cti_search_state(ct_search *s, size_t size, void (*fr)(void *),
+                       size_t (*mem)(const void *))
+{
+    if (s->algo_state && s->algo_free != fr)
+        ct_search_reset(s);
+    if (!s->algo_state) {
+        void *st = calloc(1, size);
+        if (!st)
+            return NULL;
+        s->algo_state = st;
+        s->algo_free = fr;
+        s->algo_memory = mem;
+    }
+    return s->algo_state;
+}
+
 void ct_search_reset(ct_search *s)
 {
     if (s)

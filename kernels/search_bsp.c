@@ -92,17 +92,9 @@ static size_t bsp_memory(const void *p)
  * and grown to the sizes of this call. */
 static int bsp_prepare(ct_search *s, const ct_search_input *in, bsp_state **out)
 {
-    if (s->algo_state && s->algo_free != bsp_free)
-        ct_search_reset(s);
-    bsp_state *st = s->algo_state;
-    if (!st) {
-        st = calloc(1, sizeof *st);
-        if (!st)
-            return CT_ERR_NOMEM;
-        s->algo_state = st;
-        s->algo_free = bsp_free;
-        s->algo_memory = bsp_memory;
-    }
+    bsp_state *st = cti_search_state(s, sizeof *st, bsp_free, bsp_memory);
+    if (!st)
+        return CT_ERR_NOMEM;
     int nt = cti_num_threads();
     if (nt > st->nthr) {
         bsp_stack *ns = calloc((size_t)nt, sizeof *ns);

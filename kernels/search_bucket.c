@@ -107,20 +107,9 @@ static size_t bk_memory(const void *v)
 /* The workspace's state, created on first use and grown to nb blocks. */
 static bk_state *bk_get(ct_search *s, int nb)
 {
-    bk_state *st = s->algo_state;
-    if (st && s->algo_free != bk_free) {
-        /* State of another algorithm (the parameters changed): drop it. */
-        ct_search_reset(s);
-        st = NULL;
-    }
-    if (!st) {
-        st = calloc(1, sizeof *st);
-        if (!st)
-            return NULL;
-        s->algo_state = st;
-        s->algo_free = bk_free;
-        s->algo_memory = bk_memory;
-    }
+    bk_state *st = cti_search_state(s, sizeof *st, bk_free, bk_memory);
+    if (!st)
+        return NULL;
     if (nb > st->maxblk) {
         bk_out *nw = ct_calloc((size_t)nb, sizeof *nw);
         if (!nw)

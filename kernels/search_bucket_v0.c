@@ -115,20 +115,9 @@ static size_t bk_memory(const void *v)
 /* The workspace's state, created on first use and grown to nt threads. */
 static bk_state *bk_get(ct_search *s, int nt)
 {
-    bk_state *st = s->algo_state;
-    if (st && s->algo_free != bk_free) {
-        /* State of another algorithm (the parameters changed): drop it. */
-        ct_search_reset(s);
-        st = NULL;
-    }
-    if (!st) {
-        st = calloc(1, sizeof *st);
-        if (!st)
-            return NULL;
-        s->algo_state = st;
-        s->algo_free = bk_free;
-        s->algo_memory = bk_memory;
-    }
+    bk_state *st = cti_search_state(s, sizeof *st, bk_free, bk_memory);
+    if (!st)
+        return NULL;
     if (nt > st->maxthr) {
         /* One 64-byte slot per thread: a thread's buffer header never
          * shares a cache line with another's. */

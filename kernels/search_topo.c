@@ -383,18 +383,7 @@ static int topo_full(topo_state *st, const ct_search_input *in, const ct_idx *ti
 /* The workspace's topological state, created on first use. */
 static topo_state *topo_get(ct_search *s)
 {
-    if (s->algo_state && s->algo_free != topo_free)
-        ct_search_reset(s);
-    topo_state *st = s->algo_state;
-    if (!st) {
-        st = calloc(1, sizeof *st);
-        if (!st)
-            return NULL;
-        s->algo_state = st;
-        s->algo_free = topo_free;
-        s->algo_memory = topo_memory;
-    }
-    return st;
+    return cti_search_state(s, sizeof(topo_state), topo_free, topo_memory);
 }
 
 /* The node -> segment map, the key and room for the history of input in
