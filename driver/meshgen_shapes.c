@@ -19,6 +19,15 @@ static int fits(int64_t nnode, int64_t nseg)
     return nnode >= 0 && nseg >= 0 && nnode <= INT32_MAX - 64 && nseg <= INT32_MAX - 64;
 }
 
+/* m made for nnode nodes and nseg segments, or CT_ERR_TOOBIG when the
+ * counts do not fit the index type. */
+static int mesh_make(ct_mesh *m, int64_t nnode, int64_t nseg)
+{
+    if (!fits(nnode, nseg))
+        return CT_ERR_TOOBIG;
+    return ct_mesh_init(m, (ct_idx)nnode, (ct_idx)nseg);
+}
+
 static inline void set_quad(ct_mesh *m, int64_t s, ct_idx a, ct_idx b, ct_idx c, ct_idx d)
 {
     m->n1[s] = a;
@@ -35,9 +44,7 @@ int ctd_plate_coords(ct_mesh *m, int nx, int ny, const double *xs, const double 
     if (!m || nx < 1 || ny < 1 || !xs || !ys)
         return CT_ERR_ARG;
     int64_t nn = (int64_t)(nx + 1) * (ny + 1), ns = (int64_t)nx * ny * (tri ? 2 : 1);
-    if (!fits(nn, ns))
-        return CT_ERR_TOOBIG;
-    int rc = ct_mesh_init(m, (ct_idx)nn, (ct_idx)ns);
+    int rc = mesh_make(m, nn, ns);
     if (rc != CT_OK)
         return rc;
 #pragma omp parallel for schedule(static)
@@ -236,9 +243,7 @@ int ctd_sphere(ct_mesh *m, int n, double radius, const double centre[3])
     if (centre)
         memcpy(o, centre, sizeof o);
     int64_t nn = 6 * (int64_t)n * n + 2, ns = 6 * (int64_t)n * n;
-    if (!fits(nn, ns))
-        return CT_ERR_TOOBIG;
-    int rc = ct_mesh_init(m, (ct_idx)nn, (ct_idx)ns);
+    int rc = mesh_make(m, nn, ns);
     if (rc != CT_OK)
         return rc;
 #pragma omp parallel for schedule(static)
@@ -269,9 +274,7 @@ int ctd_extrude(ct_mesh *m, int np, const double *px, const double *py, int clos
         return CT_ERR_ARG;
     int nq = closed ? np : np - 1;
     int64_t nn = (int64_t)np * (nl + 1), ns = (int64_t)nq * nl;
-    if (!fits(nn, ns))
-        return CT_ERR_TOOBIG;
-    int rc = ct_mesh_init(m, (ct_idx)nn, (ct_idx)ns);
+    int rc = mesh_make(m, nn, ns);
     if (rc != CT_OK)
         return rc;
 #pragma omp parallel for schedule(static)
@@ -429,9 +432,7 @@ int ctd_soup(ct_mesh *m, int nplate, int k, double h, double box, uint64_t seed)
         return CT_ERR_ARG;
     int64_t npp = (int64_t)(k + 1) * (k + 1), spp = (int64_t)k * k;
     int64_t nn = npp * nplate, ns = spp * nplate;
-    if (!fits(nn, ns))
-        return CT_ERR_TOOBIG;
-    int rc = ct_mesh_init(m, (ct_idx)nn, (ct_idx)ns);
+    int rc = mesh_make(m, nn, ns);
     if (rc != CT_OK)
         return rc;
 #pragma omp parallel for schedule(static)
@@ -475,9 +476,7 @@ int ctd_mesh_concat(ct_mesh *out, const ct_mesh *a, const ct_mesh *b)
     if (!out || !a || !b)
         return CT_ERR_ARG;
     int64_t nn = (int64_t)a->nodes.n + b->nodes.n, ns = (int64_t)a->nseg + b->nseg;
-    if (!fits(nn, ns))
-        return CT_ERR_TOOBIG;
-    int rc = ct_mesh_init(out, (ct_idx)nn, (ct_idx)ns);
+    int rc = mesh_make(out, nn, ns);
     if (rc != CT_OK)
         return rc;
     const ct_mesh *src[2] = {a, b};
