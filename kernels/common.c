@@ -59,6 +59,25 @@ void *ct_calloc(size_t count, size_t size)
 
 void ct_free(void *p) { free(p); }
 
+int cti_renew_two(ct_idx **a, ct_idx **b, size_t n, size_t ncap)
+{
+    ct_idx *na = ct_calloc(ncap, sizeof *na), *nb = ct_calloc(ncap, sizeof *nb);
+    if (!na || !nb) {
+        ct_free(na);
+        ct_free(nb);
+        return CT_ERR_NOMEM;
+    }
+    if (n) {
+        memcpy(na, *a, n * sizeof *na);
+        memcpy(nb, *b, n * sizeof *nb);
+    }
+    ct_free(*a);
+    ct_free(*b);
+    *a = na;
+    *b = nb;
+    return CT_OK;
+}
+
 int cti_grow(void **p, size_t *cap, size_t need, size_t size, size_t keep)
 {
     if (need <= *cap && *p)

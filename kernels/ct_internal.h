@@ -215,6 +215,12 @@ int cti_fail(ct_diag *d, int code, int64_t index, const char *fmt, ...)
  * keeping the first `keep` elements. *cap is in elements. */
 int cti_grow(void **p, size_t *cap, size_t need, size_t size, size_t keep);
 
+/* Replace the index arrays *a and *b by new ones of ncap entries (zeroed
+ * past the first n, which are copied): both or, when out of memory
+ * (CT_ERR_NOMEM), neither. The pair lists' growth (their node and segment
+ * columns). */
+int cti_renew_two(ct_idx **a, ct_idx **b, size_t n, size_t ncap);
+
 /* Exclusive prefix sum of cnt[0..n-1] into off[0..n] (off[n] = total), in
  * parallel (two passes over per-thread blocks). cnt and off may alias.
  * The result does not depend on the thread count. Must be called outside a

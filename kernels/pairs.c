@@ -25,20 +25,8 @@ int ct_pairs_reserve(ct_pairs *p, ct_idx cap)
         ncap = (size_t)INT32_MAX;
     if ((size_t)cap > ncap)
         return CT_ERR_TOOBIG;
-    ct_idx *a = ct_calloc(ncap, sizeof *a), *b = ct_calloc(ncap, sizeof *b);
-    if (!a || !b) {
-        ct_free(a);
-        ct_free(b);
+    if (cti_renew_two(&p->node, &p->seg, p->n > 0 ? (size_t)p->n : 0, ncap) != CT_OK)
         return CT_ERR_NOMEM;
-    }
-    if (p->n > 0) {
-        memcpy(a, p->node, (size_t)p->n * sizeof *a);
-        memcpy(b, p->seg, (size_t)p->n * sizeof *b);
-    }
-    ct_free(p->node);
-    ct_free(p->seg);
-    p->node = a;
-    p->seg = b;
     p->cap = (ct_idx)ncap;
     return CT_OK;
 }

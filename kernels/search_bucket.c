@@ -140,20 +140,8 @@ int cti_bucket_out_grow(bk_out *o, size_t need)
         ncap = (size_t)INT32_MAX;
     if (need > ncap)
         return -1;
-    ct_idx *a = ct_calloc(ncap, sizeof *a), *b = ct_calloc(ncap, sizeof *b);
-    if (!a || !b) {
-        ct_free(a);
-        ct_free(b);
+    if (cti_renew_two(&o->node, &o->seg, o->n, ncap) != CT_OK)
         return -1;
-    }
-    if (o->n) {
-        memcpy(a, o->node, o->n * sizeof *a);
-        memcpy(b, o->seg, o->n * sizeof *b);
-    }
-    ct_free(o->node);
-    ct_free(o->seg);
-    o->node = a;
-    o->seg = b;
     o->cap = ncap;
     return 0;
 }

@@ -145,20 +145,8 @@ static int bk_room(bk_buf *b)
     if (b->n < b->cap)
         return 0;
     size_t ncap = b->cap + b->cap / 2 + 1024;
-    ct_idx *p = ct_calloc(ncap, sizeof *p), *q = ct_calloc(ncap, sizeof *q);
-    if (!p || !q) {
-        ct_free(p);
-        ct_free(q);
+    if (cti_renew_two(&b->pos, &b->seg, b->n, ncap) != CT_OK)
         return -1;
-    }
-    if (b->n) {
-        memcpy(p, b->pos, b->n * sizeof *p);
-        memcpy(q, b->seg, b->n * sizeof *q);
-    }
-    ct_free(b->pos);
-    ct_free(b->seg);
-    b->pos = p;
-    b->seg = q;
     b->cap = ncap;
     return 0;
 }
