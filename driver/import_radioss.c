@@ -150,6 +150,10 @@ int ctd_deck_read(const char *path, ctd_deck *deck, ct_diag *diag)
         return ctd_rad_fail(&r, CT_ERR_ARG, -1,
                             "the stream passed the %g GiB a deck may have before its end",
                             (double)CTD_DECK_MAXBYTES / (double)((size_t)1 << 30));
+    /* Out of memory for the file's bytes is not the input's fault: the
+     * caller (the scene, `contact`) tells it by the code (exit 5). */
+    if (!buf && errno == ENOMEM)
+        return ctd_rad_fail(&r, CT_ERR_NOMEM, -1, "out of memory reading the file");
     if (!buf)
         return ctd_rad_fail(&r, CT_ERR_ARG, -1, "cannot open or read the file: %s",
                             strerror(errno));

@@ -44,7 +44,7 @@ int ctd_output_csv_begin(ctd_output *o, int ninterface, const char *const *names
         return CT_OK;
     char *path = cti_out_path(o->dir, "history.csv");
     if (!path)
-        return CT_ERR_NOMEM;
+        return cti_out_nomem(o->err, sizeof o->err);
     if (o->csvf)
         fclose(o->csvf);
     o->csvf = fopen(path, "wb");
@@ -150,7 +150,7 @@ int ctd_output_summary(ctd_output *o, const ctd_run_summary *s)
         return CT_ERR_ARG;
     char *path = cti_out_path(o->dir, "summary.json");
     if (!path)
-        return CT_ERR_NOMEM;
+        return cti_out_nomem(o->err, sizeof o->err);
     FILE *f = fopen(path, "wb");
     if (!f) {
         int rc = cti_out_fail(o->err, sizeof o->err, "cannot create summary file", path, errno);
@@ -254,7 +254,7 @@ int ctd_output_plot_energies(const char *dir, char *msg, size_t msglen)
         return CT_ERR_ARG;
     char *gp = cti_out_path(dir, "energies.gp");
     if (!gp)
-        return CT_ERR_NOMEM;
+        return cti_out_nomem(msg, msglen);
     FILE *f = fopen(gp, "wb");
     if (!f) {
         int rc = cti_out_fail(msg, msglen, "cannot create gnuplot script", gp, errno);

@@ -30,6 +30,13 @@ int cti_out_fail(char *err, size_t len, const char *what, const char *path, int 
     return CT_ERR_ARG;
 }
 
+int cti_out_nomem(char *err, size_t len)
+{
+    if (err && len)
+        snprintf(err, len, "out of memory");
+    return CT_ERR_NOMEM;
+}
+
 /* ---- Directory ----------------------------------------------------------- */
 
 /* Create dir and its missing parents (as mkdir -p). Returns 0 or the
@@ -82,7 +89,7 @@ int ctd_output_open(ctd_output **out, const ctd_output_opts *opts, char *err, si
             return cti_out_fail(err, errlen, "cannot use output directory", dir, errno);
         int e = make_dirs(dir);
         if (e)
-            return e == ENOMEM ? CT_ERR_NOMEM
+            return e == ENOMEM ? cti_out_nomem(err, errlen)
                                : cti_out_fail(err, errlen, "cannot create output directory",
                                               dir, e);
     } else if (!S_ISDIR(st.st_mode)) {
@@ -91,7 +98,7 @@ int ctd_output_open(ctd_output **out, const ctd_output_opts *opts, char *err, si
     /* Prove it writable: a probe file written, flushed and removed. */
     char *probe = cti_out_path(dir, ".contact-probe");
     if (!probe)
-        return CT_ERR_NOMEM;
+        return cti_out_nomem(err, errlen);
     errno = 0;
     FILE *f = fopen(probe, "wb");
     int e = 0;
@@ -113,7 +120,7 @@ int ctd_output_open(ctd_output **out, const ctd_output_opts *opts, char *err, si
         return cti_out_fail(err, errlen, "output directory is on a full disk", dir, ENOSPC);
     ctd_output *o = calloc(1, sizeof *o);
     if (!o)
-        return CT_ERR_NOMEM;
+        return cti_out_nomem(err, errlen);
     o->dir = strdup(dir);
     o->base = strdup(opts->base ? opts->base : "state");
     o->vtu = opts->vtu;
@@ -121,7 +128,7 @@ int ctd_output_open(ctd_output **out, const ctd_output_opts *opts, char *err, si
     o->vtu_format = opts->vtu_format;
     if (!o->dir || !o->base) {
         ctd_output_close(o);
-        return CT_ERR_NOMEM;
+        return cti_out_nomem(err, errlen);
     }
     *out = o;
     return CT_OK;
@@ -163,7 +170,7 @@ int ctd_output_check_dir(const char *dir, char *err, size_t errlen)
          * the nearest existing ancestor, which must be a writable
          * directory. */
         if (!(anc = malloc(strlen(dir) + 2)))
-            return CT_ERR_NOMEM;
+            return cti_out_nomem(err, errlen);
         strcpy(anc, dir);
         int e;
         do {

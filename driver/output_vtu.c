@@ -218,7 +218,7 @@ int ctd_vtu_write_as(const char *path, const ctd_out_mesh *m, int format, char *
     if (!w || !pool) {
         free(w);
         free(pool);
-        return CT_ERR_NOMEM;
+        return cti_out_nomem(err, errlen);
     }
     w->n = 0;
     w->bad = 0;
@@ -292,7 +292,7 @@ static int write_pvd(ctd_output *o)
     if (!path || !tmp) {
         free(path);
         free(tmp);
-        return CT_ERR_NOMEM;
+        return cti_out_nomem(o->err, sizeof o->err);
     }
     int rc = CT_OK;
     FILE *f = fopen(tmp, "wb");
@@ -333,7 +333,7 @@ int ctd_output_vtu(ctd_output *o, double time, const ctd_out_mesh *m)
         int cap = o->capstep ? 2 * o->capstep : 64;
         double *t = realloc(o->step_time, (size_t)cap * sizeof *t);
         if (!t)
-            return CT_ERR_NOMEM;
+            return cti_out_nomem(o->err, sizeof o->err);
         o->step_time = t;
         o->capstep = cap;
     }
@@ -341,7 +341,7 @@ int ctd_output_vtu(ctd_output *o, double time, const ctd_out_mesh *m)
     step_name(o, o->nstep, fn, sizeof fn);
     char *path = cti_out_path(o->dir, fn);
     if (!path)
-        return CT_ERR_NOMEM;
+        return cti_out_nomem(o->err, sizeof o->err);
     int rc = ctd_vtu_write_as(path, m, o->vtu_format, o->err, sizeof o->err);
     free(path);
     if (rc != CT_OK)

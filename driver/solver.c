@@ -108,17 +108,24 @@ static int contact_forces(ctd_solver *s, int want_fields)
         int rc = s->hooks[i].contact_step(s->hooks[i].ctx, &st, w->fcx, w->fcy, w->fcz, r);
         if (rc) {
             int unstable = rc == CT_ERR_NONFINITE || rc == CT_ERR_DEGENERATE || rc == CT_ERR_NOCONV;
-            /* Anything else is a search that found more pairs than the
-             * machine or an index holds (a gap far above the element
-             * size: the input), or an interface given bad arrays. */
+            /* Out of memory (an interface's workspaces grow at its first
+             * search and whenever its pairs outgrow them) exits as an
+             * output failure does: the input is not at fault. Anything
+             * else is a search that found more pairs than an index holds
+             * (a gap far above the element size: the input), or an
+             * interface given bad arrays. */
+            int nomem = rc == CT_ERR_NOMEM;
             char node[64] = "";
             if (r->bad_node >= 0 && r->bad_node < nn)
                 snprintf(node, sizeof node, " at node %lld",
                          (long long)s->model->node_id[r->bad_node]);
-            fail(s, unstable ? "unstable" : "error", unstable ? CTD_EXIT_UNSTABLE : CTD_EXIT_BADINPUT,
+            /* The interface's message, unless it only repeats the code. */
+            const char *why = strstr(r->msg, ct_strerror(rc)) ? "" : r->msg;
+            fail(s, unstable ? "unstable" : (nomem ? "out of memory" : "error"),
+                 unstable ? CTD_EXIT_UNSTABLE : (nomem ? CTD_EXIT_OUTPUT : CTD_EXIT_BADINPUT),
                  "cycle %lld (t = %.6g): interface %s (type %d) failed%s: %s%s%s",
                  (long long)s->cycle, s->time, w->if_names[i], s->hooks[i].type, node,
-                 ct_strerror(rc), r->msg[0] ? ": " : "", r->msg);
+                 ct_strerror(rc), why[0] ? ": " : "", why);
             return -1;
         }
         ec += r->energy;

@@ -212,7 +212,7 @@ typedef struct ctd_solver {
     double pen0_max;
     ct_idx pen0_node;
     /* Outcome of ctd_solver_run. */
-    const char *status;  /* "ok", "unstable", "error" */
+    const char *status;  /* "ok", "unstable", "error", "out of memory" */
     int exit_code;
     char message[512];
     char out_dir[1024];  /* "" when nothing is written */

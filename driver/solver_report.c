@@ -353,6 +353,22 @@ int64_t ctd_solver_if_memory(const ctd_solver *s, int i)
     return (int64_t)s->hooks[i].memory(s->hooks[i].ctx);
 }
 
+/* The run's outcome says that its final files failed: a run that went
+ * well until then is an output error (status "error", exit 5, the message
+ * why; it had ended with status "ok" and an empty message); a failed one
+ * keeps its own status and adds this. */
+static void end_output_failed(ctd_solver *s, const char *why)
+{
+    if (s->exit_code == CTD_EXIT_OK) {
+        s->status = "error";
+        s->exit_code = CTD_EXIT_OUTPUT;
+        snprintf(s->message, sizeof s->message, "%s", why);
+    } else {
+        size_t len = strlen(s->message);
+        snprintf(s->message + len, sizeof s->message - len, "; %s", why);
+    }
+}
+
 int cti_solver_finish(ctd_solver *s)
 {
     cti_solver_work *w = s->w;
@@ -364,8 +380,10 @@ int cti_solver_finish(ctd_solver *s)
     if (w->out) {
         const ctd_model *m = s->model;
         ctd_if_summary *ifs = calloc((size_t)s->nhook + 1, sizeof *ifs);
-        if (!ifs)
+        if (!ifs) {
+            end_output_failed(s, "out of memory writing the summary");
             return CT_ERR_NOMEM;
+        }
         for (int i = 0; i < s->nhook; i++) {
             ifs[i].name = w->if_names[i];
             ifs[i].type = s->hooks[i].type;
@@ -384,21 +402,8 @@ int cti_solver_finish(ctd_solver *s)
         rc = ctd_output_summary(w->out, &sum);
         w->wrote_summary = rc == CT_OK;
         free(ifs);
-        if (rc) {
-            /* The run's outcome says so: a run that went well until its
-             * summary could not be written is an output error (it ended
-             * with status "ok" and an empty message, exit 5); a failed one
-             * keeps its own status and adds this. */
-            if (s->exit_code == CTD_EXIT_OK) {
-                s->status = "error";
-                s->exit_code = CTD_EXIT_OUTPUT;
-                snprintf(s->message, sizeof s->message, "%s", ctd_output_error(w->out));
-            } else {
-                size_t len = strlen(s->message);
-                snprintf(s->message + len, sizeof s->message - len, "; %s",
-                         ctd_output_error(w->out));
-            }
-        }
+        if (rc)
+            end_output_failed(s, ctd_output_error(w->out));
         /* A run stopped in its first cycle has no history to plot (gnuplot
          * fails on it). */
         if (!rc && m->scene->output->csv && (s->cycle > 0 || s->exit_code == CTD_EXIT_OK)) {

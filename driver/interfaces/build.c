@@ -530,7 +530,10 @@ static int build_one(const ctd_model *m, const ctd_scene_interface *f, unsigned 
     if (rc == CT_OK) {
         ct_diag dg = {0, -1, ""};
         rc = ctd_iface_init(&it, &c, &d, &dg);
-        if (rc != CT_OK)
+        /* The kernel's message, after the code unless it says it. */
+        if (rc != CT_OK && strstr(dg.msg, ct_strerror(rc)))
+            ctd_errf(err, len, rc, "%s: %s", where, dg.msg);
+        else if (rc != CT_OK)
             ctd_errf(err, len, rc, "%s: %s%s%s", where, ct_strerror(rc), dg.msg[0] ? ": " : "",
                  dg.msg);
     }
@@ -550,6 +553,10 @@ static int build_one(const ctd_model *m, const ctd_scene_interface *f, unsigned 
     seg_inputs_free(&gs);
     ct_free(curve_p);
     ct_free(curve_f);
+    /* The steps that return a code alone (the selections, the per-segment
+     * inputs, the edges, out of memory) are named by the interface. */
+    if (rc != CT_OK && err && len > 0 && !err[0])
+        ctd_errf(err, len, rc, "%s: %s", where, ct_strerror(rc));
     if (rc != CT_OK)
         return rc;
     hook_ctx *h = calloc(1, sizeof *h);
@@ -577,6 +584,8 @@ int ctd_interfaces_build(const ctd_model *m, const ctd_scene *sc, ctd_contact_ho
 {
     *hooks = NULL;
     *nhook = 0;
+    if (err && errlen > 0)
+        err[0] = 0;
     if (!m || !sc)
         return ctd_errf(err, errlen, CT_ERR_ARG, "no model or scene");
     unsigned n = sc->interfaces_count;
