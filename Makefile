@@ -207,9 +207,14 @@ $(CONTACT): $(BUILD)/driver/main.o $(LIBDRIVER) $(LIBCONTACT)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_ALL) $^ -o $@ $(LDLIBS_ALL)
 
+# The test program sees the project's allocations (tests/alloc_fail.h):
+# the linker sends the project's calls of these functions to wrappers that
+# can make them fail.
+WRAP_ALLOC = -Wl,--wrap=malloc,--wrap=calloc,--wrap=realloc,--wrap=aligned_alloc \
+  -Wl,--wrap=strdup,--wrap=strndup,--wrap=free
 $(TESTS): $(TEST_OBJ) $(LIBDRIVER) $(LIBCONTACT)
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS_ALL) $^ -o $@ $(LIBS_CRIT) $(LDLIBS_ALL)
+	$(CC) $(CFLAGS_ALL) $(WRAP_ALLOC) $^ -o $@ $(LIBS_CRIT) $(LDLIBS_ALL)
 
 # The examples use the public header alone (kernels/contact.h and the
 # ct_*.h it includes); tests/test_examples.c runs them.

@@ -63,13 +63,26 @@ static void log_capture(cyaml_log_t level, void *ctx, const char *fmt, va_list a
     }
 }
 
+/* libcyaml's allocator (cyaml_mem's contract: size 0 frees), in the
+ * project's code so that the tests' allocation wrappers see libcyaml's
+ * allocations too (tests/alloc_fail.h). */
+static void *scene_mem(void *ctx, void *ptr, size_t size)
+{
+    (void)ctx;
+    if (size == 0) {
+        free(ptr);
+        return NULL;
+    }
+    return realloc(ptr, size);
+}
+
 static cyaml_config_t config(logbuf *b)
 {
     cyaml_config_t c;
     memset(&c, 0, sizeof c);
     c.log_fn = b ? log_capture : NULL;
     c.log_ctx = b;
-    c.mem_fn = cyaml_mem;
+    c.mem_fn = scene_mem;
     c.log_level = CYAML_LOG_ERROR;
     /* Aliases are allowed: the YAML tree (scene_yaml_read.c) has checked them
      * (each names an anchor before it, no cycle, a bounded number of
