@@ -132,7 +132,7 @@ typedef struct ctd_if_summary {
 
 typedef struct ctd_run_summary {
     const char *scene, *title;
-    const char *status;        /* "ok", "unstable", "error", ... */
+    const char *status;        /* "ok", "unstable", "error", "out of memory" */
     int exit_code;
     const char *message;       /* may be NULL */
     int threads;
