@@ -23,6 +23,8 @@
 #include <unistd.h>
 
 #include "alloc_fail.h"
+#include "contact_cycle.h"
+#include "meshgen.h"
 #include "model.h"
 #include "scene.h"
 #include "solver.h"
@@ -381,3 +383,49 @@ Test(alloc_fail, scene_with_output)
     free(path);
     ctt_rmtree(dir);
 }
+
+/* ---- The contact cycle (driver/contact_cycle.h) --------------------------- */
+
+/* A folded sheet squeezed so its layers touch: the cycle made, three steps
+ * (a re-sort forced in the second by a jump of every node), destroyed. */
+static int cycle_seq(void *ctx)
+{
+    (void)ctx;
+    ctd_case c;
+    ct_diag diag;
+    int rc = ctd_case_make(&c, "folded", 1500, CTD_NUM_NATURAL, 1, &diag);
+    if (rc != CT_OK)
+        return rc;
+    const ct_idx n = c.mesh.nodes.n;
+    ct_real *a[10];
+    int ok = 1;
+    for (int i = 0; i < 10; i++)
+        ok &= (a[i] = ct_calloc((size_t)n, sizeof(ct_real))) != NULL;
+    ctd_cycle *cy = NULL;
+    rc = ok ? CT_OK : CT_ERR_NOMEM;
+    if (rc == CT_OK) {
+        /* a[0..2] positions, a[3..5] velocities, a[6..8] forces, a[9] mass. */
+        for (ct_idx i = 0; i < n; i++) {
+            a[0][i] = c.mesh.nodes.x[i];
+            a[1][i] = (ct_real)(0.72 * c.mesh.nodes.y[i]);
+            a[2][i] = c.mesh.nodes.z[i];
+            a[9][i] = 1;
+        }
+        ctd_cycle_params p = ctd_cycle_default_params(c.h_mean);
+        rc = ctd_cycle_init(&cy, &p, n, a[9], c.sec.n, c.sec.node, c.sec.n, c.sec.node,
+                            c.main.n, c.mn1, c.mn2, c.mn3, c.mn4, c.self);
+    }
+    for (int k = 0; k < 3 && rc == CT_OK; k++) {
+        for (ct_idx i = 0; k == 1 && i < n; i++)
+            a[2][i] += (ct_real)c.h_mean;
+        rc = ctd_cycle_step(cy, a[0], a[1], a[2], a[3], a[4], a[5], (ct_real)1e-3, a[6], a[7],
+                            a[8]);
+    }
+    ctd_cycle_destroy(cy);
+    for (int i = 0; i < 10; i++)
+        ct_free(a[i]);
+    ctd_case_destroy(&c);
+    return rc;
+}
+
+Test(alloc_fail, contact_cycle) { sweep(cycle_seq, NULL, "contact cycle"); }
