@@ -23,19 +23,13 @@
 #include "provenance.h"
 #include "run.h"
 #include "scene.h"
+#include "wtime.h"
 
 #ifdef _OPENMP
 #include <omp.h>
 #endif
 
 enum { EXIT_USAGE = 1, EXIT_VERIFY = 3, EXIT_NOMEM = 5 };
-
-static double now_s(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 typedef struct search_opts {
     const char *family;
@@ -105,14 +99,14 @@ static int run_search(const search_opts *o)
 {
     ctd_case c;
     ct_diag d = {0};
-    double t0 = now_s();
+    double t0 = ctd_wtime();
     int rc = ctd_case_make(&c, o->family, o->n, o->num, o->seed, &d);
     if (rc) {
         fprintf(stderr, "contact search: cannot build case '%s': %s\n", o->family,
                 d.msg[0] ? d.msg : ct_strerror(rc));
         return rc == CT_ERR_NOMEM ? EXIT_NOMEM : EXIT_USAGE;
     }
-    double tgen = now_s() - t0;
+    double tgen = ctd_wtime() - t0;
     double h = c.h_mean > 0 ? c.h_mean : 1.0;
     ct_real gap = (ct_real)(o->gap >= 0 ? o->gap : 0.4 * h);
     ct_real margin = (ct_real)(o->margin >= 0 ? o->margin : 0.1 * h);
@@ -149,10 +143,10 @@ static int run_search(const search_opts *o)
         ct_search_params p = ct_search_default_params(CT_SEARCH_DIRECT);
         ct_search *s;
         if ((rc = ct_search_init(&s, &p)) == CT_OK) {
-            t0 = now_s();
+            t0 = ctd_wtime();
             rc = ct_search_run(s, &in, &ref);
             printf("  %-12s %10.2f ns/node  %10d pairs  (reference, %.3f s)\n", "direct",
-                   1e9 * (now_s() - t0) / (c.sec.n ? c.sec.n : 1), ref.n, now_s() - t0);
+                   1e9 * (ctd_wtime() - t0) / (c.sec.n ? c.sec.n : 1), ref.n, ctd_wtime() - t0);
             ct_search_destroy(s);
         }
         if (rc) {
@@ -199,9 +193,9 @@ static int run_search(const search_opts *o)
         for (int r = 0; r < reps && rc == CT_OK; r++) {
             if (a == CT_SEARCH_TOPO)
                 ct_search_reset(s); /* time the full first search each time */
-            t0 = now_s();
+            t0 = ctd_wtime();
             rc = ct_search_run(s, &in, &got);
-            ts[r] = now_s() - t0;
+            ts[r] = ctd_wtime() - t0;
         }
         if (rc) {
             fprintf(stderr, "contact search: %s failed: %s\n", ct_search_algo_name(a),

@@ -15,18 +15,7 @@
 
 #include "ct_internal.h"
 
-#ifdef _OPENMP
-#include <omp.h>
-static double now_s(void) { return omp_get_wtime(); }
-#else
-#include <time.h>
-static double now_s(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-#endif
+#include "wtime.h"
 
 /* ---- One cycle's pieces ------------------------------------------------------ */
 
@@ -374,11 +363,11 @@ int ctd_solver_run(ctd_solver *s)
     const ct_real *mass = m->mesh.nodes.m;
     const double end = s->end_time, tol = 1e-12 * end;
     double next_out = 0;
-    w->t_start = now_s();
+    w->t_start = ctd_wtime();
     w->last_progress = w->t_start;
     s->exit_code = CTD_EXIT_OK;
     for (;;) {
-        double t0 = now_s();
+        double t0 = ctd_wtime();
         int final = s->time >= end - tol || s->opts.dry ||
                      (s->opts.max_cycles > 0 && s->cycle >= s->opts.max_cycles);
         int out_step = s->time >= next_out - tol || final;
@@ -392,7 +381,7 @@ int ctd_solver_run(ctd_solver *s)
         });
         if (element_forces(s))
             break;
-        double t1 = now_s();
+        double t1 = ctd_wtime();
         s->timers.elements += t1 - t0;
         if (contact_forces(s, out_step))
             break;
@@ -495,7 +484,7 @@ int ctd_solver_run(ctd_solver *s)
         if (s->opts.dry)
             s->dt = dt_new; /* the step the run would start with */
         if (final) {
-            s->timers.total += now_s() - t0;
+            s->timers.total += ctd_wtime() - t0;
             break;
         }
         if (check)
@@ -514,13 +503,13 @@ int ctd_solver_run(ctd_solver *s)
         w->dt_prev = dt_new;
         s->time = s->time + dt_new >= end - tol ? end : s->time + dt_new;
         s->cycle++;
-        s->timers.total += now_s() - t0;
+        s->timers.total += ctd_wtime() - t0;
         cti_solver_progress(s, 0);
     }
     cti_solver_progress(s, 1);
     if (s->exit_code == CTD_EXIT_UNSTABLE)
         cti_solver_last_good(s);
-    s->wall = now_s() - w->t_start;
+    s->wall = ctd_wtime() - w->t_start;
     int rc = cti_solver_finish(s);
     if (rc && s->exit_code == CTD_EXIT_OK)
         s->exit_code = CTD_EXIT_OUTPUT;

@@ -15,18 +15,7 @@
 
 #include "ct_internal.h"
 
-#ifdef _OPENMP
-#include <omp.h>
-static double now_s(void) { return omp_get_wtime(); }
-#else
-#include <time.h>
-static double now_s(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-#endif
+#include "wtime.h"
 
 /* Sum m v- . v+ / 2 over the free nodes (at cycle 0, v- is the virtual
  * 2 v(0) - v(1/2)), in fixed chunks. */
@@ -281,7 +270,7 @@ void cti_solver_progress(ctd_solver *s, int final)
             fprintf(stderr, "\n");
         return;
     }
-    double t = now_s();
+    double t = ctd_wtime();
     if (t - w->t_start < 1.0 || t - w->last_progress < 0.25)
         return;
     w->last_progress = t;

@@ -11,18 +11,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#ifdef _OPENMP
-#include <omp.h>
-double ctdi_wtime(void) { return omp_get_wtime(); }
-#else
-#include <time.h>
-double ctdi_wtime(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
-#endif
 
 int ctdi_fail(ct_diag *diag, int code, int64_t index, const char *msg)
 {

@@ -9,6 +9,7 @@
 #define CTD_IFACE_INTERNAL_H
 
 #include "iface.h"
+#include "wtime.h"
 
 #include <math.h>
 #include <stdint.h>
@@ -170,8 +171,6 @@ int64_t ctdi_pair_limit(const ctd_iface *it, size_t bytes_per_pair);
 int ctdi_pairs_too_many(ctd_iface *it, int64_t npair, int more, ct_idx nsec,
                         size_t bytes_per_pair, double gap);
 
-/* Wall clock (omp_get_wtime when OpenMP is on). */
-double ctdi_wtime(void);
 
 /* Fold a pass's largest contact stiffness, smallest gap (CT_DT_NONE: no
  * pair) and largest squared relative speed into the report: rep->kmax and

@@ -378,7 +378,7 @@ int ctdi_pass_step(ctd_iface *it, ctdi_pass *p, ct_real dt, const ct_real *x,
         double h = ctdi_mean_seg_edge(p->nseg, p->n1, p->n2, p->n3, p->n4, x, y, z);
         it->margin = (ct_real)(h > 0 ? 0.2 * h : (p->sgap > 0 ? p->sgap : 1e-3));
     }
-    double t0 = ctdi_wtime();
+    double t0 = ctd_wtime();
     int did;
     int rc = pass_search(it, p, x, y, z, m, &did);
     if (rc != CT_OK) {
@@ -391,7 +391,7 @@ int ctdi_pass_step(ctd_iface *it, ctdi_pass *p, ct_real dt, const ct_real *x,
         if ((rc = pass_stiffness_finite(it, p, rep)) != CT_OK)
             return rc;
     }
-    double t1 = ctdi_wtime();
+    double t1 = ctd_wtime();
     const ct_pairs *pp = &p->pairs[p->cur];
     ct_idx n = pp->n;
     ct_narrow_stats ns;
@@ -413,7 +413,7 @@ int ctdi_pass_step(ctd_iface *it, ctdi_pass *p, ct_real dt, const ct_real *x,
             if (act[k] == 0)
                 pen[k] = 0;
     }
-    double t2 = ctdi_wtime();
+    double t2 = ctd_wtime();
     /* The pressure-dependent laws' area: the main segment's, or the
      * secondary node's (iface_area.c). */
     int wa = it->fric_on && (it->fric_law == CT_FRIC_POLY || it->fric_law == CT_FRIC_DARMSTAD);
@@ -436,15 +436,15 @@ int ctdi_pass_step(ctd_iface *it, ctdi_pass *p, ct_real dt, const ct_real *x,
     rep->force[0] += side * ct_sum_ordered(n, p->r[CTDI_R_FX]);
     rep->force[1] += side * ct_sum_ordered(n, p->r[CTDI_R_FY]);
     rep->force[2] += side * ct_sum_ordered(n, p->r[CTDI_R_FZ]);
-    double t3 = ctdi_wtime();
+    double t3 = ctd_wtime();
     ct_asm_map map = ct_asm_map_nodeseg(n, pp->node, p->s[0], p->s[1], p->s[2], p->s[3]);
     const ct_real *const w[5] = {NULL, p->geo.h1, p->geo.h2, p->geo.h3, p->geo.h4};
     rc = ct_assemble(&p->ws, it->cfg.asm_variant, &map, w, p->r[CTDI_R_FX], p->r[CTDI_R_FY],
                      p->r[CTDI_R_FZ], it->nnode, fx, fy, fz);
-    double t4 = ctdi_wtime();
+    double t4 = ctd_wtime();
     if (rc == CT_OK)
         rc = ctdi_pass_timestep(it, p, n, m, rep);
-    double t5 = ctdi_wtime();
+    double t5 = ctd_wtime();
     rep->t[CTD_IT_SEARCH] += t1 - t0;
     rep->t[CTD_IT_NARROW] += t2 - t1;
     rep->t[CTD_IT_FORCE] += (t3 - t2) + (t5 - t4);

@@ -340,7 +340,7 @@ int ctdi_type11_step(ctd_iface *it, ct_real dt, const ct_real *x, const ct_real 
         double h = e->ne > 0 ? s / (double)e->ne : 0;
         it->margin = (ct_real)(h > 0 ? 0.2 * h : e->sgap);
     }
-    double t0 = ctdi_wtime();
+    double t0 = ctd_wtime();
     int did;
     int rc = ctdi_type11_search(it, e, x, y, z, &did);
     if (rc != CT_OK) {
@@ -351,14 +351,14 @@ int ctdi_type11_step(ctd_iface *it, ct_real dt, const ct_real *x, const ct_real 
         it->resorts++;
         rep->resorted++;
     }
-    double t1 = ctdi_wtime();
+    double t1 = ctd_wtime();
     const ct_idx n = e->n;
     ct_narrow_stats ns;
     rc = ct_narrow_edge_edge(n, e->pa, e->pb, e->e1, e->e2, x, y, z, e->gedge, 0,
                              it->cfg.Gap_max_s, &e->geo, &ns);
     if (rc != CT_OK)
         return rc;
-    double t2 = ctdi_wtime();
+    double t2 = ctd_wtime();
     ct_real **r = e->r;
     {
         const ct_idx *restrict a1 = e->sl[0], *restrict a2 = e->sl[1], *restrict b1 = e->sl[2],
@@ -398,12 +398,12 @@ int ctdi_type11_step(ctd_iface *it, ct_real dt, const ct_real *x, const ct_real 
     rep->force[0] += ct_sum_ordered(n, r[E_FX]);
     rep->force[1] += ct_sum_ordered(n, r[E_FY]);
     rep->force[2] += ct_sum_ordered(n, r[E_FZ]);
-    double t3 = ctdi_wtime();
+    double t3 = ctd_wtime();
     ct_asm_map map = ct_asm_map_edge(n, e->sl[0], e->sl[1], e->sl[2], e->sl[3]);
     const ct_real *const w[4] = {r[E_W1], r[E_W2], r[E_W3], r[E_W4]};
     rc = ct_assemble(&e->ws, it->cfg.asm_variant, &map, w, r[E_FX], r[E_FY], r[E_FZ],
                      it->nnode, fx, fy, fz);
-    double t4 = ctdi_wtime();
+    double t4 = ctd_wtime();
     if (rc != CT_OK)
         return rc;
     /* Time steps: nodal over the four edge nodes, kinematic, tunnelling. */
@@ -433,7 +433,7 @@ int ctdi_type11_step(ctd_iface *it, ct_real dt, const ct_real *x, const ct_real 
             kmax = kt[k];
     }
     ctdi_report_limits(rep, kmax, gmin, v2max);
-    double t5 = ctdi_wtime();
+    double t5 = ctd_wtime();
     rep->t[CTD_IT_SEARCH] += t1 - t0;
     rep->t[CTD_IT_NARROW] += t2 - t1;
     rep->t[CTD_IT_FORCE] += (t3 - t2) + (t5 - t4);
