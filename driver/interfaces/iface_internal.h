@@ -172,6 +172,21 @@ int ctdi_pairs_too_many(ctd_iface *it, int64_t npair, int more, ct_idx nsec,
                         size_t bytes_per_pair, double gap);
 
 
+/* A pass's times into the report, from the clock read at its start (t[0])
+ * and after its search, narrow phase, force, assembly and time step
+ * (t[1..5]; the step counts as force), and its candidate and active pair
+ * counts. */
+static inline void ctdi_report_pass(ctd_iface_report *rep, const double t[6], ct_idx ncand,
+                                    int64_t nactive)
+{
+    rep->t[CTD_IT_SEARCH] += t[1] - t[0];
+    rep->t[CTD_IT_NARROW] += t[2] - t[1];
+    rep->t[CTD_IT_FORCE] += (t[3] - t[2]) + (t[5] - t[4]);
+    rep->t[CTD_IT_ASSEMBLE] += t[4] - t[3];
+    rep->ncand += ncand;
+    rep->nactive += (ct_idx)nactive;
+}
+
 /* Fold a pass's largest contact stiffness, smallest gap (CT_DT_NONE: no
  * pair) and largest squared relative speed into the report: rep->kmax and
  * the tunnelling limit rep->dt_tunnel (ct_dt_tunnel). */

@@ -445,11 +445,7 @@ int ctdi_pass_step(ctd_iface *it, ctdi_pass *p, ct_real dt, const ct_real *x,
     if (rc == CT_OK)
         rc = ctdi_pass_timestep(it, p, n, m, rep);
     double t5 = ctd_wtime();
-    rep->t[CTD_IT_SEARCH] += t1 - t0;
-    rep->t[CTD_IT_NARROW] += t2 - t1;
-    rep->t[CTD_IT_FORCE] += (t3 - t2) + (t5 - t4);
-    rep->t[CTD_IT_ASSEMBLE] += t4 - t3;
-    rep->ncand += n;
-    rep->nactive += (ct_idx)ns.active;
+    const double t[6] = {t0, t1, t2, t3, t4, t5};
+    ctdi_report_pass(rep, t, n, ns.active);
     return rc;
 }

@@ -434,12 +434,8 @@ int ctdi_type11_step(ctd_iface *it, ct_real dt, const ct_real *x, const ct_real 
     }
     ctdi_report_limits(rep, kmax, gmin, v2max);
     double t5 = ctd_wtime();
-    rep->t[CTD_IT_SEARCH] += t1 - t0;
-    rep->t[CTD_IT_NARROW] += t2 - t1;
-    rep->t[CTD_IT_FORCE] += (t3 - t2) + (t5 - t4);
-    rep->t[CTD_IT_ASSEMBLE] += t4 - t3;
-    rep->ncand += n;
-    rep->nactive += (ct_idx)ns.active;
+    const double t[6] = {t0, t1, t2, t3, t4, t5};
+    ctdi_report_pass(rep, t, n, ns.active);
     return CT_OK;
 }
 
