@@ -307,6 +307,31 @@ cti_put4(ct_real *const d[6], ct_idx k, const ct_real *restrict x, const ct_real
     CTI_PUT2(d[5], k, z[i2], z[i3]);
 }
 
+/* Packed coordinates (ct_coords_pack): node i's (x, y, z, w) at
+ * xyzw[4 i..4 i + 3], aligned to their size, loaded as one vector. The
+ * copies from them store the same layout as cti_put4 / cti_put5: (x, y) is
+ * the vector's low half, and the z of two nodes one shuffle of theirs. */
+typedef ct_real cti_four __attribute__((vector_size(4 * sizeof(ct_real))));
+#define CTI_XYZW(w, i) (*(const cti_four *)(const void *)&(w)[4 * (size_t)(i)])
+#define CTI_PUT2V(arr, k, v) (*(cti_two *)(void *)&(arr)[2 * (k)] = (v))
+#define CTI_LO2(a) __builtin_shufflevector((a), (a), 0, 1)
+#define CTI_ZZ(a, b) __builtin_shufflevector((a), (b), 2, 6)
+
+/* cti_put4 from packed coordinates: the same stores, 4 vector loads. */
+static inline __attribute__((always_inline)) void
+cti_put4_packed(ct_real *const d[6], ct_idx k, const ct_real *restrict w, ct_idx i0, ct_idx i1,
+                ct_idx i2, ct_idx i3)
+{
+    const cti_four v0 = CTI_XYZW(w, i0), v1 = CTI_XYZW(w, i1);
+    const cti_four v2 = CTI_XYZW(w, i2), v3 = CTI_XYZW(w, i3);
+    CTI_PUT2V(d[0], k, CTI_LO2(v0));
+    CTI_PUT2V(d[1], k, CTI_LO2(v1));
+    CTI_PUT2V(d[2], k, CTI_LO2(v2));
+    CTI_PUT2V(d[3], k, CTI_LO2(v3));
+    CTI_PUT2V(d[4], k, CTI_ZZ(v0, v1));
+    CTI_PUT2V(d[5], k, CTI_ZZ(v2, v3));
+}
+
 /* The same for five nodes: d[v] (x, y) of node v for v < 5, d[5] and d[6]
  * the z of nodes 0, 1 and 2, 3, d[7][k] the z of node 4. 8 stores. */
 static inline __attribute__((always_inline)) void
@@ -317,6 +342,18 @@ cti_put5(ct_real *const d[8], ct_idx k, const ct_real *restrict x, const ct_real
     cti_put4(d4, k, x, y, z, i0, i1, i2, i3);
     CTI_PUT2(d[4], k, x[i4], y[i4]);
     d[7][k] = z[i4];
+}
+
+/* cti_put5 from packed coordinates. */
+static inline __attribute__((always_inline)) void
+cti_put5_packed(ct_real *const d[8], ct_idx k, const ct_real *restrict w, ct_idx i0, ct_idx i1,
+                ct_idx i2, ct_idx i3, ct_idx i4)
+{
+    ct_real *const d4[6] = {d[0], d[1], d[2], d[3], d[5], d[6]};
+    cti_put4_packed(d4, k, w, i0, i1, i2, i3);
+    const cti_four v4 = CTI_XYZW(w, i4);
+    CTI_PUT2V(d[4], k, CTI_LO2(v4));
+    d[7][k] = v4[2];
 }
 
 /* A batch of candidate pairs and, once loaded, their coordinates. A caller

@@ -153,6 +153,36 @@ int ct_narrow_node_slots(ct_idx npair, const ct_idx *sel, const ct_idx *node, co
                          ct_narrow_stats *stats);
 
 /*
+ * Packed node coordinates for the narrow phase: ct_coords_pack writes node
+ * i's (x[i], y[i], z[i], 0) to xyzw[4 i..4 i + 3]; xyzw (4 n reals,
+ * caller-allocated, e.g. ct_calloc(4 n, sizeof(ct_real))) must be aligned to 4 sizeof(ct_real)
+ * bytes (32 in double, 16 in single). The _packed entry points take xyzw
+ * in place of x, y, z (the fourth value is not read) and give the same
+ * results, bit for bit, as ct_narrow_node_segment and ct_narrow_node_slots
+ * on those x, y, z: they load a node's coordinates with one vector load
+ * instead of three scalar loads from three arrays (DESIGN-CHANGES §6). A
+ * code that keeps positions as x, y, z packs them once per step (a pass
+ * over the nodes, about 1-2 ns a node) and hands xyzw to every narrow-phase
+ * call of that step. CT_ERR_ARG for a negative count, a NULL array or a
+ * misaligned xyzw (nothing is checked for n == 0 or npair == 0); the
+ * _packed entry points otherwise return as the unpacked ones.
+ */
+int ct_coords_pack(ct_idx n, const ct_real *x, const ct_real *y, const ct_real *z,
+                   ct_real *xyzw);
+int ct_narrow_node_segment_packed(ct_idx npair, const ct_idx *node, const ct_idx *seg,
+                                  const ct_idx *n1, const ct_idx *n2, const ct_idx *n3,
+                                  const ct_idx *n4, const ct_real *xyzw,
+                                  const ct_real *gap_node, const ct_real *gap_seg, ct_real gap,
+                                  ct_real gap_max_s, ct_real gap_max_m, ct_quad_method method,
+                                  int two_sided, const ct_contact_geo *out,
+                                  ct_narrow_stats *stats);
+int ct_narrow_node_slots_packed(ct_idx npair, const ct_idx *sel, const ct_idx *node,
+                                const ct_idx *s1, const ct_idx *s2, const ct_idx *s3,
+                                const ct_idx *s4, const ct_real *xyzw, ct_real gap,
+                                ct_quad_method method, int two_sided,
+                                const ct_contact_geo *out, ct_narrow_stats *stats);
+
+/*
  * Which of each secondary node's candidate pairs carry its contact, after
  * the node-segment narrow phase; pairs in ascending node order (a search's
  * canonical order; CT_ERR_ARG otherwise, the results then unusable). Without it a node over a vertex shared by four

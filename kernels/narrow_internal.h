@@ -96,6 +96,9 @@ typedef struct cti_nr_args {
      * node_sel[seg[j]] (node is then NULL); NULL otherwise. */
     const ct_idx *node_sel;
     const ct_real *x, *y, *z;
+    /* The packed entry points (ct_coords_pack): (x, y, z, w) of node i at
+     * xyzw[4 i..4 i + 3], x, y and z then NULL; NULL otherwise. */
+    const ct_real *xyzw;
     const ct_real *gap_node, *gap_seg;
     ct_real gap, gap_max_s, gap_max_m;
     int two_sided;
@@ -125,8 +128,9 @@ typedef struct cti_nr_blk {
 
 void cti_nr_gather(const cti_nr_args *a, ct_idx k0, ct_idx n, cti_nr_blk *b);
 
-/* The coordinates of pairs [k0, k0 + n) into b->px.. b->z4; the fourth
- * corner only when quad != 0 (a triangle kernel does not read it). */
+/* The coordinates of pairs [k0, k0 + n) into b->px.. b->z4, from x, y, z
+ * or from the packed xyzw (the same values); the fourth corner only when
+ * quad != 0 (a triangle kernel does not read it). */
 void cti_nr_fetch(const cti_nr_args *a, ct_idx k0, ct_idx n, int quad, cti_nr_blk *b);
 
 /* Block kernels: pairs [k0, k0 + n), n <= CTI_NR_BLOCK, all triangles or all

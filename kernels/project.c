@@ -56,8 +56,9 @@ void cti_nr_gather(const cti_nr_args *a, ct_idx k0, ct_idx n, cti_nr_blk *b)
 }
 
 /* The coordinates of a block's pairs, loaded one by one and stored two at
- * a time. The loops are kept scalar: vectorised, they would be the vector
- * gathers this copy exists to avoid. */
+ * a time; from packed coordinates, a node's (x, y, z, w) in one vector load
+ * (the same stores and values). The loops are kept scalar: vectorised,
+ * they would be the vector gathers this copy exists to avoid. */
 CTI_NOVEC void cti_nr_fetch(const cti_nr_args *a, ct_idx k0, ct_idx n, int quad,
                                cti_nr_blk *b)
 {
@@ -69,8 +70,17 @@ CTI_NOVEC void cti_nr_fetch(const cti_nr_args *a, ct_idx k0, ct_idx n, int quad,
      * (through the selection, as the corners). */
     const int by_sel = a->node_sel != NULL;
     const ct_idx *restrict node = by_sel ? a->node_sel : a->node + k0;
+    const ct_real *restrict W = a->xyzw;
     if (!quad) {
         ct_real *const d[6] = {b->pxy, b->xy1, b->xy2, b->xy3, b->z01, b->z23};
+        if (W) {
+            CTI_NOVEC_LOOP
+            for (ct_idx j = 0; j < n; j++) {
+                ct_idx s = seg[j];
+                cti_put4_packed(d, j, W, node[by_sel ? s : j], n1[s], n2[s], n3[s]);
+            }
+            return;
+        }
         CTI_NOVEC_LOOP
         for (ct_idx j = 0; j < n; j++) {
             ct_idx s = seg[j];
@@ -79,6 +89,14 @@ CTI_NOVEC void cti_nr_fetch(const cti_nr_args *a, ct_idx k0, ct_idx n, int quad,
         return;
     }
     ct_real *const d[8] = {b->pxy, b->xy1, b->xy2, b->xy3, b->xy4, b->z01, b->z23, b->z4};
+    if (W) {
+        CTI_NOVEC_LOOP
+        for (ct_idx j = 0; j < n; j++) {
+            ct_idx s = seg[j];
+            cti_put5_packed(d, j, W, node[by_sel ? s : j], n1[s], n2[s], n3[s], n4[s]);
+        }
+        return;
+    }
     CTI_NOVEC_LOOP
     for (ct_idx j = 0; j < n; j++) {
         ct_idx s = seg[j];
@@ -123,12 +141,15 @@ static int cti_narrow_run(const cti_nr_args *ap, ct_idx npair, ct_quad_method me
     if (!(a.gap >= 0) || !(a.gap <= CTI_HUGE) || a.gap_max_s != a.gap_max_s ||
         a.gap_max_m != a.gap_max_m)
         return CT_ERR_ARG;
+    /* Packed coordinates are loaded as aligned vectors. */
+    if (a.xyzw && (uintptr_t)a.xyzw % (4 * sizeof(ct_real)) != 0)
+        return CT_ERR_ARG;
     if (stats)
         memset(stats, 0, sizeof *stats);
     if (npair == 0)
         return CT_OK;
-    if (!(a.node || a.node_sel) || !a.seg || !a.n1 || !a.n2 || !a.n3 || !a.n4 || !a.x ||
-        !a.y || !a.z || !out->dist || !out->pen || !out->nx || !out->ny || !out->nz ||
+    if (!(a.node || a.node_sel) || !a.seg || !a.n1 || !a.n2 || !a.n3 || !a.n4 ||
+        !(a.xyzw || (a.x && a.y && a.z)) || !out->dist || !out->pen || !out->nx || !out->ny || !out->nz ||
         !out->cx || !out->cy || !out->cz || !out->h1 || !out->h2 || !out->h3 || !out->h4 ||
         !out->gap || !out->flag)
         return CT_ERR_ARG;
@@ -188,7 +209,7 @@ int ct_narrow_node_segment(ct_idx npair, const ct_idx *restrict node,
                            ct_quad_method method, int two_sided, const ct_contact_geo *out,
                            ct_narrow_stats *stats)
 {
-    const cti_nr_args a = {node, seg, n1, n2, n3, n4, NULL, x, y, z, gap_node, gap_seg,
+    const cti_nr_args a = {node, seg, n1, n2, n3, n4, NULL, x, y, z, NULL, gap_node, gap_seg,
                            gap, gap_max_s, gap_max_m, two_sided, out};
     return cti_narrow_run(&a, npair, method, stats);
 }
@@ -201,7 +222,58 @@ int ct_narrow_node_slots(ct_idx npair, const ct_idx *restrict sel, const ct_idx 
                          int two_sided, const ct_contact_geo *out, ct_narrow_stats *stats)
 {
     /* The selection stands for the segment numbers, the slots for n1..n4. */
-    const cti_nr_args a = {NULL, sel, s1, s2, s3, s4, node, x, y, z, NULL, NULL,
+    const cti_nr_args a = {NULL, sel, s1, s2, s3, s4, node, x, y, z, NULL, NULL, NULL,
+                           gap, 0, 0, two_sided, out};
+    return cti_narrow_run(&a, npair, method, stats);
+}
+
+/* ---- Packed coordinates ------------------------------------------------ */
+
+/* Nodes per thread below which the pack runs without a team. */
+#define CTI_PACK_PAR 32768
+
+int ct_coords_pack(ct_idx n, const ct_real *restrict x, const ct_real *restrict y,
+                   const ct_real *restrict z, ct_real *restrict xyzw)
+{
+    if (n < 0)
+        return CT_ERR_ARG;
+    if (n == 0)
+        return CT_OK;
+    if (!x || !y || !z || !xyzw || (uintptr_t)xyzw % (4 * sizeof(ct_real)) != 0)
+        return CT_ERR_ARG;
+    CTI_PAR_FOR_SIMD(n > CTI_PACK_PAR, (schedule(static)),
+    for (ct_idx i = 0; i < n; i++) {
+        xyzw[4 * i] = x[i];
+        xyzw[4 * i + 1] = y[i];
+        xyzw[4 * i + 2] = z[i];
+        xyzw[4 * i + 3] = 0;
+    });
+    return CT_OK;
+}
+
+int ct_narrow_node_segment_packed(ct_idx npair, const ct_idx *restrict node,
+                                  const ct_idx *restrict seg, const ct_idx *restrict n1,
+                                  const ct_idx *restrict n2, const ct_idx *restrict n3,
+                                  const ct_idx *restrict n4, const ct_real *restrict xyzw,
+                                  const ct_real *restrict gap_node,
+                                  const ct_real *restrict gap_seg, ct_real gap,
+                                  ct_real gap_max_s, ct_real gap_max_m, ct_quad_method method,
+                                  int two_sided, const ct_contact_geo *out,
+                                  ct_narrow_stats *stats)
+{
+    const cti_nr_args a = {node, seg, n1, n2, n3, n4, NULL, NULL, NULL, NULL, xyzw, gap_node,
+                           gap_seg, gap, gap_max_s, gap_max_m, two_sided, out};
+    return cti_narrow_run(&a, npair, method, stats);
+}
+
+int ct_narrow_node_slots_packed(ct_idx npair, const ct_idx *restrict sel,
+                                const ct_idx *restrict node, const ct_idx *restrict s1,
+                                const ct_idx *restrict s2, const ct_idx *restrict s3,
+                                const ct_idx *restrict s4, const ct_real *restrict xyzw,
+                                ct_real gap, ct_quad_method method, int two_sided,
+                                const ct_contact_geo *out, ct_narrow_stats *stats)
+{
+    const cti_nr_args a = {NULL, sel, s1, s2, s3, s4, node, NULL, NULL, NULL, xyzw, NULL, NULL,
                            gap, 0, 0, two_sided, out};
     return cti_narrow_run(&a, npair, method, stats);
 }
