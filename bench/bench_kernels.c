@@ -5,6 +5,11 @@
  *
  * Names (Google Benchmark appends "/<pairs>/real_time"):
  *   kernels/narrow/<tri|4tri|newton|closed|edge>/t<T>
+ *   kernels/narrow/<tri|4tri|newton>-packed/t<T>  (the same pairs from packed
+ *       coordinates, ct_narrow_node_segment_packed; the pack, a pass over the
+ *       nodes once per step in a code, is not in the timed call: its cost is
+ *       the counters pack_ns_per_node and pack_ns_per_pair, the latter at
+ *       this benchmark's 1.4-2.9 pairs per node)
  *   kernels/force/<penalty+coulomb|penalty+coulomb-fused|type7|mu-<law>>/t<T>
  *   kernels/assemble/<colour|colour-b1|atomic|threadbuf|gather|serial>/t<T>
  *   kernels/prepare/<slots|colour|colour-b1|gather>/t<T>  (once per pair list:
@@ -49,7 +54,7 @@
 #include "gbench.h"
 #include "meshgen.h"
 
-enum { G_NARROW, G_EDGE, G_FORCE, G_TYPE7, G_MU, G_ASM, G_PREP };
+enum { G_NARROW, G_NARROW_PACKED, G_EDGE, G_FORCE, G_TYPE7, G_MU, G_ASM, G_PREP };
 enum { F_PENALTY_COULOMB = 0, F_PAIR_FUSED = 1 };
 enum { A_COLOUR, A_COLOUR_B1, A_ATOMIC, A_THREADBUF, A_GATHER, A_SERIAL, A_N };
 enum { P_SLOTS, P_COLOUR, P_COLOUR_B1, P_GATHER, P_N };
@@ -102,6 +107,11 @@ static int run_once(const kdesc *d, pdata *p, ct_narrow_stats *stats)
                                       p->x, p->y, p->z, NULL, NULL, (ct_real)p->gap, 0, 0,
                                       d->sub < 0 ? CT_QUAD_4TRI : (ct_quad_method)d->sub, 0,
                                       &p->geo, stats);
+    case G_NARROW_PACKED:
+        return ct_narrow_node_segment_packed(
+            p->npair, p->node, p->seg, p->n1, p->n2, p->n3, p->n4, p->xyzw, NULL, NULL,
+            (ct_real)p->gap, 0, 0, d->sub < 0 ? CT_QUAD_4TRI : (ct_quad_method)d->sub, 0, &p->geo,
+            stats);
     case G_EDGE:
     {
         const ctb_kb_edges *e = ctb_kb_edges_get(d->npair);
@@ -196,6 +206,10 @@ static int kernel_streams(const kdesc *d, ctb_kernel_streams *s)
         *s = (ctb_kernel_streams){.pair_idx_in = 2, .pair_real_out = 13, .pair_b1_out = 1,
                                   .seg_idx_in = 4, .node_real_in = 3};
         return 1;
+    case G_NARROW_PACKED: /* the same, x, y, z, w in one array */
+        *s = (ctb_kernel_streams){.pair_idx_in = 2, .pair_real_out = 13, .pair_b1_out = 1,
+                                  .seg_idx_in = 4, .node_real_in = 4};
+        return 1;
     case G_EDGE: /* ea, eb; the 14 results and the flag; e1, e2; x, y, z */
         *s = (ctb_kernel_streams){.pair_idx_in = 2, .pair_real_out = 14, .pair_b1_out = 1,
                                   .seg_idx_in = 2, .node_real_in = 3};
@@ -250,7 +264,8 @@ static double kernel_bytes(const kdesc *d, const pdata *p, int64_t npair, int pa
     if (d->group == G_EDGE) { /* each pair its own two edges and four nodes */
         nseg = 2 * npair;
         nnode = 4 * npair;
-    } else if (d->group == G_NARROW || d->group == G_ASM || d->group == G_PREP) {
+    } else if (d->group == G_NARROW || d->group == G_NARROW_PACKED || d->group == G_ASM ||
+               d->group == G_PREP) {
         if (ctb_floor_pairs_touched(p->nnode, p->nseg, npair, p->node, p->seg, p->n1, p->n2,
                                     p->n3, p->n4, &nseg, &nnode) != 0)
             return -1;
@@ -262,11 +277,14 @@ static const char *setting(const kdesc *d, char *buf, size_t len)
 {
     switch (d->group) {
     case G_NARROW:
+    case G_NARROW_PACKED:
         if (d->sub < 0)
-            snprintf(buf, len, "node-triangle (plates-tri), one-sided");
+            snprintf(buf, len, "node-triangle (plates-tri), one-sided%s",
+                     d->group == G_NARROW_PACKED ? ", packed coordinates" : "");
         else
-            snprintf(buf, len, "node-quad %s (plates), one-sided",
-                     ct_quad_method_name((ct_quad_method)d->sub));
+            snprintf(buf, len, "node-quad %s (plates), one-sided%s",
+                     ct_quad_method_name((ct_quad_method)d->sub),
+                     d->group == G_NARROW_PACKED ? ", packed coordinates" : "");
         break;
     case G_EDGE:
         snprintf(buf, len, "edge-edge, synthetic crossing edges");
@@ -306,9 +324,10 @@ static void bm_kernel(gb_state *st, void *arg)
     if (d->group == G_EDGE) {
         rc = ctb_kb_edges_get(d->npair)->rc;
     } else {
-        p = ctb_kb_pairs(d->group == G_NARROW && d->sub < 0, d->npair);
+        const int narrow = d->group == G_NARROW || d->group == G_NARROW_PACKED;
+        p = ctb_kb_pairs(narrow && d->sub < 0, d->npair);
         rc = p->rc;
-        if (rc == CT_OK && d->group != G_NARROW)
+        if (rc == CT_OK && !narrow)
             rc = ctb_kb_force_prepare(p);
     }
     if (rc != CT_OK) {
@@ -359,9 +378,24 @@ static void bm_kernel(gb_state *st, void *arg)
         gb_set_counter(st, "stream_bytes_per_pair", sbytes / (double)npair, GB_PLAIN);
     }
     char extra[160] = "";
-    if (d->group == G_NARROW || d->group == G_EDGE) {
+    if (d->group == G_NARROW_PACKED) {
+        /* The pack: rounds of calls over about 10 ms, after the timed loop. */
+        const ct_idx nn = p->nnode;
+        int64_t calls = 0;
+        double p0 = ctb_now_s(), pt = 0;
+        do {
+            rc = ct_coords_pack(nn, p->x, p->y, p->z, p->xyzw);
+            calls++;
+            pt = ctb_now_s() - p0;
+        } while (rc == CT_OK && pt < 0.01);
+        gb_set_counter(st, "pack_ns_per_node", pt * 1e9 / ((double)calls * (double)nn),
+                       GB_PLAIN);
+        gb_set_counter(st, "pack_ns_per_pair", pt * 1e9 / ((double)calls * (double)npair),
+                       GB_PLAIN);
+    }
+    if (d->group == G_NARROW || d->group == G_NARROW_PACKED || d->group == G_EDGE) {
         gb_set_counter(st, "active", (double)stats.active / (double)npair, GB_PLAIN);
-        if (d->group == G_NARROW && d->sub == CT_QUAD_NEWTON)
+        if (d->group != G_EDGE && d->sub == CT_QUAD_NEWTON)
             gb_set_counter(st, "fallbacks", (double)stats.fallbacks, GB_PLAIN);
         snprintf(extra, sizeof extra, ", %.0f%% active", 100.0 * (double)stats.active / npair);
     }
@@ -433,9 +467,15 @@ int ctb_kernels_register(const ctb_search_config *c)
      * synthetic edges. */
     for (int64_t n = 10000; n <= nmax; n *= 10) {
         ADD(G_NARROW, -1, "narrow/tri");
+        ADD(G_NARROW_PACKED, -1, "narrow/tri-packed");
         for (int m = 0; m < CT_QUAD_NMETHOD; m++) {
             snprintf(what, sizeof what, "narrow/%s", ct_quad_method_name((ct_quad_method)m));
             ADD(G_NARROW, m, what);
+            if (m == CT_QUAD_CLOSED)
+                continue;
+            snprintf(what, sizeof what, "narrow/%s-packed",
+                     ct_quad_method_name((ct_quad_method)m));
+            ADD(G_NARROW_PACKED, m, what);
         }
         ADD(G_FORCE, F_PENALTY_COULOMB, "force/penalty+coulomb");
         ADD(G_FORCE, F_PAIR_FUSED, "force/penalty+coulomb-fused");

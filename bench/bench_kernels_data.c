@@ -140,8 +140,14 @@ pdata *ctb_kb_pairs(int tri, int64_t want)
     for (int i = 0; i < 13; i++)
         ok &= (pd.g[i] = ft_real(want)) != NULL;
     ok &= (pd.flag = ft_alloc((size_t)want, 1)) != NULL;
+    ok &= (pd.xyzw = ft_real(4 * (int64_t)pd.nnode)) != NULL;
     if (!ok) {
         fail(&pd, CT_ERR_NOMEM, "pair data");
+        return &pd;
+    }
+    rc = ct_coords_pack(pd.nnode, pd.x, pd.y, pd.z, pd.xyzw);
+    if (rc != CT_OK) {
+        fail(&pd, rc, "packed coordinates");
         return &pd;
     }
     ct_contact_geo g = {pd.g[0], pd.g[1], pd.g[2], pd.g[3], pd.g[4], pd.g[5], pd.g[6],

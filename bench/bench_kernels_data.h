@@ -26,6 +26,7 @@ typedef struct pdata {
     ct_idx npair, nnode, nseg, nsec;
     double gap;
     ct_real *x, *y, *z;
+    ct_real *xyzw; /* x, y, z packed by ct_coords_pack (the _packed rows) */
     ct_idx *n1, *n2, *n3, *n4, *node, *seg;
     ct_real *g[13]; /* dist pen nx ny nz cx cy cz h1 h2 h3 h4 gap */
     uint8_t *flag;
