@@ -149,12 +149,36 @@ static int block_select(const ctd_cycle *cy, ct_idx k0, ct_idx ne, cy_scratch *s
                            NULL);
 }
 
+/* Where a block's packed pairs live for the force and step kernels: the
+ * weights and the nodes (secondary node, then the corners' slots). With
+ * the fused assembly (cti_cycle_fused) they are the block's compact list
+ * itself (g[1..4] and cn at the block's first positions), which block_pack
+ * fills directly: the assembly reads them there, so the pass no longer
+ * copies them out of the scratch after the force; otherwise the scratch. */
+typedef struct cy_packed {
+    ct_real *h[4];
+    ct_idx *c[5];
+} cy_packed;
+
+static cy_packed block_packed(const ctd_cycle *cy, ct_idx k0, const cy_scratch *s)
+{
+    cy_packed pk;
+    const int fused = cti_cycle_fused(cy);
+    for (int a = 0; a < 4; a++)
+        pk.h[a] = fused ? cy->g[1 + a] + k0 : s->v[CS_H1 + a];
+    for (int a = 0; a < 5; a++)
+        pk.c[a] = fused ? cy->cn[a] + k0 : s->i[CS_NODE + a];
+    return pk;
+}
+
 /* After block_narrow: write the results back into the interface's arrays
  * (p and the flag of every evaluated pair, the weights of the pairs in
- * contact), then pack the pairs in contact into s for the force and step
- * kernels: their indices in the block (act), their geometry (compacted in
- * place), nodes, mass and friction history. Returns their count. */
-static ct_idx block_pack(const ctd_cycle *cy, ct_idx k0, ct_idx ne, cy_scratch *s)
+ * contact), then pack the pairs in contact for the force and step kernels:
+ * their indices in the block (act), their geometry (compacted in place, the
+ * weights into dst's), nodes (dst's), mass and friction history. Returns
+ * their count. */
+static ct_idx block_pack(const ctd_cycle *cy, ct_idx k0, ct_idx ne, cy_scratch *s,
+                         const cy_packed *dst)
 {
     const ct_contact_geo *g = &cy->geo;
     ct_real *const *v = s->v;
@@ -171,61 +195,81 @@ static ct_idx block_pack(const ctd_cycle *cy, ct_idx k0, ct_idx ne, cy_scratch *
         }
     }
     /* The evaluated pairs in contact (positions in the scratch, pk). Every
-     * index is written, the count advances by the test: no branch. The
-     * block keeps pk's uses apart from the gathers below, which write its
-     * array. */
+     * index is written, the count advances by the test: no branch. */
     ct_idx na = 0;
     {
-        ct_idx *restrict pk = s->i[CS_S4];
+        ct_idx *restrict w = s->i[CS_S4];
         for (ct_idx j = 0; j < ne; j++) {
-            pk[na] = j;
+            w[na] = j;
             na += pen[j] > 0;
         }
+    }
+    /* pk's uses end before the gathers below, which may write its array
+     * (dst's fourth corner without the fused assembly). */
+    {
+        const ct_idx *restrict pk = s->i[CS_S4];
         /* Their weights, which the assembly reads (the per-pair arrays of
-         * ctd_cycle_geo; with the fused assembly, block_unpack keeps them
-         * in the compact lists instead). (The other results are not kept:
-         * stored for every pair, they cost more than the narrow phase
-         * saved by the skip, every store a cache miss.) */
-        const int slot[4] = {CS_H1, CS_H2, CS_H3, CS_H4};
-        ct_real *const dst[4] = {g->h1, g->h2, g->h3, g->h4};
-        for (int a = 0; a < 4 && dst[0]; a++) {
-            const ct_real *restrict f = v[slot[a]];
-            ct_real *restrict t = dst[a] + k0;
-            for (ct_idx i = 0; i < na; i++)
-                t[act[pk[i]]] = f[pk[i]];
+         * ctd_cycle_geo; with the fused assembly, the compact lists instead).
+         * (The other results are not kept: stored for every pair, they cost
+         * more than the narrow phase saved by the skip, every store a cache
+         * miss.) */
+        {
+            const int slot[4] = {CS_H1, CS_H2, CS_H3, CS_H4};
+            ct_real *const gw[4] = {g->h1, g->h2, g->h3, g->h4};
+            for (int a = 0; a < 4 && gw[0]; a++) {
+                const ct_real *restrict f = v[slot[a]];
+                ct_real *restrict t = gw[a] + k0;
+                for (ct_idx i = 0; i < na; i++)
+                    t[act[pk[i]]] = f[pk[i]];
+            }
         }
-        /* The pair (index in the block) whose friction history each pair
-         * in contact takes: its own, or the one its node's contact moved
-         * from (block_select's hand-over, an evaluated index), which then
-         * loses it (block_unpack: it is out of contact). In place: pk[i]
-         * >= i. */
-        ct_idx *restrict hs = s->i[CS_HO];
-        const int handover = cy->p.select;
-        for (ct_idx i = 0; i < na; i++) {
-            const ct_idx j = pk[i], from = handover ? hs[j] : -1;
-            hs[i] = act[from >= 0 ? from : j];
+        /* The pair (index in the block) whose friction history each pair in
+         * contact takes: its own, or the one its node's contact moved from
+         * (block_select's hand-over, an evaluated index), which then loses it
+         * (block_unpack: it is out of contact). In place: pk[i] >= i. Before
+         * act is compacted: from may be below i. */
+        {
+            ct_idx *restrict hs = s->i[CS_HO];
+            const int handover = cy->p.select;
+            for (ct_idx i = 0; i < na; i++) {
+                const ct_idx j = pk[i], from = handover ? hs[j] : -1;
+                hs[i] = act[from >= 0 ? from : j];
+            }
         }
-        /* Compact the force kernels' geometry and the indices in place
-         * (pk[i] >= i: a slot is read before it is overwritten). */
-        _Static_assert(CS_GAP == CS_H1 + 8, "the geometry scratch arrays must be consecutive");
-        for (int a = CS_H1; a <= CS_GAP; a++) {
-            ct_real *t = v[a];
-            for (ct_idx i = 0; i < na; i++)
-                t[i] = t[pk[i]];
+        /* Compact the geometry and the indices, in one pass: the normal, p
+         * and the gap in place (pk[i] >= i: a slot is read before it is
+         * overwritten), the weights into dst (in place when dst is the
+         * scratch), act in place. */
+        {
+            ct_real *nx = v[CS_NX], *ny = v[CS_NY], *nz = v[CS_NZ], *pp = v[CS_PEN];
+            ct_real *gap = v[CS_GAP];
+            const ct_real *h1 = v[CS_H1], *h2 = v[CS_H2], *h3 = v[CS_H3], *h4 = v[CS_H4];
+            ct_real *d1 = dst->h[0], *d2 = dst->h[1], *d3 = dst->h[2], *d4 = dst->h[3];
+            for (ct_idx i = 0; i < na; i++) {
+                const ct_idx j = pk[i];
+                nx[i] = nx[j];
+                ny[i] = ny[j];
+                nz[i] = nz[j];
+                pp[i] = pp[j];
+                gap[i] = gap[j];
+                d1[i] = h1[j];
+                d2[i] = h2[j];
+                d3[i] = h3[j];
+                d4[i] = h4[j];
+                act[i] = act[j];
+            }
         }
-        for (ct_idx i = 0; i < na; i++)
-            act[i] = act[pk[i]];
     }
     {
-        /* Nodes, mass and history of the pairs in contact (pk's array now
-         * receives the fourth segment node). */
+        /* Nodes, mass and history of the pairs in contact (dst's nodes;
+         * pk's array may be the fourth corner's: pk is not read below). */
         const ct_idx *restrict nd = cy->pairs[cy->cur].node + k0;
         const ct_idx *restrict s1 = cy->s[0] + k0, *restrict s2 = cy->s[1] + k0;
         const ct_idx *restrict s3 = cy->s[2] + k0, *restrict s4 = cy->s[3] + k0;
         const ct_real *restrict mass = cy->m;
-        ct_idx *restrict cn = s->i[CS_NODE], *restrict c1 = s->i[CS_S1];
-        ct_idx *restrict c2 = s->i[CS_S2], *restrict c3 = s->i[CS_S3];
-        ct_idx *restrict c4 = s->i[CS_S4];
+        ct_idx *restrict cn = dst->c[0], *restrict c1 = dst->c[1];
+        ct_idx *restrict c2 = dst->c[2], *restrict c3 = dst->c[3];
+        ct_idx *restrict c4 = dst->c[4];
         ct_real *restrict ms = v[CS_MS];
         const ct_idx *restrict ac = act;
         for (ct_idx i = 0; i < na; i++) {
@@ -257,16 +301,16 @@ static ct_idx block_pack(const ctd_cycle *cy, ct_idx k0, ct_idx ne, cy_scratch *
     return na;
 }
 
-/* The force of the na packed pairs of s: relative velocity, normal law,
- * damping, Coulomb friction. Every kernel is called on the packed pairs
- * alone (below their thread-team thresholds: no team). */
-static int packed_force(const ctd_cycle *cy, ct_idx na, cy_scratch *s, const ct_real *vx,
-                        const ct_real *vy, const ct_real *vz, ct_real dt)
+/* The force of the na packed pairs of s (weights and nodes in pk):
+ * relative velocity, normal law, damping, Coulomb friction. Every kernel
+ * is called on the packed pairs alone (below their thread-team thresholds:
+ * no team). */
+static int packed_force(const ctd_cycle *cy, ct_idx na, cy_scratch *s, const cy_packed *pk,
+                        const ct_real *vx, const ct_real *vy, const ct_real *vz, ct_real dt)
 {
     ct_real *const *v = s->v;
-    ct_idx *const *ix = s->i;
-    int rc = ct_relative_velocity(na, ix[CS_NODE], ix[CS_S1], ix[CS_S2], ix[CS_S3], ix[CS_S4],
-                                  v[CS_H1], v[CS_H2], v[CS_H3], v[CS_H4], v[CS_NX], v[CS_NY],
+    int rc = ct_relative_velocity(na, pk->c[0], pk->c[1], pk->c[2], pk->c[3], pk->c[4],
+                                  pk->h[0], pk->h[1], pk->h[2], pk->h[3], v[CS_NX], v[CS_NY],
                                   v[CS_NZ], vx, vy, vz, NULL, v[CS_VRX], v[CS_VRY], v[CS_VRZ],
                                   v[CS_VN], NULL);
     if (rc != CT_OK)
@@ -300,9 +344,9 @@ static int packed_force(const ctd_cycle *cy, ct_idx na, cy_scratch *s, const ct_
  * zero for the others) and its pair forces (normal plus tangential). With
  * the fused assembly (cti_cycle_fused), the forces go to the block's
  * compact list: its pairs in contact at [k0, k0 + na) of the per-pair
- * arrays, in order, with their nodes and weights, which the assembly then
- * reads alone; otherwise into the per-pair arrays fp, zero for the pairs
- * out of contact. */
+ * arrays, in order, beside their nodes and weights, which block_pack put
+ * there; the assembly then reads those lists alone. Otherwise into the
+ * per-pair arrays fp, zero for the pairs out of contact. */
 static void block_unpack(const ctd_cycle *cy, ct_idx k0, ct_idx k1, ct_idx na,
                          const cy_scratch *s)
 {
@@ -340,24 +384,18 @@ static void block_unpack(const ctd_cycle *cy, ct_idx k0, ct_idx k1, ct_idx na,
             h2[k] = g2[i];
         }
     }
-    if (!fused)
-        return;
-    for (int a = 0; a < 4; a++)
-        memcpy(cy->g[1 + a] + k0, s->v[CS_H1 + a], sizeof(ct_real) * (size_t)na);
-    for (int a = 0; a < 5; a++)
-        memcpy(cy->cn[a] + k0, s->i[CS_NODE + a], sizeof(ct_idx) * (size_t)na);
 }
 
 /* The two step limits of the na packed pairs of block k0 into the block's
  * record (indices of the whole list; packing keeps the order, so the
  * smallest index still wins a tie). */
 static void packed_timestep(const ctd_cycle *cy, ct_idx k0, ct_idx na, const cy_scratch *s,
-                            cy_block *b)
+                            const cy_packed *pk, cy_block *b)
 {
     const ct_idx *act = s->i[CS_ACT];
     b->rc_kin = ct_dt_type7_kinematic(na, s->v[CS_PEN], s->v[CS_GAP], s->v[CS_VN], NULL,
                                       &b->dt_kin, &b->i_kin);
-    b->rc_nod = ct_dt_nodal(na, s->i[CS_NODE], cy->m, NULL, s->v[CS_KTAN], NULL, &b->dt_nod,
+    b->rc_nod = ct_dt_nodal(na, pk->c[0], cy->m, NULL, s->v[CS_KTAN], NULL, &b->dt_nod,
                             &b->i_nod);
     b->i_kin = b->i_kin >= 0 ? k0 + act[b->i_kin] : -1;
     b->i_nod = b->i_nod >= 0 ? k0 + act[b->i_nod] : -1;
@@ -408,9 +446,10 @@ int cti_cycle_pairs(ctd_cycle *cy, ct_idx n, const ct_real *x, const ct_real *y,
         b->neval = ne;
         double t1 = cti_cycle_wtime();
         ct_idx na = 0;
+        const cy_packed pk = block_packed(cy, k0, s);
         if (b->rc == CT_OK) {
-            na = block_pack(cy, k0, ne, s);
-            b->rc = packed_force(cy, na, s, vx, vy, vz, dt);
+            na = block_pack(cy, k0, ne, s, &pk);
+            b->rc = packed_force(cy, na, s, &pk, vx, vy, vz, dt);
             if (b->rc == CT_OK)
                 block_unpack(cy, k0, k1, na, s);
         }
@@ -418,7 +457,7 @@ int cti_cycle_pairs(ctd_cycle *cy, ct_idx n, const ct_real *x, const ct_real *y,
         cy->nact[bi] = na;
         double t2 = cti_cycle_wtime();
         if (b->rc == CT_OK)
-            packed_timestep(cy, k0, na, s, b);
+            packed_timestep(cy, k0, na, s, &pk, b);
         double t3 = cti_cycle_wtime();
         b->t[0] = t1 - t0;
         b->t[1] = t2 - t1;
