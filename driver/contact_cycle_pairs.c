@@ -18,7 +18,9 @@
  * without calling them: on the folded sheet about two candidates in three
  * are out of contact. With the colouring, the pair forces of a block stay
  * packed (a compact list: force, weights, nodes of its pairs in contact, at
- * the block's first positions), and the assembly reads those lists alone:
+ * the block's first positions; block_pack writes the weights and nodes
+ * there directly, and the force kernels read them in place), and the
+ * assembly reads those lists alone:
  * before, the pass scattered weights and forces into arrays over every
  * candidate (zero out of contact) and the assembly read them all, and the
  * cycle took 1.05-1.16 times its time now on the folded and crumpled
