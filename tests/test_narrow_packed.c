@@ -13,48 +13,22 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "test_geo.h"
 #include "test_util.h"
 
 #include "meshgen.h"
 
-enum { NF = 13 }; /* real fields of ct_contact_geo */
-
-typedef struct pk_geo {
-    ct_contact_geo g;
-    ct_real *f[NF];
-} pk_geo;
-
-static void pk_init(pk_geo *o, ct_idx n)
-{
-    ct_real **p[NF] = {&o->g.dist, &o->g.pen, &o->g.nx, &o->g.ny, &o->g.nz,
-                       &o->g.cx,   &o->g.cy,  &o->g.cz, &o->g.h1, &o->g.h2,
-                       &o->g.h3,   &o->g.h4,  &o->g.gap};
-    for (int i = 0; i < NF; i++) {
-        *p[i] = o->f[i] = ct_calloc((size_t)n + 1, sizeof(ct_real));
-        cr_assert_not_null(o->f[i]);
-    }
-    o->g.flag = ct_calloc((size_t)n + 1, 1);
-    cr_assert_not_null(o->g.flag);
-}
-
-static void pk_free(pk_geo *o)
-{
-    for (int i = 0; i < NF; i++)
-        ct_free(o->f[i]);
-    ct_free(o->g.flag);
-}
-
 /* Different bytes before each call, so a field left unwritten shows. */
-static void pk_scribble(pk_geo *o, ct_idx n, unsigned char c)
+static void pk_scribble(ctt_geo *o, ct_idx n, unsigned char c)
 {
-    for (int i = 0; i < NF; i++)
+    for (int i = 0; i < CTT_GEO_NF; i++)
         memset(o->f[i], c, (size_t)n * sizeof(ct_real));
     memset(o->g.flag, c, (size_t)n);
 }
 
-static void pk_same(const pk_geo *a, const pk_geo *b, ct_idx n, const char *what)
+static void pk_same(const ctt_geo *a, const ctt_geo *b, ct_idx n, const char *what)
 {
-    for (int i = 0; i < NF; i++)
+    for (int i = 0; i < CTT_GEO_NF; i++)
         for (ct_idx k = 0; k < n; k++)
             cr_assert(memcmp(&a->f[i][k], &b->f[i][k], sizeof(ct_real)) == 0,
                       "%s: pair %d field %d: packed %a, unpacked %a", what, (int)k, i,
@@ -125,9 +99,9 @@ static int64_t pk_case(const char *family, int64_t nodes)
             sl[d][k] = nd[d][pr.seg[k]];
     for (ct_idx j = 0; j < nsel; j++)
         sel[j] = np - 1 - 2 * j;
-    pk_geo a, b;
-    pk_init(&a, np);
-    pk_init(&b, np);
+    ctt_geo a, b;
+    ctt_geo_init(&a, np);
+    ctt_geo_init(&b, np);
     int64_t active = 0;
     char what[160];
     for (int m = 0; m < CT_QUAD_NMETHOD; m++)
@@ -171,8 +145,8 @@ static int64_t pk_case(const char *family, int64_t nodes)
                     pk_same(&a, &b, nsel, what);
                     cr_assert(memcmp(&sa, &sb, sizeof sa) == 0, "%s: stats differ", what);
                 }
-    pk_free(&a);
-    pk_free(&b);
+    ctt_geo_free(&a);
+    ctt_geo_free(&b);
     for (int d = 0; d < 4; d++)
         ct_free(sl[d]);
     ct_free(sel);
@@ -237,8 +211,8 @@ Test(narrow_packed, pack_values)
 
 Test(narrow_packed, bad_arguments)
 {
-    pk_geo o;
-    pk_init(&o, 2);
+    ctt_geo o;
+    ctt_geo_init(&o, 2);
     ct_real *w = ct_calloc(16, sizeof(ct_real));
     cr_assert_not_null(w);
     ct_real v[4] = {0, 0, 0, 0};
@@ -304,5 +278,5 @@ Test(narrow_packed, bad_arguments)
                                       &o.g, NULL),
                  CT_ERR_ARG);
     ct_free(w);
-    pk_free(&o);
+    ctt_geo_free(&o);
 }

@@ -9,36 +9,10 @@
  */
 #include <string.h>
 
+#include "test_geo.h"
 #include "test_util.h"
 
 #include "meshgen.h"
-
-enum { NF = 13 }; /* real fields of ct_contact_geo */
-
-typedef struct slots_geo {
-    ct_contact_geo g;
-    ct_real *f[NF];
-} slots_geo;
-
-static void sg_init(slots_geo *o, ct_idx n)
-{
-    ct_real **p[NF] = {&o->g.dist, &o->g.pen, &o->g.nx, &o->g.ny, &o->g.nz,
-                       &o->g.cx,   &o->g.cy,  &o->g.cz, &o->g.h1, &o->g.h2,
-                       &o->g.h3,   &o->g.h4,  &o->g.gap};
-    for (int i = 0; i < NF; i++) {
-        *p[i] = o->f[i] = ct_calloc((size_t)n + 1, sizeof(ct_real));
-        cr_assert_not_null(o->f[i]);
-    }
-    o->g.flag = ct_calloc((size_t)n + 1, 1);
-    cr_assert_not_null(o->g.flag);
-}
-
-static void sg_free(slots_geo *o)
-{
-    for (int i = 0; i < NF; i++)
-        ct_free(o->f[i]);
-    ct_free(o->g.flag);
-}
 
 Test(project, slots_selection_equals_whole_list)
 {
@@ -94,9 +68,9 @@ Test(project, slots_selection_equals_whole_list)
             sel[nsel++] = k;
     cr_assert_gt(nsel, np / 4);
     cr_assert_lt(nsel, np);
-    slots_geo whole, part;
-    sg_init(&whole, np);
-    sg_init(&part, nsel);
+    ctt_geo whole, part;
+    ctt_geo_init(&whole, np);
+    ctt_geo_init(&part, nsel);
     int64_t active = 0;
     for (int m = 0; m < CT_QUAD_NMETHOD; m++)
         for (int two = 0; two < 2; two++)
@@ -113,7 +87,7 @@ Test(project, slots_selection_equals_whole_list)
                              CT_OK);
                 for (ct_idx j = 0; j < nsel; j++) {
                     const ct_idx k = sel[j];
-                    for (int i = 0; i < NF; i++)
+                    for (int i = 0; i < CTT_GEO_NF; i++)
                         cr_assert(memcmp(&part.f[i][j], &whole.f[i][k], sizeof(ct_real)) == 0,
                                   "method %d two %d: selected pair %d (pair %d), field %d: %g "
                                   "against %g",
@@ -127,8 +101,8 @@ Test(project, slots_selection_equals_whole_list)
     /* Contact and its absence both occur. */
     cr_assert_gt(active, 0);
     cr_assert_lt(active, (int64_t)CT_QUAD_NMETHOD * 4 * nsel);
-    sg_free(&whole);
-    sg_free(&part);
+    ctt_geo_free(&whole);
+    ctt_geo_free(&part);
     for (int d = 0; d < 4; d++) {
         ct_free(n[d]);
         ct_free(sl[d]);
@@ -143,8 +117,8 @@ Test(project, slots_selection_equals_whole_list)
 
 Test(project, slots_bad_arguments)
 {
-    slots_geo o;
-    sg_init(&o, 1);
+    ctt_geo o;
+    ctt_geo_init(&o, 1);
     ct_idx i = 0;
     ct_real v = 0;
     cr_assert_eq(ct_narrow_node_slots(-1, &i, &i, &i, &i, &i, &i, &v, &v, &v, 0, CT_QUAD_4TRI, 0,
@@ -163,5 +137,5 @@ Test(project, slots_bad_arguments)
     cr_assert_eq(ct_narrow_node_slots(0, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, 0,
                                       CT_QUAD_4TRI, 0, &o.g, NULL),
                  CT_OK);
-    sg_free(&o);
+    ctt_geo_free(&o);
 }
