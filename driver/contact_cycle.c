@@ -424,13 +424,13 @@ int ctd_cycle_step(ctd_cycle *cy, const ct_real *x, const ct_real *y, const ct_r
         return CT_ERR_ARG;
     /* With the skip, its motion bound and the re-sort criterion in one
      * pass over the nodes: the search phase's time (its check). */
-    double tm = cti_cycle_wtime();
+    double tm = ctd_wtime();
     ct_real bound = 0;
     int need = cy->skip_on ? cti_skip_motion(cy, x, y, z, &bound) : -1;
-    double t0 = cti_cycle_wtime();
+    double t0 = ctd_wtime();
     int64_t nsort = cy->st.resorts;
     int rc = phase_search(cy, x, y, z, need, bound);
-    double t1 = cti_cycle_wtime();
+    double t1 = ctd_wtime();
     if (cy->st.resorts != nsort)
         cy->st.t_sort += t1 - t0;
     if (rc != CT_OK) {
@@ -441,7 +441,7 @@ int ctd_cycle_step(ctd_cycle *cy, const ct_real *x, const ct_real *y, const ct_r
     int64_t active = 0, neval = 0;
     double tph[3] = {0, 0, 0};
     rc = cti_cycle_pairs(cy, n, x, y, z, vx, vy, vz, dt, &active, &neval, tph);
-    double t2 = cti_cycle_wtime();
+    double t2 = ctd_wtime();
     /* The pass's wall time, shared among narrow phase, force and step. */
     if (rc == CT_OK) {
         double all = tph[0] + tph[1] + tph[2], w = t2 - t1;
@@ -450,7 +450,7 @@ int ctd_cycle_step(ctd_cycle *cy, const ct_real *x, const ct_real *y, const ct_r
     }
     if (rc == CT_OK)
         rc = phase_assemble(cy, n, fxn, fyn, fzn);
-    double t3 = cti_cycle_wtime();
+    double t3 = ctd_wtime();
     if (rc != CT_OK)
         return rc;
     ctd_cycle_stats *s = &cy->st;

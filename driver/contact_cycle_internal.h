@@ -13,21 +13,15 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "wtime.h"
+
 #ifdef _OPENMP
 #include <omp.h>
-static inline double cti_cycle_wtime(void) { return omp_get_wtime(); }
 static inline int cti_cycle_max_threads(void) { return omp_get_max_threads(); }
 static inline int cti_cycle_thread(void) { return omp_get_thread_num(); }
 #else
 static inline int cti_cycle_max_threads(void) { return 1; }
 static inline int cti_cycle_thread(void) { return 0; }
-#include <time.h>
-static inline double cti_cycle_wtime(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
 #endif
 
 /* Pairs per block of the fused narrow/force/step pass (phase_pairs), at

@@ -440,13 +440,13 @@ int cti_cycle_pairs(ctd_cycle *cy, ct_idx n, const ct_real *x, const ct_real *y,
         const ct_idx k0 = bst[bi], k1 = bst[bi + 1];
         cy_block *b = &blk[bi];
         cy_scratch *s = &cy->scr[cti_cycle_thread()];
-        double t0 = cti_cycle_wtime();
+        double t0 = ctd_wtime();
         ct_idx ne = 0;
         b->rc = block_narrow(cy, k0, k1, s, x, y, z, &ne);
         if (b->rc == CT_OK && cy->p.select)
             b->rc = block_select(cy, k0, ne, s, x, y, z);
         b->neval = ne;
-        double t1 = cti_cycle_wtime();
+        double t1 = ctd_wtime();
         ct_idx na = 0;
         const cy_packed pk = block_packed(cy, k0, s);
         if (b->rc == CT_OK) {
@@ -457,10 +457,10 @@ int cti_cycle_pairs(ctd_cycle *cy, ct_idx n, const ct_real *x, const ct_real *y,
         }
         b->active = na;
         cy->nact[bi] = na;
-        double t2 = cti_cycle_wtime();
+        double t2 = ctd_wtime();
         if (b->rc == CT_OK)
             packed_timestep(cy, k0, na, s, &pk, b);
-        double t3 = cti_cycle_wtime();
+        double t3 = ctd_wtime();
         b->t[0] = t1 - t0;
         b->t[1] = t2 - t1;
         b->t[2] = t3 - t2;
