@@ -108,13 +108,11 @@ static int contact_forces(ctd_solver *s, int want_fields)
             if (r->bad_node >= 0 && r->bad_node < nn)
                 snprintf(node, sizeof node, " at node %lld",
                          (long long)s->model->node_id[r->bad_node]);
-            /* The interface's message, unless it only repeats the code. */
-            const char *why = strstr(r->msg, ct_strerror(rc)) ? "" : r->msg;
             fail(s, unstable ? "unstable" : (nomem ? "out of memory" : "error"),
                  unstable ? CTD_EXIT_UNSTABLE : (nomem ? CTD_EXIT_OUTPUT : CTD_EXIT_BADINPUT),
                  "cycle %lld (t = %.6g): interface %s (type %d) failed%s: %s%s%s",
                  (long long)s->cycle, s->time, w->if_names[i], s->hooks[i].type, node,
-                 ct_strerror(rc), why[0] ? ": " : "", why);
+                 ct_strerror(rc), r->msg[0] ? ": " : "", r->msg);
             return -1;
         }
         ec += r->energy;

@@ -56,11 +56,9 @@ static int hook_step(void *ctx, const ctd_state *s, ct_real *fx, ct_real *fy, ct
     rep->t_assembly = r.t[CTD_IT_ASSEMBLE];
     if (rc != CT_OK) {
         rep->bad_node = r.dt_node;
-        if (r.msg[0])
-            snprintf(rep->msg, sizeof rep->msg, "%s", r.msg);
-        else
-            snprintf(rep->msg, sizeof rep->msg, "the interface's kernels returned %s",
-                     ct_strerror(rc));
+        /* The solver names the code; the interface's own words, if any,
+         * follow it. */
+        snprintf(rep->msg, sizeof rep->msg, "%s", r.msg);
         return rc;
     }
     if (rep->want_fields && rep->pen && rep->node_active)
