@@ -5,6 +5,7 @@
  * energy as the curve's integral, the time step, and Coulomb friction on
  * each pair's share of the force.
  */
+#include "interfaces/iface_internal.h"
 #include "test_iface_type356.h"
 
 /* ---- TYPE6: the user curve ----------------------------------------------- */
@@ -187,4 +188,51 @@ Test(iface_type356, type6_coulomb_friction_uses_the_pair_share)
     }
     ctd_iface_destroy(it);
     tn_free(&tn);
+}
+
+/* ---- TYPE6: the stored energy where the curve is negative ---------------- */
+
+/* The stored energy of TYPE6 is the integral of the force the law applies,
+ * max(0, f(p)), from 0 to p_max (the kernel clamps the curve's value to be
+ * compressive). A curve that starts above p = 0 is extrapolated to the
+ * left by its first interval and can be negative there, so the integral
+ * takes the positive part of each interval; checked by hand on three
+ * intervals with a sign change either way, and against a midpoint sum of
+ * max(0, ct_curve_eval) on a curve with several. */
+Test(iface_type356, type6_energy_positive_part_of_the_curve)
+{
+    const double tol = CTT_TOL(1e-12, 1e-5);
+    /* (0.01, 100), (0.02, 400): f(p) = 100 + 30000 (p - 0.01), zero at
+     * p = 1/150; over [0, 0.015] the triangle from 1/150 to 0.015, height
+     * 250: 0.5 * (0.015 - 1/150) * 250. */
+    const ct_real p1[2] = {(ct_real)0.01, (ct_real)0.02}, f1[2] = {100, 400};
+    double e = ctdi_curve_integral(2, p1, f1, 0, 0.015);
+    double want = 0.5 * (0.015 - 1.0 / 150) * 250;
+    cr_assert(fabs(e - want) <= tol * want, "rising through zero: %.12g expected %.12g", e, want);
+    /* Wholly below the root: nothing stored. */
+    cr_assert(ctdi_curve_integral(2, p1, f1, 0, 0.006) == 0);
+    /* Falling through zero, (0, 100), (0.01, -100): the triangle from 0 to
+     * the root 0.005, height 100. */
+    const ct_real p2[2] = {0, (ct_real)0.01}, f2[2] = {100, -100};
+    e = ctdi_curve_integral(2, p2, f2, 0, 0.01);
+    want = 0.5 * 0.005 * 100;
+    cr_assert(fabs(e - want) <= tol * want, "falling through zero: %.12g expected %.12g", e, want);
+    /* A curve that crosses zero three times, against a midpoint sum of the
+     * clamped curve over [0, 0.05] (10^6 intervals: its error is far below
+     * the tolerance for a piecewise-linear integrand). */
+    const ct_real p3[5] = {(ct_real)0.005, (ct_real)0.01, (ct_real)0.02, (ct_real)0.03,
+                           (ct_real)0.04};
+    const ct_real f3[5] = {-50, 80, -20, 300, 100};
+    const double b = 0.05;
+    e = ctdi_curve_integral(5, p3, f3, 0, b);
+    const int nq = 1000000;
+    double sum = 0;
+    for (int i = 0; i < nq; i++) {
+        ct_real slope;
+        const double f = (double)ct_curve_eval(5, p3, f3, (ct_real)((i + 0.5) * b / nq), &slope);
+        sum += f > 0 ? f : 0;
+    }
+    sum *= b / nq;
+    cr_assert(fabs(e - sum) <= CTT_TOL(1e-8, 1e-4) * sum, "three crossings: %.12g, quadrature %.12g",
+              e, sum);
 }
