@@ -222,6 +222,10 @@ static int run_search(const search_opts *o)
                        memcmp(got.seg, ref.seg, sizeof(ct_idx) * (size_t)ref.n) == 0;
             printf("  %s (missed %lld, extra %lld)", same ? "identical to direct" : "DIFFERS",
                    (long long)miss, (long long)extra);
+            /* Say so where a difference is the method's, not a defect. */
+            if (!same && extra == 0 && a == CT_SEARCH_TOPO)
+                printf("  [allowed: the topological search looks only near each node's last "
+                       "closest main node]");
             /* The topological search may miss pairs (its known weakness);
              * nothing may report a pair the direct search rejects. */
             if (extra > 0 || (!same && a != CT_SEARCH_TOPO))
@@ -383,15 +387,20 @@ static int cmd_search(int argc, char **argv)
     return run_search(&o);
 }
 
+/* The sizes keep the direct references affordable: with two plates of
+ * 10^5 nodes they took two minutes of the demo on 2 cores (the shuffled
+ * one 90 s: the all-pairs loop reads the nodes at random); `contact
+ * search` runs any size. */
 static int cmd_demo(void)
 {
     ctd_print_provenance(stdout, "# ");
     printf("\nContact search comparison: every search is checked pair for pair against\n"
-           "the direct (all pairs) search; times are medians of 5 runs.\n\n");
+           "the direct (all pairs) search; times are medians of 5 runs. Larger cases:\n"
+           "contact search --family F --n N (--check off to skip the direct search).\n\n");
     search_opts cases[] = {
         {"folded", 20000, -1, CTD_NUM_NATURAL, -1, -1, 5, 1, CT_FILTER_HULL, 1, 0, 0, 0, 0},
-        {"plates", 100000, -1, CTD_NUM_NATURAL, -1, -1, 5, 1, CT_FILTER_HULL, 1, 0, 0, 0, 0},
-        {"plates", 100000, -1, CTD_NUM_SHUFFLED, -1, -1, 5, 1, CT_FILTER_HULL, 1, 0, 0, 0, 0},
+        {"plates", 40000, -1, CTD_NUM_NATURAL, -1, -1, 5, 1, CT_FILTER_HULL, 1, 0, 0, 0, 0},
+        {"plates", 40000, -1, CTD_NUM_SHUFFLED, -1, -1, 5, 1, CT_FILTER_HULL, 1, 0, 0, 0, 0},
         {"graded", 50000, -1, CTD_NUM_NATURAL, -1, -1, 5, 1, CT_FILTER_HULL, 1, 0, 0, 0, 0},
     };
     int worst = 0;

@@ -151,6 +151,15 @@ Test(cli, search_options_against_direct)
     snprintf(miss, sizeof miss, "(missed %ld, extra 0)", soup.pairs - topo);
     cr_expect(topo > 0 && topo <= soup.pairs && strstr(tl, miss) != NULL,
               "topological %ld pairs of %ld, expected \"%s\":\n%s", topo, soup.pairs, miss, r.out);
+    /* Its line says the misses are the method's (and no exact search's
+     * line says so). */
+    cr_expect(topo < soup.pairs && strstr(tl, "[allowed: the topological search looks only near "
+                                              "each node's last closest main node]") != NULL,
+              "%s", r.out);
+    const char *allowed = strstr(r.out, "[allowed"), *eol = strchr(tl, '\n');
+    cr_expect(allowed && allowed > tl && (!eol || allowed < eol) &&
+                  strstr(allowed + 1, "[allowed") == NULL,
+              "%s", r.out);
 
     /* Another seed is another soup. */
     ctt_cli_run(&r, dir, 2, "search --family soup --n 1500 --seed 12 --repeat 1 --algo bucket");
