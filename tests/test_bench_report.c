@@ -312,6 +312,74 @@ Test(bench_report, interleave_alternates_and_takes_medians)
     cr_expect(system(cmd) == 0);
 }
 
+/* A fake benchmark program that answers every call with two repetitions of
+ * one run, ns_per_pair `first` then `second`, and appends its arguments to
+ * LOG. */
+static void write_fake_reps(const char *path, const char *log, const char *first,
+                            const char *second)
+{
+    FILE *f = fopen(path, "w");
+    cr_assert(f, "cannot write %s", path);
+    fprintf(f,
+            "#!/bin/sh\n"
+            "echo \"$@\" >> %s\n"
+            "for a in \"$@\"; do case $a in --benchmark_out=*) out=${a#--benchmark_out=};; "
+            "esac; done\n"
+            "r='\"name\": \"kernels/x/t1/10/real_time\", \"run_name\": "
+            "\"kernels/x/t1/10/real_time\", \"run_type\": \"iteration\"'\n"
+            "printf '{\"context\": {}, \"benchmarks\": [{%%s, \"ns_per_pair\": %s}, "
+            "{%%s, \"ns_per_pair\": %s}, {\"name\": \"kernels/x/t1/10/real_time_median\", "
+            "\"run_name\": \"kernels/x/t1/10/real_time\", \"run_type\": \"aggregate\", "
+            "\"ns_per_pair\": 1}]}' \"$r\" \"$r\" > $out\n",
+            log, first, second);
+    fclose(f);
+    cr_assert(chmod(path, 0755) == 0, "chmod %s", path);
+}
+
+Test(bench_report, interleave_keeps_the_fastest_repetition)
+{
+    char dir[] = "/tmp/ct_interleave_XXXXXX";
+    cr_assert(mkdtemp(dir), "mkdtemp");
+    char a[300], b[300], log[300], js[300], cmd[1600];
+    snprintf(a, sizeof a, "%s/a.sh", dir);
+    snprintf(b, sizeof b, "%s/b.sh", dir);
+    snprintf(log, sizeof log, "%s/log", dir);
+    snprintf(js, sizeof js, "%s/out.json", dir);
+    /* a's repetitions read 12 then 9, b's 3 then 6: the fastest of each, 9
+     * and 3, give the ratio 3 (the last ones would give 1.5, the first 4;
+     * the aggregate row, 1, is not a repetition). */
+    write_fake_reps(a, log, "12", "9");
+    write_fake_reps(b, log, "3", "6");
+    snprintf(cmd, sizeof cmd,
+             "python3 bench/interleave.py %s %s --filter x --rounds 2 --repetitions 2 "
+             "--json %s 2>&1",
+             a, b, js);
+    int status = -1;
+    char *out = ctt_run_cmd(cmd, &status);
+    cr_assert_eq(status, 0, "interleave.py failed:\n%s", out);
+    free(out);
+    snprintf(cmd, sizeof cmd,
+             "python3 -c \"import json; d = json.load(open('%s'))['interleaved']; "
+             "r = d['rows'][0]; print('%%g %%g %%g %%d %%d' %% (r['a'], r['b'], r['ratio'], "
+             "r['rounds'], d['repetitions']))\"",
+             js);
+    out = ctt_run_cmd(cmd, &status);
+    cr_expect_str_eq(out, "9 3 3 2 2\n", "rows: %s", out);
+    free(out);
+    /* Every call asked for the repetitions. */
+    snprintf(cmd, sizeof cmd, "grep -c -- '--benchmark_repetitions=2' %s", log);
+    out = ctt_run_cmd(cmd, &status);
+    cr_expect_str_eq(out, "4\n", "calls with --benchmark_repetitions=2: %s", out);
+    free(out);
+    snprintf(cmd, sizeof cmd,
+             "python3 bench/interleave.py %s %s --filter x --repetitions 0 2>&1", a, b);
+    out = ctt_run_cmd(cmd, &status);
+    cr_expect_neq(status, 0, "--repetitions 0 was accepted:\n%s", out);
+    free(out);
+    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
+    cr_expect(system(cmd) == 0);
+}
+
 Test(bench_report, efficiency_table_from_sample)
 {
     char *out = sample_report("");
