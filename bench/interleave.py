@@ -15,8 +15,8 @@ round), with one repetition each; for every benchmark name present in both,
 the round's ratio is A's counter over B's (for times: B's speed-up over A).
 With --repetitions R, each program runs R repetitions in its turn and the
 round keeps, per name, the smallest value of the counter (the least
-disturbed of the R: on a shared host a repetition is slowed, never sped up,
-by the other tenants; in stop 47 the fastest of 3 per round read the
+disturbed of the R: on a shared host the other tenants slow a repetition
+down, they hardly ever speed one up; in stop 47 the fastest of 3 per round read the
 contact cycle's total 0.97 (0.87-1.07) where single repetitions read 0.89
 (0.65-1.12)).
 Reported per name: the median of A's and B's counter over the rounds, the
@@ -51,8 +51,8 @@ def run_once(binary, flt, out_path, reps=1, counter=None):
             continue
         name = base_name(b.get("run_name", b.get("name", "")))
         old = runs.get(name)
-        if old is None or (counter in b and counter in old
-                           and float(b[counter]) < float(old[counter])):
+        if old is None or (counter in b and (counter not in old
+                                             or float(b[counter]) < float(old[counter]))):
             runs[name] = b
     return runs, data.get("context", {})
 
