@@ -93,6 +93,14 @@ def interleave(a_bin, b_bin, flt, rounds, counter, reps=1):
             "rows": rows}
 
 
+def positive(text):
+    """The integer in text, or 0 when it is not one."""
+    try:
+        return int(text)
+    except ValueError:
+        return 0
+
+
 def main(argv):
     args, opts = [], {"--rounds": "5", "--repetitions": "1", "--counter": "ns_per_pair",
                       "--filter": None, "--json": None}
@@ -107,20 +115,11 @@ def main(argv):
     if len(args) != 2 or not opts["--filter"]:
         sys.stderr.write(__doc__)
         return 2
-    try:
-        rounds = int(opts["--rounds"])
-    except ValueError:
-        rounds = 0
-    if rounds < 1:
-        sys.stderr.write("interleave.py: --rounds must be a positive integer\n")
-        return 2
-    try:
-        reps = int(opts["--repetitions"])
-    except ValueError:
-        reps = 0
-    if reps < 1:
-        sys.stderr.write("interleave.py: --repetitions must be a positive integer\n")
-        return 2
+    rounds, reps = positive(opts["--rounds"]), positive(opts["--repetitions"])
+    for key, val in (("--rounds", rounds), ("--repetitions", reps)):
+        if val < 1:
+            sys.stderr.write("interleave.py: %s must be a positive integer\n" % key)
+            return 2
     try:
         res = interleave(args[0], args[1], opts["--filter"], rounds, opts["--counter"], reps)
     except (OSError, RuntimeError, ValueError) as e:

@@ -249,12 +249,21 @@ Test(bench_report, interleaved_table_from_sample)
  * appends its tag to LOG, counts its calls in CNT, and writes a Google
  * Benchmark JSON with one run whose ns_per_pair is `first` on odd calls
  * and `second` on even ones. */
-static void write_fake(const char *path, const char *tag, const char *log, const char *cnt,
-                       const char *first, const char *second)
+/* Write the shell script text to path, executable. */
+static void write_script(const char *path, const char *text)
 {
     FILE *f = fopen(path, "w");
     cr_assert(f, "cannot write %s", path);
-    fprintf(f,
+    fputs(text, f);
+    fclose(f);
+    cr_assert(chmod(path, 0755) == 0, "chmod %s", path);
+}
+
+static void write_fake(const char *path, const char *tag, const char *log, const char *cnt,
+                       const char *first, const char *second)
+{
+    char text[2048];
+    snprintf(text, sizeof text,
             "#!/bin/sh\n"
             "echo %s >> %s\n"
             "n=$(cat %s 2>/dev/null || echo 0); n=$((n + 1)); echo $n > %s\n"
@@ -265,8 +274,7 @@ static void write_fake(const char *path, const char *tag, const char *log, const
             "\"kernels/x/t1/10/real_time\", \"run_name\": \"kernels/x/t1/10/real_time\", "
             "\"run_type\": \"iteration\", \"ns_per_pair\": %%s}]}' $v > $out\n",
             tag, log, cnt, cnt, first, second, tag);
-    fclose(f);
-    cr_assert(chmod(path, 0755) == 0, "chmod %s", path);
+    write_script(path, text);
 }
 
 Test(bench_report, interleave_alternates_and_takes_medians)
@@ -312,15 +320,23 @@ Test(bench_report, interleave_alternates_and_takes_medians)
     cr_expect(system(cmd) == 0);
 }
 
+/* Run cmd and expect its output to be want. */
+static void expect_cmd_output(const char *cmd, const char *want, const char *what)
+{
+    int status = -1;
+    char *out = ctt_run_cmd(cmd, &status);
+    cr_expect_str_eq(out, want, "%s: %s", what, out);
+    free(out);
+}
+
 /* A fake benchmark program that answers every call with two repetitions of
  * one run, ns_per_pair `first` then `second`, and appends its arguments to
  * LOG. */
 static void write_fake_reps(const char *path, const char *log, const char *first,
                             const char *second)
 {
-    FILE *f = fopen(path, "w");
-    cr_assert(f, "cannot write %s", path);
-    fprintf(f,
+    char text[2048];
+    snprintf(text, sizeof text,
             "#!/bin/sh\n"
             "echo \"$@\" >> %s\n"
             "for a in \"$@\"; do case $a in --benchmark_out=*) out=${a#--benchmark_out=};; "
@@ -332,8 +348,7 @@ static void write_fake_reps(const char *path, const char *log, const char *first
             "\"run_name\": \"kernels/x/t1/10/real_time\", \"run_type\": \"aggregate\", "
             "\"ns_per_pair\": 1}]}' \"$r\" \"$r\" > $out\n",
             log, first, second);
-    fclose(f);
-    cr_assert(chmod(path, 0755) == 0, "chmod %s", path);
+    write_script(path, text);
 }
 
 Test(bench_report, interleave_keeps_the_fastest_repetition)
@@ -363,14 +378,10 @@ Test(bench_report, interleave_keeps_the_fastest_repetition)
              "r = d['rows'][0]; print('%%g %%g %%g %%d %%d' %% (r['a'], r['b'], r['ratio'], "
              "r['rounds'], d['repetitions']))\"",
              js);
-    out = ctt_run_cmd(cmd, &status);
-    cr_expect_str_eq(out, "9 3 3 2 2\n", "rows: %s", out);
-    free(out);
+    expect_cmd_output(cmd, "9 3 3 2 2\n", "rows");
     /* Every call asked for the repetitions. */
     snprintf(cmd, sizeof cmd, "grep -c -- '--benchmark_repetitions=2' %s", log);
-    out = ctt_run_cmd(cmd, &status);
-    cr_expect_str_eq(out, "4\n", "calls with --benchmark_repetitions=2: %s", out);
-    free(out);
+    expect_cmd_output(cmd, "4\n", "calls with --benchmark_repetitions=2");
     snprintf(cmd, sizeof cmd,
              "python3 bench/interleave.py %s %s --filter x --repetitions 0 2>&1", a, b);
     out = ctt_run_cmd(cmd, &status);
