@@ -212,6 +212,55 @@ void ctd_scene_free(ctd_scene *sc)
     cyaml_free(&c, &cti_scene_schema, sc, 0);
 }
 
+/* ---- A Radioss deck given as a scene ------------------------------------- */
+
+/* The line of the first Radioss keyword of the file at path ('/' then a
+ * capital letter at the start of a line, as /BEGIN or /NODE; no line of a
+ * scene starts so, since a scene's top-level keys are lower case), with the
+ * keyword in kw; 0 when the first CTI_DECK_SNIFF lines hold none. Called
+ * only when the file failed to read as a scene: a deck reads as malformed
+ * YAML or as a string, and libyaml's message for either says nothing of
+ * what the file is. */
+#define CTI_DECK_SNIFF 2000
+
+static int deck_keyword_line(const char *path, char *kw, size_t kwlen)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return 0;
+    char buf[256];
+    int line = 1, at_start = 1, found = 0;
+    while (!found && line <= CTI_DECK_SNIFF && fgets(buf, sizeof buf, f)) {
+        if (at_start && buf[0] == '/' && buf[1] >= 'A' && buf[1] <= 'Z') {
+            size_t n = strcspn(buf, " \t\r\n");
+            snprintf(kw, kwlen, "%.*s", (int)(n < 48 ? n : 48), buf);
+            found = line;
+        }
+        at_start = strchr(buf, '\n') != NULL;
+        line += at_start;
+    }
+    fclose(f);
+    return found;
+}
+
+/* When path is a Radioss deck, replaces the read error of e by one that
+ * says so and how a scene uses a deck. */
+static void explain_deck(cti_errs *e, const char *path)
+{
+    char kw[64];
+    int line = deck_keyword_line(path, kw, sizeof kw);
+    if (!line || !e->out || e->out->count < 1)
+        return;
+    e->out->count = 0;
+    e->count = 0;
+    e->root = NULL; /* the tree, if any, is freed */
+    cti_err(e, CT_ERR_ARG, line, "",
+            "this is a Radioss deck (%s), not a scene: a scene reads a deck's mesh with "
+            "`mesh: [{import: {file: DECK}}]` and gives the parts' materials, the boundary "
+            "conditions and the interfaces (the format: driver/scene.h)",
+            kw);
+}
+
 int ctd_scene_load(const char *path, ctd_scene **out, ctd_scene_err *err)
 {
     return ctd_scene_load_refined(path, 0, out, err);
@@ -230,8 +279,12 @@ int ctd_scene_load_refined(const char *path, int64_t refine, ctd_scene **out,
     int line, code;
     char field[256], msg[512];
     cti_ynode *root = cti_yaml_read(path, &code, &line, field, sizeof field, msg, sizeof msg);
-    if (!root)
-        return cti_err(&e, code, line, field, "%s", msg);
+    if (!root) {
+        cti_err(&e, code, line, field, "%s", msg);
+        if (code == CT_ERR_ARG && line > 0)
+            explain_deck(&e, path);
+        return e.code;
+    }
     e.root = root;
     if (root->kind != CTI_Y_MAP) {
         char got[96], keys[400];
@@ -240,6 +293,7 @@ int ctd_scene_load_refined(const char *path, int64_t refine, ctd_scene **out,
         cti_err(&e, CT_ERR_ARG, root->line, "", "expected a mapping with keys %s, got %s", keys,
                 got);
         cti_ynode_free(root);
+        explain_deck(&e, path);
         return e.code;
     }
     logbuf *lb = calloc(1, sizeof *lb);

@@ -237,6 +237,37 @@ Test(scene, broken_files_name_file_line_field, .init = cr_redirect_stderr)
     }
 }
 
+/* A Radioss deck given where a scene is expected: libyaml reads one as
+ * malformed YAML (a '/' line after comments) or as one long string; either
+ * way the error says what the file is, at its first keyword, and how a scene
+ * reads a deck, and `contact check` exits 2. A malformed scene keeps its
+ * own message (broken_files). */
+Test(scene, radioss_deck_given_as_scene_is_named, .init = cr_redirect_stderr)
+{
+    static ctd_scene_err err;
+    const struct {
+        const char *file, *kw;
+        int line;
+    } decks[] = {{"../radioss/nan_coord.rad", "/NODE", 2},
+                 {"../radioss/bricks.rad", "/NODE", 3},
+                 {"../radioss/no_node.rad", "/PART/1", 2}};
+    for (size_t k = 0; k < sizeof decks / sizeof decks[0]; k++) {
+        char p[1024], want[1200];
+        scene_path(p, sizeof p, decks[k].file);
+        ctd_scene *sc = (ctd_scene *)1;
+        cr_assert_eq(ctd_scene_load(p, &sc, &err), CT_ERR_ARG, "%s", decks[k].file);
+        cr_assert_null(sc);
+        cr_assert_eq(err.count, 1, "%s: %d errors", decks[k].file, err.count);
+        snprintf(want, sizeof want, "%s:%d: this is a Radioss deck (%s), not a scene: ", p,
+                 decks[k].line, decks[k].kw);
+        cr_assert_eq(strncmp(err.msg[0].text, want, strlen(want)), 0,
+                     "got \"%s\", expected it to start \"%s\"", err.msg[0].text, want);
+        cr_assert_not_null(strstr(err.msg[0].text, "mesh: [{import: {file: DECK}}]"));
+        cr_assert_eq(err.msg[0].line, decks[k].line);
+        cr_assert_eq(ctd_check_main(p, 0, NULL), CTD_EXIT_BADINPUT);
+    }
+}
+
 Test(scene, one_error_per_problem)
 {
     /* Only the one changed line is wrong in each file: no cascade. */
