@@ -424,53 +424,8 @@ static void usage(FILE *f)
                "Run `contact <command> --help` for a command's options.\n");
 }
 
-/* `contact check [--file-only] [--out DIR] SCENE`. */
-static int cmd_check(int argc, char **argv)
-{
-    static const char usage[] =
-        "usage: contact check [--file-only] [--out DIR] SCENE\n"
-        "Validates a scene: reads the file (every error names the file, the line and the "
-        "field),\nbuilds the model, the interfaces and the loads, and computes the first "
-        "cycle's forces and\nstable step, as `contact run` would, without writing anything; "
-        "then checks that the run\ncould create and write its output directory. Prints the "
-        "step, the cycles the run would\nneed, each interface's pairs in contact at t = 0 "
-        "and the nodes within their gap at t = 0\n(initial penetrations).\n"
-        "  --file-only  read and validate the file only (no model, no output directory: "
-        "quick on\n               any size)\n"
-        "  --out DIR    the output directory `contact run --out DIR` would use (default: "
-        "the\n               scene's output.dir)\n"
-        "Exit codes: 0 valid, 1 bad usage, 2 bad input, 4 the first cycle's forces or step "
-        "are not\nfinite, 5 an output directory the run could not create or write, or out "
-        "of memory.\n";
-    const char *scene = NULL, *out = NULL;
-    int file_only = 0;
-    for (int i = 0; i < argc; i++) {
-        const char *a = argv[i];
-        if (!strcmp(a, "--help")) {
-            fputs(usage, stdout);
-            return 0;
-        } else if (!strcmp(a, "--file-only")) {
-            file_only = 1;
-        } else if (!strcmp(a, "--out")) {
-            if (i + 1 >= argc || !argv[i + 1][0]) {
-                fprintf(stderr, "contact check: option --out needs a value (try --help)\n");
-                return EXIT_USAGE;
-            }
-            out = argv[++i];
-        } else if (a[0] == '-' || scene) {
-            fprintf(stderr, "contact check: %s '%s'\n%s",
-                    a[0] == '-' ? "unknown option" : "more than one scene", a, usage);
-            return EXIT_USAGE;
-        } else {
-            scene = a;
-        }
-    }
-    if (!scene) {
-        fputs(usage, stderr);
-        return EXIT_USAGE;
-    }
-    return ctd_check_main(scene, file_only, out);
-}
+/* `contact check [options] SCENE` (run.c). */
+static int cmd_check(int argc, char **argv) { return ctd_check_cli(argc, argv); }
 
 /* The arguments of a command that takes none but --help (info, demo):
  * prints `help` and returns 0 for --help or -h anywhere, returns 1 (bad

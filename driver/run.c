@@ -125,95 +125,128 @@ static void setup_close(run_setup *r)
     ctd_scene_free(r->sc);
 }
 
-int ctd_run_main(int argc, char **argv)
+/* The options `run` and `check` share, with the scene. */
+typedef struct run_cli {
+    const char *scene, *out, *search;
+    double end, dts;
+    int threads, quiet, file_only;
+    int64_t refine, cycle_limit;
+} run_cli;
+
+/* Which options a command takes. */
+enum { OPT_RUN = 1, OPT_CHECK = 2 };
+
+/* Parse argv (the words after the command) into c for the command `who`
+ * (mode OPT_RUN or OPT_CHECK; help prints its usage). Returns -1 to go on,
+ * or the exit code: 0 after --help, CTD_EXIT_USAGE with the reason on
+ * stderr. */
+static int parse_cli(const char *who, int mode, int argc, char **argv, run_cli *c,
+                     void (*help)(FILE *))
 {
-    const char *scene = NULL, *out = NULL, *search = NULL;
-    double end = 0, dts = 0;
-    int threads = 0, quiet = 0;
-    int64_t refine = 0, cycle_limit = 0;
+    memset(c, 0, sizeof *c);
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i];
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
-            usage(stdout);
+            help(stdout);
             return 0;
         }
-        if (!strcmp(a, "--quiet")) {
-            quiet = 1;
+        if (mode == OPT_RUN && !strcmp(a, "--quiet")) {
+            c->quiet = 1;
+            continue;
+        }
+        if (mode == OPT_CHECK && !strcmp(a, "--file-only")) {
+            c->file_only = 1;
             continue;
         }
         if (a[0] != '-' || !a[1]) {
-            if (scene) {
-                fprintf(stderr, "contact run: one scene expected, got '%s' and '%s'\n", scene, a);
+            if (c->scene) {
+                fprintf(stderr, "%s: one scene expected, got '%s' and '%s'\n", who, c->scene, a);
                 return CTD_EXIT_USAGE;
             }
-            scene = a;
+            c->scene = a;
             continue;
         }
         const char *v = i + 1 < argc ? argv[i + 1] : NULL;
         if (!v) {
-            fprintf(stderr, "contact run: option %s needs a value (try --help)\n", a);
+            fprintf(stderr, "%s: option %s needs a value (try --help)\n", who, a);
             return CTD_EXIT_USAGE;
         }
         i++;
         double x;
         if (!strcmp(a, "--out")) {
-            out = v;
+            c->out = v;
         } else if (!strcmp(a, "--search")) {
             if (ct_search_algo_from_name(v) < 0) {
-                fprintf(stderr, "contact run: --search expects direct, topological, bucket or "
-                                "bsp, got '%s'\n", v);
+                fprintf(stderr, "%s: --search expects direct, topological, bucket or bsp, got "
+                                "'%s'\n", who, v);
                 return CTD_EXIT_USAGE;
             }
-            search = v;
+            c->search = v;
         } else if (!strcmp(a, "--end")) {
-            if (parse_pos(v, &end)) {
-                fprintf(stderr, "contact run: --end expects a time > 0, got '%s'\n", v);
+            if (parse_pos(v, &c->end)) {
+                fprintf(stderr, "%s: --end expects a time > 0, got '%s'\n", who, v);
                 return CTD_EXIT_USAGE;
             }
         } else if (!strcmp(a, "--dt-scale")) {
-            if (parse_pos(v, &dts)) {
-                fprintf(stderr, "contact run: --dt-scale expects a number > 0, got '%s'\n", v);
+            if (parse_pos(v, &c->dts)) {
+                fprintf(stderr, "%s: --dt-scale expects a number > 0, got '%s'\n", who, v);
                 return CTD_EXIT_USAGE;
             }
         } else if (!strcmp(a, "--refine")) {
             if (parse_pos(v, &x) || x != (int)x || x > 1000) {
-                fprintf(stderr, "contact run: --refine expects an integer in 1..1000, got "
-                                "'%s'\n", v);
+                fprintf(stderr, "%s: --refine expects an integer in 1..1000, got '%s'\n", who,
+                        v);
                 return CTD_EXIT_USAGE;
             }
-            refine = (int64_t)x;
+            c->refine = (int64_t)x;
         } else if (!strcmp(a, "--cycle-limit")) {
             if (parse_pos(v, &x) || x > 1e15 || x != (double)(int64_t)x) {
-                fprintf(stderr, "contact run: --cycle-limit expects an integer in 1..1e15, got "
-                                "'%s'\n", v);
+                fprintf(stderr, "%s: --cycle-limit expects an integer in 1..1e15, got '%s'\n",
+                        who, v);
                 return CTD_EXIT_USAGE;
             }
-            cycle_limit = (int64_t)x;
-        } else if (!strcmp(a, "--threads")) {
+            c->cycle_limit = (int64_t)x;
+        } else if (mode == OPT_RUN && !strcmp(a, "--threads")) {
             if (parse_pos(v, &x) || x != (int)x || x > 4096) {
-                fprintf(stderr, "contact run: --threads expects an integer in 1..4096, got "
-                                "'%s'\n", v);
+                fprintf(stderr, "%s: --threads expects an integer in 1..4096, got '%s'\n", who,
+                        v);
                 return CTD_EXIT_USAGE;
             }
-            threads = (int)x;
+            c->threads = (int)x;
         } else {
-            fprintf(stderr, "contact run: unknown option '%s' (try --help)\n", a);
+            fprintf(stderr, "%s: unknown option '%s' (try --help)\n", who, a);
             return CTD_EXIT_USAGE;
         }
     }
-    if (!scene) {
-        usage(stderr);
+    if (!c->scene) {
+        help(stderr);
         return CTD_EXIT_USAGE;
     }
+    return -1;
+}
+
+/* The solver options of the command line's values (0: the scene's). */
+static ctd_solver_opts cli_solver_opts(const run_cli *c)
+{
     ctd_solver_opts o = ctd_solver_default_opts();
-    o.end_time = end;
-    o.dt_scale = dts;
-    o.cycle_limit = cycle_limit;
-    o.threads = threads;
-    o.out_dir = out;
-    o.quiet = quiet;
+    o.end_time = c->end;
+    o.dt_scale = c->dts;
+    o.cycle_limit = c->cycle_limit;
+    o.threads = c->threads;
+    o.out_dir = c->out;
+    o.quiet = c->quiet;
+    return o;
+}
+
+int ctd_run_main(int argc, char **argv)
+{
+    run_cli c;
+    int code = parse_cli("contact run", OPT_RUN, argc, argv, &c, usage);
+    if (code >= 0)
+        return code;
+    ctd_solver_opts o = cli_solver_opts(&c);
     run_setup r;
-    int code = setup_open(&r, "contact run", scene, refine, search, &o);
+    code = setup_open(&r, "contact run", c.scene, c.refine, c.search, &o);
     if (code == CTD_EXIT_OK) {
         code = ctd_solver_run(&r.s);
         if (code != CTD_EXIT_OK)
@@ -242,40 +275,51 @@ static void print_contact_at_start(const char *scene, const ctd_solver *s)
     ctd_solver_print_penetration(stdout, prefix, s);
 }
 
-int ctd_check_main(const char *scene, int file_only, const char *out)
+/* `contact check` on the parsed command line. */
+static int check_cli(const run_cli *c)
 {
-    if (file_only) {
+    const char *scene = c->scene;
+    if (c->file_only) {
         ctd_scene *sc;
-        int code = load_scene("contact check", scene, 0, &sc);
+        int code = load_scene("contact check", scene, c->refine, &sc);
         if (code == CTD_EXIT_OK)
             ctd_scene_print_summary(stdout, scene, sc);
         ctd_scene_free(sc);
         return code;
     }
-    ctd_solver_opts o = ctd_solver_default_opts();
+    ctd_solver_opts o = cli_solver_opts(c);
+    o.out_dir = NULL;
     o.no_output = 1;
     o.quiet = 1;
     o.progress = 0;
     o.dry = 1;
     run_setup r;
-    int code = setup_open(&r, "contact check", scene, 0, NULL, &o);
+    int code = setup_open(&r, "contact check", scene, c->refine, c->search, &o);
     if (code == CTD_EXIT_OK) {
         code = ctd_solver_run(&r.s);
         char err[1200];
         if (code != CTD_EXIT_OK) {
             fprintf(stderr, "contact check: %s: %s\n", r.s.status, r.s.message);
-        } else if (ctd_output_check_dir(out ? out : r.sc->out_dir, err, sizeof err) != CT_OK) {
+        } else if (ctd_output_check_dir(c->out ? c->out : r.sc->out_dir, err, sizeof err) !=
+                   CT_OK) {
             /* What the run's first step would refuse, found creating nothing. */
             fprintf(stderr, "contact check: %s\n", err[0] ? err : "out of memory");
             code = CTD_EXIT_OUTPUT;
         } else {
             ctd_scene_print_summary(stdout, scene, r.sc);
             const ctd_solver *s = &r.s;
-            char why[64];
-            if (s->dt == s->every)
-                snprintf(why, sizeof why, "output.every");
-            else
-                snprintf(why, sizeof why, "the stable step x dt_scale %g", s->dt_scale);
+            char why[160];
+            int n = s->dt_by_output
+                        ? snprintf(why, sizeof why, "output.every")
+                        : snprintf(why, sizeof why, "the stable step x dt_scale %g", s->dt_scale);
+            /* The run evens the step out to land on end_time in equal
+             * steps: said when it shows in the digits printed. */
+            char a[32], b[32];
+            snprintf(a, sizeof a, "%.4g", s->dt);
+            snprintf(b, sizeof b, "%.4g", s->dt_max);
+            if (strcmp(a, b) && n > 0 && (size_t)n < sizeof why)
+                snprintf(why + n, sizeof why - (size_t)n, " = %s, evened out to end on end_time",
+                         b);
             printf("%s: first time step %.4g s (%s), about %.4g cycles to end_time %g "
                    "(cycle_limit %lld)\n", scene, s->dt, why, s->end_time / s->dt, s->end_time,
                    (long long)s->cycle_limit);
@@ -284,4 +328,44 @@ int ctd_check_main(const char *scene, int file_only, const char *out)
     }
     setup_close(&r);
     return code;
+}
+
+int ctd_check_main(const char *scene, int file_only, const char *out)
+{
+    run_cli c;
+    memset(&c, 0, sizeof c);
+    c.scene = scene;
+    c.file_only = file_only;
+    c.out = out;
+    return check_cli(&c);
+}
+
+static void check_usage(FILE *f)
+{
+    fprintf(f,
+            "usage: contact check [--file-only] [--out DIR] [--search ALGO] [--end T]\n"
+            "                     [--dt-scale S] [--refine N] [--cycle-limit N] SCENE\n"
+            "Validates a scene: reads the file (every error names the file, the line and the "
+            "field),\nbuilds the model, the interfaces and the loads, and computes the first "
+            "cycle's forces and\nstable step, as `contact run` would, without writing anything; "
+            "then checks that the run\ncould create and write its output directory. Prints the "
+            "step, the cycles the run would\nneed, each interface's pairs in contact at t = 0 "
+            "and the nodes within their gap at t = 0\n(initial penetrations).\n"
+            "  --file-only  read and validate the file only (no model, no output directory: "
+            "quick on\n               any size)\n"
+            "  --out DIR    the output directory `contact run --out DIR` would use (default: "
+            "the\n               scene's output.dir)\n"
+            "  --search, --end, --dt-scale, --refine, --cycle-limit: as for `contact run`, "
+            "so that the\n               step, the cycles and the contact at t = 0 are those "
+            "of that run\n"
+            "Exit codes: 0 valid, 1 bad usage, 2 bad input, 4 the first cycle's forces or step "
+            "are not\nfinite, 5 an output directory the run could not create or write, or out "
+            "of memory.\n");
+}
+
+int ctd_check_cli(int argc, char **argv)
+{
+    run_cli c;
+    int code = parse_cli("contact check", OPT_CHECK, argc, argv, &c, check_usage);
+    return code >= 0 ? code : check_cli(&c);
 }

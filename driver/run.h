@@ -2,7 +2,7 @@
  * run.h -- the `contact run` command (prefix ctd_).
  *
  *   contact run SCENE [--out DIR] [--threads N] [--search ALGO] [--end T]
- *                     [--dt-scale S] [--quiet]
+ *                     [--dt-scale S] [--refine N] [--cycle-limit N] [--quiet]
  *
  * Loads the scene, builds the model and its interfaces, runs the solver
  * and prints the report. Exit codes: 0 success, 1 bad usage, 2 bad input
@@ -33,5 +33,11 @@ int ctd_run_main(int argc, char **argv);
  * formulas) and print the first line.
  */
 int ctd_check_main(const char *scene, int file_only, const char *out);
+
+/* `contact check` from its command line (the words after `check`): the
+ * options of ctd_check_main and those of `run` that change what the check
+ * computes (--search, --end, --dt-scale, --refine, --cycle-limit), so that
+ * it answers for the run those options would make. Returns the exit code. */
+int ctd_check_cli(int argc, char **argv);
 
 #endif

@@ -403,15 +403,20 @@ int ctd_solver_run(ctd_solver *s)
         }
         /* Step, kick, energies. */
         double dt_new = s->dt_scale * stable_dt(s);
-        if (dt_new > s->every)
+        const int by_output = dt_new > s->every;
+        if (by_output)
             dt_new = s->every;
+        const double dt_cap = dt_new;
         if (final && s->cycle > 0) {
             /* No step follows: v+ only serves the energies; the same step as
              * before keeps them free of a step-size jump. */
             dt_new = w->dt_prev;
-        } else if (!final && dt_new > 0 && isfinite(dt_new)) {
+        } else if ((!final || s->opts.dry) && dt_new > 0 && isfinite(dt_new)) {
             /* Land on end_time in equal steps: a constant stable step stays
-             * constant to the end (no short last step). */
+             * constant to the end (no short last step). A dry cycle
+             * (`contact check`) takes the step the run would start with, so
+             * that its cycle count and the cycle limit's verdict are the
+             * run's. */
             double nrem = ceil((end - s->time) / dt_new * (1 - 1e-12));
             dt_new = (end - s->time) / (nrem > 1 ? nrem : 1);
         }
@@ -479,8 +484,11 @@ int ctd_solver_run(ctd_solver *s)
                 next_out += s->every;
         }
         w->w_bc += w->w_bc_back + w->w_bc_fwd;
-        if (s->opts.dry)
+        if (s->opts.dry) {
             s->dt = dt_new; /* the step the run would start with */
+            s->dt_max = dt_cap;
+            s->dt_by_output = by_output;
+        }
         if (final) {
             s->timers.total += ctd_wtime() - t0;
             break;
@@ -498,6 +506,8 @@ int ctd_solver_run(ctd_solver *s)
             break;
         }
         s->dt = dt_new;
+        s->dt_max = dt_cap;
+        s->dt_by_output = by_output;
         w->dt_prev = dt_new;
         s->time = s->time + dt_new >= end - tol ? end : s->time + dt_new;
         s->cycle++;

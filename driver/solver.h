@@ -194,6 +194,11 @@ typedef struct ctd_solver {
     ct_idx nnode;
     ct_real *x, *y, *z, *vx, *vy, *vz;
     double time, dt;
+    /* The largest step allowed at the last step (the stable step x
+     * dt_scale, or the output interval when that is smaller: then
+     * dt_by_output), which dt evens out to land on end_time in equal steps. */
+    double dt_max;
+    int dt_by_output;
     int64_t cycle;
     /* Energies at the last evaluation, at the start, and the extremes. */
     ctd_energies e, e0;

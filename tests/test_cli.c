@@ -76,7 +76,8 @@ Test(cli, help_lists_every_command_and_option)
 
     ctt_cli_run(&r, dir, 2, "check --help");
     cr_expect_eq(r.status, 0);
-    cr_expect(strstr(r.out, "usage: contact check [--file-only] [--out DIR] SCENE") != NULL);
+    cr_expect(strstr(r.out, "usage: contact check [--file-only] [--out DIR] [--search ALGO]") !=
+              NULL);
     cr_expect(strstr(r.out, "  --file-only") != NULL && strstr(r.out, "  --out DIR") != NULL);
 
     static const char *const search_opts[] = {

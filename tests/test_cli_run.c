@@ -15,7 +15,8 @@
  *  - check: a good scene's summary and first step (end_time / every
  *    cycles), the initial penetration of a block placed inside the gap
  *    (gap - height by hand), --file-only against the full check, --out,
- *    and the errors' FILE:LINE: FIELD.
+ *    the run's options that change its answer (--refine, --end, --dt-scale,
+ *    --cycle-limit, --search) and the errors' FILE:LINE: FIELD.
  */
 #include <errno.h>
 #include <hwloc.h>
@@ -401,6 +402,89 @@ Test(cli, run_bad_usage_and_input)
 
 /* ---- check --------------------------------------------------------------- */
 
+/* The first number after `key` in text (0 when absent). */
+static double number_after(const char *text, const char *key)
+{
+    const char *p = strstr(text, key);
+    return p ? strtod(p + strlen(key), NULL) : 0;
+}
+
+/* check answers for the run the same options would make: --refine (the
+ * node count (n+1)^3 by hand), --end (end / every cycles), --dt-scale (the
+ * step in proportion), --cycle-limit (the run's refusal), --search; and
+ * refuses the options it has no use for and bad values as run does. */
+Test(cli, check_takes_the_runs_options)
+{
+    char dir[64];
+    scenes_dir(dir);
+    ctt_cli r = {0};
+    ctt_cli_run(&r, dir, 2, "check fly.yaml --refine 2");
+    cr_assert_eq(r.status, 0, "%s", r.err);
+    cr_expect(strstr(r.out, "1 mesh (125 nodes)") != NULL, "%s", r.out);
+    ctt_cli_run(&r, dir, 2, "check --file-only fly.yaml --refine 3");
+    cr_assert_eq(r.status, 0, "%s", r.err);
+    cr_expect(strstr(r.out, "1 mesh (343 nodes)") != NULL, "%s", r.out);
+    ctt_cli_run(&r, dir, 2, "check fly2.yaml --refine 1 --cycle-limit 50");
+    cr_assert_eq(r.status, 0, "%s", r.err);
+    cr_expect(strstr(r.out, "1 mesh (27 nodes)") != NULL, "%s", r.out);
+    cr_expect(strstr(r.out, "about 50 cycles to end_time 5e-06 (cycle_limit 50)") != NULL, "%s",
+              r.out);
+    /* --end: 2e-6 s in steps of 1e-7 s. */
+    ctt_cli_run(&r, dir, 2, "check fly.yaml --end 2e-6");
+    cr_assert_eq(r.status, 0, "%s", r.err);
+    cr_expect(strstr(r.out, "about 20 cycles to end_time 2e-06") != NULL, "%s", r.out);
+    /* --cycle-limit: refused as the run refuses it. */
+    ctt_cli_run(&r, dir, 2, "check fly.yaml --cycle-limit 49");
+    EXPECT_FAIL(&r, 2, "would need 50 more cycles to reach end_time 5e-06, more than "
+                       "solver.cycle_limit (49) allows");
+    /* --dt-scale: half the scale, twice the cycles (give or take the
+     * rounding of end_time / step up, as for the run). */
+    ctt_cli_run(&r, dir, 2, "check wobble.yaml");
+    cr_assert_eq(r.status, 0, "%s", r.err);
+    double n90 = number_after(r.out, "about ");
+    cr_expect(strstr(r.out, "(the stable step x dt_scale 0.9") != NULL, "%s", r.out);
+    ctt_cli_run(&r, dir, 2, "check wobble.yaml --dt-scale 0.45");
+    cr_assert_eq(r.status, 0, "%s", r.err);
+    double n45 = number_after(r.out, "about ");
+    cr_expect(strstr(r.out, "(the stable step x dt_scale 0.45") != NULL, "%s", r.out);
+    /* The step is end_time / cycles, at most the stable step x scale (when
+     * it is less, the line gives that one too). */
+    double d45 = number_after(r.out, "first time step "), m45 = number_after(r.out, "0.45 = ");
+    cr_expect(fabs(d45 * n45 / 2e-5 - 1) < 1e-3, "%g cycles of %g s", n45, d45);
+    cr_expect(m45 == 0 || (m45 >= d45 && m45 * (n45 - 1) < 2e-5), "%s", r.out);
+    cr_expect(n90 >= 20 && fabs(n45 - 2 * n90) <= 2, "%g cycles at 0.45, %g at 0.9", n45, n90);
+    /* The cycles check announces are those the run makes. */
+    ctt_cli_run(&r, dir, 2, "run wobble.yaml --out w45 --dt-scale 0.45 --quiet");
+    cr_assert_eq(r.status, 0, "%s", r.err);
+    char *js = summary_of(dir, "w45");
+    cr_expect_eq(ctt_json_num(js, "cycles"), n45, "check said %g cycles: %s", n45, js);
+    free(js);
+    /* --search: a complete search finds the initial contact the default does. */
+    ctt_cli_run(&r, dir, 2, "check pen.yaml --search direct");
+    cr_assert_eq(r.status, 0, "%s", r.err);
+    cr_expect(strstr(r.out, "pen.yaml: interface pen (type 24): 4 pairs in contact at t = 0") !=
+                  NULL, "%s", r.out);
+    /* Bad values and options check has no use for. */
+    static const struct {
+        const char *args, *msg;
+    } bad[] = {
+        {"--refine 0", "contact check: --refine expects an integer in 1..1000, got '0'"},
+        {"--end soon", "contact check: --end expects a time > 0, got 'soon'"},
+        {"--dt-scale -1", "contact check: --dt-scale expects a number > 0, got '-1'"},
+        {"--cycle-limit 1.5", "contact check: --cycle-limit expects an integer in 1..1e15"},
+        {"--search quick", "contact check: --search expects direct, topological, bucket or bsp"},
+        {"--threads 2", "contact check: unknown option '--threads' (try --help)"},
+        {"--quiet", "contact check: unknown option '--quiet' (try --help)"},
+    };
+    for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
+        ctt_cli_run(&r, dir, 2, "check %s fly.yaml", bad[k].args);
+        EXPECT_FAIL(&r, 1, bad[k].msg);
+        cr_expect_str_empty(r.out, "check %s printed: %s", bad[k].args, r.out);
+    }
+    ctt_cli_free(&r);
+    ctt_rmtree(dir);
+}
+
 Test(cli, check_scenes)
 {
     char dir[64];
@@ -456,7 +540,7 @@ Test(cli, check_scenes)
     ctt_cli_run(&r, dir, 2, "check");
     EXPECT_FAIL(&r, 1, "usage: contact check");
     ctt_cli_run(&r, dir, 2, "check fly.yaml drop.yaml");
-    EXPECT_FAIL(&r, 1, "contact check: more than one scene 'drop.yaml'");
+    EXPECT_FAIL(&r, 1, "contact check: one scene expected, got 'fly.yaml' and 'drop.yaml'");
     ctt_cli_run(&r, dir, 2, "check --strict fly.yaml");
     EXPECT_FAIL(&r, 1, "contact check: unknown option '--strict'");
     ctt_cli_run(&r, dir, 2, "check fly.yaml --out");
