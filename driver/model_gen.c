@@ -114,7 +114,7 @@ int cti_generate(cti_gen *g, const ctd_scene_generate *sg)
             translate(&g->mesh, o);
         break;
     case CTD_GEN_FOLDED:
-        rc = ctd_folded(&g->mesh, (int)sg->layers, (int)c[0], (int)c[1], sg->size[0],
+        rc = ctd_folded(&g->mesh, (int)sg->layers, (int)c[0], (int)c[1], sg->h_eff,
                         sg->spacing);
         if (!rc)
             translate(&g->mesh, o);

@@ -42,7 +42,8 @@
  *   title       string, optional.
  *   end_time    number > 0, required.
  *   refine      integer >= 1, optional (1): every generated mesh's `cells`
- *               are multiplied by it (the scene's size parameter).
+ *               are multiplied by it, its extent kept (the folded sheet's
+ *               cell size `size` divided by it): the scene's size parameter.
  *   output      optional mapping:
  *                 dir    string (default "out/<scene file name without .yaml>",
  *                        relative to the working directory; created with
@@ -77,7 +78,8 @@
  *         tube    cells [nr, nl], radius, length: quads of a tube along z from
  *                 origin; N = nr (nl+1).
  *         folded  cells [nflat, nw], size [h], layers, spacing: accordion
- *                 sheet (meshgen.h ctd_folded); N as ctd_folded makes it.
+ *                 sheet (meshgen.h ctd_folded) of cells of size h / refine;
+ *                 N as ctd_folded makes it.
  *         net     cells [nx, ny], size [Lx, Ly]: trusses along the grid lines
  *                 of a plate in z = origin z; N = (nx+1)(ny+1).
  *         rod     cells [n], to [x, y, z]: n trusses from origin to `to`;
@@ -243,6 +245,7 @@ typedef struct ctd_scene_generate {
     /* Filled by the loader. */
     int kind;                  /* enum ctd_gen_kind */
     int64_t cells_eff[3];      /* cells times refine (unused entries 0) */
+    double h_eff;              /* folded: the cell size, size[0] / refine */
 } ctd_scene_generate;
 
 typedef struct ctd_scene_import {

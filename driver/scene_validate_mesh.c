@@ -51,7 +51,7 @@ static int64_t gen_nodes(const ctd_scene_generate *g)
     case CTD_GEN_TUBE: return c[0] * (c[1] + 1);
     case CTD_GEN_ROD: return c[0] + 1;
     case CTD_GEN_FOLDED:
-        return ctd_folded_nodes((int)g->layers, (int)c[0], (int)c[1], g->size[0], g->spacing);
+        return ctd_folded_nodes((int)g->layers, (int)c[0], (int)c[1], g->h_eff, g->spacing);
     default: return -1;
     }
 }
@@ -62,6 +62,7 @@ static void check_generate(vctx *v, unsigned i, ctd_scene_generate *g)
     snprintf(b, sizeof b, "mesh[%u].generate", i);
     g->kind = cti_venum(v, cti_vpath(v, "%s.kind", b), g->kind_name, cti_gen_names, CTD_GEN_NKIND);
     memset(g->cells_eff, 0, sizeof g->cells_eff);
+    g->h_eff = 0;
     if (g->kind < 0)
         return;
     int nerr = v->e->count;
@@ -101,6 +102,10 @@ static void check_generate(vctx *v, unsigned i, ctd_scene_generate *g)
     for (unsigned j = 0; j < g->size_count; j++)
         cti_vnum(v, cti_vpath(v, "%s.size[%u]", b, j), g->size[j], 0, 1, INFINITY, 0,
                  "a number > 0");
+    /* The folded sheet's size is one cell's: refine divides it, so that the
+     * sheet keeps its extent, as every other mesh keeps its own. */
+    if (k == CTD_GEN_FOLDED && g->size_count == 1)
+        g->h_eff = g->size[0] / (double)v->sc->refine;
     for (int j = 0; j < 3; j++)
         cti_vnum(v, cti_vpath(v, "%s.origin[%d]", b, j), g->origin[j], -INFINITY, 0, INFINITY, 0,
                  "a finite number");
@@ -162,8 +167,8 @@ static void check_generate(vctx *v, unsigned i, ctd_scene_generate *g)
             if (kind_spec[k].to)
                 reach = fmax(reach, fabs(g->to[j]));
         }
-        /* folded: size [h] is one cell's size */
-        const double per = k == CTD_GEN_FOLDED ? (double)(g->cells_eff[0] + g->cells_eff[1]) : 1;
+        /* folded: size [h] is one cell's size (of the mesh before refine) */
+        const double per = k == CTD_GEN_FOLDED ? (double)(g->cells[0] + g->cells[1]) : 1;
         for (unsigned j = 0; j < g->size_count; j++)
             span += g->size[j] * per;
         span += 2 * g->radius + g->length;
