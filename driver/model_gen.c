@@ -28,13 +28,29 @@ static void translate(ct_mesh *m, const double o[3])
     }
 }
 
-/* The smooth map of the cube [-1, 1]^3 onto the unit ball. */
+/* The cube [-1, 1]^3 onto the unit ball, shell by shell: the cube's
+ * surface of half-side s = max(|x|, |y|, |z|) onto the sphere of radius s.
+ * On its shell a point's coordinates c become s tan(pi c / (4 s)) (the
+ * equi-angular cubed sphere: its cells span nearly equal angles; the
+ * coordinate equal to +-s stays), then the point is scaled radially onto
+ * the sphere. The map's Jacobian is bounded away from zero everywhere, so
+ * the bricks keep their shape as the mesh is refined (the smooth map used
+ * before, x sqrt(1 - y^2/2 - z^2/2 + y^2 z^2/3), is singular at the cube's
+ * corners: its corner bricks flattened as h^2 and the stable step with
+ * them). */
 static void cube_to_ball(double *x, double *y, double *z)
 {
-    double a = *x * *x, b = *y * *y, c = *z * *z;
-    *x *= sqrt(fmax(0.0, 1 - b / 2 - c / 2 + b * c / 3));
-    *y *= sqrt(fmax(0.0, 1 - c / 2 - a / 2 + c * a / 3));
-    *z *= sqrt(fmax(0.0, 1 - a / 2 - b / 2 + a * b / 3));
+    double p[3] = {*x, *y, *z};
+    const double s = fmax(fabs(p[0]), fmax(fabs(p[1]), fabs(p[2])));
+    if (!(s > 0))
+        return;
+    for (int k = 0; k < 3; k++)
+        if (fabs(p[k]) < s)
+            p[k] = s * tan(0.78539816339744830962 * p[k] / s);
+    const double f = s / sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+    *x = p[0] * f;
+    *y = p[1] * f;
+    *z = p[2] * f;
 }
 
 static int alloc_lines(cti_gen *g, int64_t n)
