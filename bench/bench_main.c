@@ -66,7 +66,7 @@ static void usage(FILE *f)
                "       paired/<family>/<b>-vs-<a>/t<threads>/<nodes>/real_time\n"
                "       efficiency/<kernel|triad/dram>/t<threads>/<n>/real_time\n"
                "       elements/<shell/plate|brick/block>/t<threads>/<nodes>/real_time\n"
-               "       scene/<showcase|folding-sheet-r10>/t<threads>/<cycles>/real_time\n"
+               "       scene/<showcase|folding-sheet-wide>/t<threads>/<cycles>/real_time\n"
                "env: CT_BENCH_FULL=1, CT_BENCH_BIND, CT_BENCH_DIRECT_BUDGET,\n"
                "     CT_SHARED (the Radioss decks), CT_BENCH_MESH=deck.rad\n");
 }

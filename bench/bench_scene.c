@@ -1,19 +1,21 @@
 /*
  * bench_scene.c -- whole runs of the driver: what `contact run` costs per
- * node and cycle on the scenes of data/scenes, elements, interfaces and
+ * node and cycle on scenes (data/scenes, bench/scenes), elements, interfaces and
  * solver together, no output written.
  *
  * Names (Google Benchmark appends "/<cycles>/real_time"):
  *   scene/showcase/t<T>            the scene `make run` runs (730 nodes:
  *                                  a small model, where the per-cycle
  *                                  overheads of each phase show)
- *   scene/folding-sheet-r10/t<T>   the folding sheet at refine 10 (10086
- *                                  nodes, TYPE7 + TYPE11 self contact)
+ *   scene/folding-sheet-wide/t<T>  the folding sheet with ten times its
+ *                                  cells along and across at the same cell
+ *                                  size (bench/scenes/folding-sheet-wide.yaml:
+ *                                  10086 nodes, TYPE7 + TYPE11 self contact)
  * 1 thread and all threads. One iteration is a run of the scene from its
  * start for the fixed number of cycles (the solver's max_cycles); the
  * scene's load, the model, interfaces and solver set-up are outside the
- * timing. The scenes are read from data/scenes (the working directory of
- * `make bench`).
+ * timing. The scene files' paths are relative to the project's top (the
+ * working directory of `make bench`).
  *
  * Counters: ns_per_node_cycle (run wall time / (cycles x nodes)),
  * us_per_cycle, nodes, cycles, and the run's own split (the solver's
@@ -66,8 +68,7 @@ static void srun_free(srun *r)
 static int srun_make(srun *r, const sdesc *d, char *err, size_t errlen)
 {
     memset(r, 0, sizeof *r);
-    char path[512];
-    snprintf(path, sizeof path, "data/scenes/%s", d->file);
+    const char *path = d->file;
     static ctd_scene_err se;
     if (ctd_scene_load_refined(path, d->refine, &r->sc, &se) != CT_OK) {
         snprintf(err, errlen, "%.400s", se.count ? se.msg[0].text : path);
@@ -162,8 +163,8 @@ int ctb_scene_register(const ctb_search_config *c)
     static const struct {
         const char *name, *file;
         int64_t refine, cycles;
-    } set[] = {{"showcase", "showcase.yaml", 1, 3000},
-               {"folding-sheet-r10", "folding-sheet.yaml", 10, 300}};
+    } set[] = {{"showcase", "data/scenes/showcase.yaml", 1, 3000},
+               {"folding-sheet-wide", "bench/scenes/folding-sheet-wide.yaml", 1, 300}};
     int tlist[2] = {1, cfg.max_threads};
     int nt = cfg.max_threads > 1 ? 2 : 1, count = 0;
     for (size_t i = 0; i < sizeof set / sizeof *set; i++)

@@ -496,6 +496,34 @@ Test(scene, check_step_is_the_bars_analytic_step, .init = cr_redirect_stdout)
     cr_assert_float_eq(dt, want, 4e-4 * want, "step %g, expected %g", dt, want);
 }
 
+/* The bench's wide folding sheet (bench/bench_scene.c) starts with no node
+ * within its gap, as the scene it widens; refining that scene ten times
+ * instead makes cells of 0.5 mm under the 1 mm gap, and the check says that
+ * every node starts within the gap of its neighbours' segments. */
+Test(scene, bench_scene_starts_out_of_contact, .init = cr_redirect_stdout)
+{
+    char p[1024], q[1024];
+    scene_path(p, sizeof p, "../../../bench/scenes/folding-sheet-wide.yaml");
+    scene_path(q, sizeof q, "../../../data/scenes/folding-sheet.yaml");
+    cr_assert_eq(ctd_check_main(p, 0, "/tmp"), CTD_EXIT_OK);
+    char *argv[] = {q, "--refine", "10", "--out", "/tmp"};
+    cr_assert_eq(ctd_check_cli(5, argv), CTD_EXIT_OK);
+    fflush(stdout);
+    FILE *f = cr_get_redirected_stdout();
+    char line[1400], want[1200];
+    int summary = 0, none = 0, all = 0;
+    snprintf(want, sizeof want, "%s: ok: \"folding sheet, wide\", end_time 0.001, 1 mesh (10086 nodes)", p);
+    while (fgets(line, sizeof line, f)) {
+        summary += !strncmp(line, want, strlen(want));
+        none += strstr(line, "initial penetration: none") == line + strlen(p) + 2;
+        all += strstr(line, ": initial penetration: 11931 nodes within the gap at t = 0") ==
+               line + strlen(q);
+    }
+    cr_expect_eq(summary, 1, "no summary line \"%s\"", want);
+    cr_expect_eq(none, 1, "the wide sheet starts in contact");
+    cr_expect_eq(all, 1, "the sheet refined 10 times does not start with every node in its gap");
+}
+
 Test(scene, check_main_valid, .init = cr_redirect_stdout)
 {
     expect_check_line("valid.yaml", "ok: \"ball on plate\", end_time 0.01, 3 meshes (611 nodes), 3 parts, 1 rigid body, 4 boundary conditions, 4 interfaces, output to out/valid");
