@@ -269,6 +269,10 @@ static void print_contact_at_start(const char *scene, const ctd_solver *s)
         printf("%s: interface %s (type %d): %lld pair%s in contact at t = 0, %s\n", scene,
                s->hooks[i].name ? s->hooks[i].name : "?", s->hooks[i].type,
                (long long)r->active, r->active == 1 ? "" : "s", step);
+        if (s->hooks[i].note[0])
+            printf("%s: interface %s (type %d): note: %s\n", scene,
+                   s->hooks[i].name ? s->hooks[i].name : "?", s->hooks[i].type,
+                   s->hooks[i].note);
     }
     char prefix[1100];
     snprintf(prefix, sizeof prefix, "%s: ", scene);

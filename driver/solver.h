@@ -130,6 +130,9 @@ typedef struct ctd_contact_hook {
      * workspaces); may be NULL. They only grow, so at the end of a run
      * this is the run's peak. */
     size_t (*memory)(const void *ctx);
+    /* A remark on the interface's set-up for the reports of `check` and
+     * `run` ("" when none): ctd_iface_self_gap_note's. */
+    char note[400];
 } ctd_contact_hook;
 
 /*

@@ -309,6 +309,8 @@ static void print_report(ctd_solver *s, FILE *f)
         if (mem >= 0)
             fprintf(f, ", memory %.3g MB", (double)mem / 1e6);
         fputc('\n', f);
+        if (s->hooks[i].note[0])
+            fprintf(f, "    note: %s\n", s->hooks[i].note);
     }
     ctd_solver_print_penetration(f, "  ", s);
     const ctd_timers *t = &s->timers;

@@ -524,6 +524,59 @@ Test(scene, bench_scene_starts_out_of_contact, .init = cr_redirect_stdout)
     cr_expect_eq(all, 1, "the sheet refined 10 times does not start with every node in its gap");
 }
 
+/* A self-contact gap above half the shortest segment edge gets a note in
+ * the check and in the run's report (Radioss's warning 94): the folding
+ * sheet (gap 1 mm, cells of 5 mm / refine) has none at refine 2, one at
+ * refine 3 (its shortest edge a bend's chord, 2 r sin(du / 2 r) with du the
+ * section's spacing: 1.656 mm), and at refine 5 its cells (1 mm) are under
+ * the gap: neighbours are in contact from the start. */
+Test(scene, self_contact_gap_note, .init = cr_redirect_stdout)
+{
+    char q[1024];
+    scene_path(q, sizeof q, "../../../data/scenes/folding-sheet.yaml");
+    const char *refine[3] = {"2", "3", "5"};
+    for (int k = 0; k < 3; k++) {
+        char *argv[] = {q, "--refine", (char *)refine[k], "--out", "/tmp"};
+        cr_assert_eq(ctd_check_cli(5, argv), CTD_EXIT_OK);
+    }
+    char dir[] = "/tmp/ct_scene_note_XXXXXX", out[64];
+    cr_assert_not_null(mkdtemp(dir));
+    snprintf(out, sizeof out, "%s/out", dir);
+    char *argv[] = {q, "--refine", "5", "--end", "1e-7", "--out", out};
+    cr_assert_eq(ctd_run_main(7, argv), CTD_EXIT_OK);
+    fflush(stdout);
+    /* The section: 3 flat layers of 8 cells and 2 half-circle bends of
+     * radius 4 mm, its points round(length / h) + 1 evenly spaced. */
+    const double r = 0.004, len = 3 * 8 * 0.005 + 2 * 3.14159265358979323846 * r;
+    const double h3 = 0.005 / 3, du = len / round(len / h3), chord = 2 * r * sin(du / (2 * r));
+    char want3[128];
+    snprintf(want3, sizeof want3, "shortest segment edge (%g): a node", chord);
+    FILE *f = cr_get_redirected_stdout();
+    char line[2048];
+    int notes = 0, compressed = 0, start = 0, edges = 0, report = 0, shortest = 0;
+    while (fgets(line, sizeof line, f)) {
+        if (!strstr(line, "note: "))
+            continue;
+        notes++;
+        compressed += strstr(line, "when the segments between are compressed") != NULL;
+        start += strstr(line, "from the start") != NULL;
+        edges += strstr(line, "interface edges (type 11): note: self contact of edges") != NULL;
+        report += !strncmp(line, "    note: self contact with a gap of 0.001", 42);
+        shortest += strstr(line, want3) != NULL;
+    }
+    /* refine 3 and 5: TYPE7 and TYPE11 each, in the check; refine 5 in
+     * the run's report too. */
+    cr_expect_eq(notes, 6, "%d notes", notes);
+    cr_expect_eq(compressed, 2);
+    cr_expect_eq(start, 4);
+    cr_expect_eq(edges, 2);
+    cr_expect_eq(report, 1);
+    cr_expect_eq(shortest, 1, "no note with \"%s\"", want3);
+    char cmd[128];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    cr_expect_eq(system(cmd), 0);
+}
+
 Test(scene, check_main_valid, .init = cr_redirect_stdout)
 {
     expect_check_line("valid.yaml", "ok: \"ball on plate\", end_time 0.01, 3 meshes (611 nodes), 3 parts, 1 rigid body, 4 boundary conditions, 4 interfaces, output to out/valid");

@@ -574,6 +574,8 @@ static int build_one(const ctd_model *m, const ctd_scene_interface *f, unsigned 
     hook->contact_step = hook_step;
     hook->destroy = hook_destroy;
     hook->memory = hook_memory;
+    ctd_iface_self_gap_note(it, m->mesh.nodes.x, m->mesh.nodes.y, m->mesh.nodes.z, hook->note,
+                            sizeof hook->note);
     return CT_OK;
 }
 

@@ -296,6 +296,18 @@ ct_idx ctd_iface_nsec(const ctd_iface *it);
 int ctd_iface_check_reach(const ctd_iface *it, const ct_real *x, const ct_real *y,
                           const ct_real *z, char *msg, size_t len);
 
+/* A remark on a self-contact interface whose gap is more than half its
+ * surface's shortest edge (node-segment: a pass's largest contact gap
+ * against its segments' shortest edge; edge-edge: the pair gap against the
+ * shortest edge): a node then comes within the gap of its neighbours'
+ * segments when the mesh between is compressed by half, or from the start
+ * when the gap exceeds the edge, and the penalty pushes neighbours apart on
+ * a flat sheet (Radioss's warning 94 says the same). Returns 1 with the
+ * remark in msg, 0 with msg empty otherwise. Not an error: a few small
+ * elements may be acceptable. */
+int ctd_iface_self_gap_note(const ctd_iface *it, const ct_real *x, const ct_real *y,
+                            const ct_real *z, char *msg, size_t len);
+
 /* Bytes held by the interface. */
 size_t ctd_iface_memory(const ctd_iface *it);
 

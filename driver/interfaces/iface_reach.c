@@ -85,6 +85,81 @@ int ctd_iface_check_reach(const ctd_iface *it, const ct_real *x, const ct_real *
     return CT_OK;
 }
 
+/* The shortest edge of the segments (INFINITY when none). */
+static double shortest_seg_edge(ct_idx nseg, const ct_idx *n1, const ct_idx *n2,
+                                const ct_idx *n3, const ct_idx *n4, const ct_real *x,
+                                const ct_real *y, const ct_real *z)
+{
+    double h2 = INFINITY;
+    for (ct_idx j = 0; j < nseg; j++) {
+        const ct_idx v[4] = {n1[j], n2[j], n3[j], n4[j]};
+        const int nv = v[3] == v[2] ? 3 : 4;
+        for (int a = 0; a < nv; a++) {
+            const ct_idx p = v[a], q = v[(a + 1) % nv];
+            const double dx = (double)x[p] - (double)x[q], dy = (double)y[p] - (double)y[q],
+                         dz = (double)z[p] - (double)z[q];
+            const double d2 = dx * dx + dy * dy + dz * dz;
+            h2 = d2 < h2 ? d2 : h2;
+        }
+    }
+    return sqrt(h2);
+}
+
+/* The shortest edge of the edges e1[k]-e2[k] (INFINITY when none). */
+static double shortest_edge(ct_idx ne, const ct_idx *e1, const ct_idx *e2, const ct_real *x,
+                            const ct_real *y, const ct_real *z)
+{
+    double h2 = INFINITY;
+    for (ct_idx k = 0; k < ne; k++) {
+        const double dx = (double)x[e1[k]] - (double)x[e2[k]],
+                     dy = (double)y[e1[k]] - (double)y[e2[k]],
+                     dz = (double)z[e1[k]] - (double)z[e2[k]];
+        const double d2 = dx * dx + dy * dy + dz * dz;
+        h2 = d2 < h2 ? d2 : h2;
+    }
+    return sqrt(h2);
+}
+
+int ctd_iface_self_gap_note(const ctd_iface *it, const ct_real *x, const ct_real *y,
+                            const ct_real *z, char *msg, size_t len)
+{
+    if (len > 0)
+        msg[0] = 0;
+    if (!it || !x || !y || !z)
+        return 0;
+    for (int i = 0; i < it->npass; i++) {
+        const ctdi_pass *p = &it->pass[i];
+        if (!p->self || p->nseg == 0)
+            continue;
+        const double h = shortest_seg_edge(p->nseg, p->n1, p->n2, p->n3, p->n4, x, y, z);
+        if (p->reach > 0.5 * h) {
+            snprintf(msg, len,
+                     "self contact with a gap of %g, more than half its shortest segment edge "
+                     "(%g): a node comes within the gap of its neighbours' segments %s "
+                     "(expected a gap of at most half the shortest edge, as Radioss "
+                     "recommends)",
+                     (double)p->reach, h,
+                     p->reach >= h ? "from the start" : "when the segments between are compressed");
+            return 1;
+        }
+    }
+    const ctdi_epass *e = it->ep;
+    if (e && e->self && e->ne > 0) {
+        /* sgap: the distance of two edges' axes in contact. */
+        const double h = shortest_edge(e->ne, e->e1, e->e2, x, y, z);
+        if (e->sgap > 0.5 * h) {
+            snprintf(msg, len,
+                     "self contact of edges with a gap of %g, more than half the shortest edge "
+                     "(%g): an edge comes within the gap of the edges next to it %s (expected a "
+                     "gap of at most half the shortest edge)",
+                     (double)e->sgap, h,
+                     e->sgap >= h ? "from the start" : "when the segments between are compressed");
+            return 1;
+        }
+    }
+    return 0;
+}
+
 /* The machine's physical memory in bytes (INFINITY when unknown). */
 static double physical_memory(void)
 {
