@@ -346,6 +346,26 @@ Test(cli, run_dt_scale_and_unstable)
     ctt_rmtree(dir);
 }
 
+/* Options refused with exit 1, the reason on stderr and nothing on stdout:
+ * `contact <cmd> <args> fly.yaml` (before: options that take a value see
+ * the scene's name as theirs) for each row. */
+typedef struct bad_opt {
+    const char *args, *msg;
+} bad_opt;
+
+static void expect_refused(ctt_cli *r, const char *dir, const char *cmd, const bad_opt *bad,
+                           size_t n, int before)
+{
+    for (size_t k = 0; k < n; k++) {
+        if (before)
+            ctt_cli_run(r, dir, 2, "%s %s fly.yaml", cmd, bad[k].args);
+        else
+            ctt_cli_run(r, dir, 2, "%s fly.yaml %s", cmd, bad[k].args);
+        EXPECT_FAIL(r, 1, bad[k].msg);
+        cr_expect_str_empty(r->out, "%s %s printed: %s", cmd, bad[k].args, r->out);
+    }
+}
+
 Test(cli, run_bad_usage_and_input)
 {
     char dir[64];
@@ -357,9 +377,7 @@ Test(cli, run_bad_usage_and_input)
     EXPECT_FAIL(&r, 1, "usage: contact run SCENE");
     ctt_cli_run(&r, dir, 2, "run fly.yaml drop.yaml");
     EXPECT_FAIL(&r, 1, "contact run: one scene expected, got 'fly.yaml' and 'drop.yaml'");
-    static const struct {
-        const char *args, *msg;
-    } bad[] = {
+    static const bad_opt bad[] = {
         {"--fast", "contact run: option --fast needs a value"},
         {"--fast 1", "contact run: unknown option '--fast' (try --help)"},
         {"--out", "contact run: option --out needs a value"},
@@ -379,11 +397,7 @@ Test(cli, run_bad_usage_and_input)
         {"--threads 1.5", "--threads expects an integer in 1..4096, got '1.5'"},
         {"--threads 4097", "--threads expects an integer in 1..4096, got '4097'"},
     };
-    for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
-        ctt_cli_run(&r, dir, 2, "run fly.yaml %s", bad[k].args);
-        EXPECT_FAIL(&r, 1, bad[k].msg);
-        cr_expect_str_empty(r.out, "run %s printed: %s", bad[k].args, r.out);
-    }
+    expect_refused(&r, dir, "run", bad, sizeof bad / sizeof bad[0], 0);
     cr_expect(!ctt_exists(dir, "out"), "a refused run wrote its output");
     /* Bad input: a missing file, a malformed field (file, line and field
      * named), a model that cannot be built. */
@@ -465,9 +479,7 @@ Test(cli, check_takes_the_runs_options)
     cr_expect(strstr(r.out, "pen.yaml: interface pen (type 24): 4 pairs in contact at t = 0") !=
                   NULL, "%s", r.out);
     /* Bad values and options check has no use for. */
-    static const struct {
-        const char *args, *msg;
-    } bad[] = {
+    static const bad_opt bad[] = {
         {"--refine 0", "contact check: --refine expects an integer in 1..1000, got '0'"},
         {"--end soon", "contact check: --end expects a time > 0, got 'soon'"},
         {"--dt-scale -1", "contact check: --dt-scale expects a number > 0, got '-1'"},
@@ -476,11 +488,7 @@ Test(cli, check_takes_the_runs_options)
         {"--threads 2", "contact check: unknown option '--threads' (try --help)"},
         {"--quiet", "contact check: unknown option '--quiet' (try --help)"},
     };
-    for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
-        ctt_cli_run(&r, dir, 2, "check %s fly.yaml", bad[k].args);
-        EXPECT_FAIL(&r, 1, bad[k].msg);
-        cr_expect_str_empty(r.out, "check %s printed: %s", bad[k].args, r.out);
-    }
+    expect_refused(&r, dir, "check", bad, sizeof bad / sizeof bad[0], 1);
     ctt_cli_free(&r);
     ctt_rmtree(dir);
 }

@@ -19,40 +19,7 @@
  *    three edges there tangent to it: a flaw of the topology, not of the
  *    map, which only an O-grid would remove.)
  */
-#include <criterion/criterion.h>
-#include <math.h>
-#include <stdio.h>
-#include <stdlib.h>
-#include <string.h>
-#include <unistd.h>
-
-#include "model.h"
-#include "scene.h"
-#include "test_util.h"
-
-#define PI 3.14159265358979323846
-#define STEEL "material: {E: 2.1e11, nu: 0.3, rho: 7800}"
-
-/* Load the scene text at the given refine (0: the file's) and build its
- * model. */
-static void load_model(const char *yaml, int64_t refine, ctd_scene **sc, ctd_model *m)
-{
-    char dir[] = "/tmp/ct_generators_XXXXXX", path[64];
-    cr_assert(mkdtemp(dir) != NULL, "cannot make a temporary directory");
-    snprintf(path, sizeof path, "%s/scene.yaml", dir);
-    FILE *f = fopen(path, "w");
-    cr_assert(f != NULL, "cannot write %s", path);
-    fputs(yaml, f);
-    fclose(f);
-    static ctd_scene_err se;
-    int rc = ctd_scene_load_refined(path, refine, sc, &se);
-    remove(path);
-    rmdir(dir);
-    cr_assert_eq(rc, CT_OK, "scene: %s", se.count ? se.msg[0].text : "?");
-    char err[1024] = "";
-    memset(m, 0, sizeof *m);
-    cr_assert_eq(ctd_model_build(m, *sc, err, sizeof err), CT_OK, "model: %s", err);
-}
+#include "test_scene_features.h"
 
 /* ---- refine keeps every mesh in place ------------------------------------ */
 
@@ -115,12 +82,10 @@ Test(generators, refine_keeps_every_mesh_in_place)
                                                 "tube",   "folded", "net", "rod"};
     part_box b1[NKIND + 1], b2[NKIND + 1];
     for (int r = 1; r <= 2; r++) {
-        ctd_scene *sc;
-        ctd_model m;
-        load_model(all_kinds, r, &sc, &m);
-        part_boxes(&m, r == 1 ? b1 : b2);
-        ctd_model_destroy(&m);
-        ctd_scene_free(sc);
+        sf_run run;
+        sf_load_refined(&run, all_kinds, r);
+        part_boxes(&run.m, r == 1 ? b1 : b2);
+        sf_free(&run);
     }
     /* The node counts by the generators' formulas: plate and net (nx+1)(ny+1),
      * block and ball the grid's, sphere 6 n^2 + 2, tube nr (nl+1), rod n+1;
@@ -209,14 +174,14 @@ Test(generators, ball_bricks_keep_their_shape)
                  "parts:\n"
                  "  - {id: 1, element: brick, " STEEL "}\n",
                  n, R, o[0], o[1], o[2]);
-        ctd_scene *sc;
-        ctd_model m;
-        load_model(yaml, 0, &sc, &m);
-        const ct_nodes *nd = &m.mesh.nodes;
+        sf_run run;
+        sf_load(&run, yaml);
+        const ctd_model *m = &run.m;
+        const ct_nodes *nd = &m->mesh.nodes;
         cr_assert_eq(nd->n, (n + 1) * (n + 1) * (n + 1));
         /* No brick collapses: the smallest is a fixed share of a cell of
          * the cube, (2 R / n)^3 (0.37 of it at n = 4, 0.32 at n = 32). */
-        const double cell = 2 * R / n, vmin = min_brick_volume(&m) / (cell * cell * cell);
+        const double cell = 2 * R / n, vmin = min_brick_volume(m) / (cell * cell * cell);
         cr_log_info("ball n = %d: smallest brick %.4f of a cube cell", n, vmin);
         cr_expect(vmin > 0.3, "n = %d: a brick of %.4f of a cube cell", n, vmin);
         /* The outer surface's nodes on the sphere, the others inside it. */
@@ -247,8 +212,7 @@ Test(generators, ball_bricks_keep_their_shape)
         cr_expect(verr > 0 && verr < prev_verr, "n = %d: volume error %.4g after %.4g", n, verr,
                   prev_verr);
         prev_verr = verr;
-        ctd_model_destroy(&m);
-        ctd_scene_free(sc);
+        sf_free(&run);
     }
     /* Second order in h: below 1 % at n = 32. */
     cr_expect(prev_verr < 0.01, "volume error %.4g at n = 32", prev_verr);

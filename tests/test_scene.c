@@ -550,7 +550,7 @@ Test(scene, self_contact_gap_note, .init = cr_redirect_stdout)
     const double r = 0.004, len = 3 * 8 * 0.005 + 2 * 3.14159265358979323846 * r;
     const double h3 = 0.005 / 3, du = len / round(len / h3), chord = 2 * r * sin(du / (2 * r));
     char want3[128];
-    snprintf(want3, sizeof want3, "shortest segment edge (%g): a node", chord);
+    snprintf(want3, sizeof want3, "shortest edge (%g): a node comes", chord);
     FILE *f = cr_get_redirected_stdout();
     char line[2048];
     int notes = 0, compressed = 0, start = 0, edges = 0, report = 0, shortest = 0;
@@ -560,7 +560,8 @@ Test(scene, self_contact_gap_note, .init = cr_redirect_stdout)
         notes++;
         compressed += strstr(line, "when the segments between are compressed") != NULL;
         start += strstr(line, "from the start") != NULL;
-        edges += strstr(line, "interface edges (type 11): note: self contact of edges") != NULL;
+        edges += strstr(line, "interface edges (type 11): note: self contact of edges with a "
+                              "gap of 0.001, more than half the shortest edge") != NULL;
         report += !strncmp(line, "    note: self contact with a gap of 0.001", 42);
         shortest += strstr(line, want3) != NULL;
     }

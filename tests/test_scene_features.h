@@ -39,9 +39,10 @@ typedef struct sf_run {
     int solver;
 } sf_run;
 
-/* Write the scene text into a fresh temporary directory, load it and
- * build its model; the file is removed once loaded. */
-static inline void sf_load(sf_run *r, const char *yaml)
+/* Write the scene text into a fresh temporary directory, load it at the
+ * given refine (0: the file's) and build its model; the file is removed
+ * once loaded. */
+static inline void sf_load_refined(sf_run *r, const char *yaml, int64_t refine)
 {
     memset(r, 0, sizeof *r);
     char dir[] = "/tmp/ct_features_XXXXXX", path[64];
@@ -52,13 +53,15 @@ static inline void sf_load(sf_run *r, const char *yaml)
     fputs(yaml, f);
     fclose(f);
     static ctd_scene_err se;
-    int rc = ctd_scene_load(path, &r->sc, &se);
+    int rc = ctd_scene_load_refined(path, refine, &r->sc, &se);
     remove(path);
     rmdir(dir);
     cr_assert_eq(rc, CT_OK, "scene: %s\n%s", se.count ? se.msg[0].text : "?", yaml);
     char err[1024] = "";
     cr_assert_eq(ctd_model_build(&r->m, r->sc, err, sizeof err), CT_OK, "model: %s", err);
 }
+
+static inline void sf_load(sf_run *r, const char *yaml) { sf_load_refined(r, yaml, 0); }
 
 /* Build the interfaces and the solver (no files, quiet) with an observer
  * and `threads` threads, run to the end and assert that it ended "ok". */

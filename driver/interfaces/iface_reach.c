@@ -85,39 +85,52 @@ int ctd_iface_check_reach(const ctd_iface *it, const ct_real *x, const ct_real *
     return CT_OK;
 }
 
+/* The squared distance of nodes p and q. */
+static double dist2(const ct_real *x, const ct_real *y, const ct_real *z, ct_idx p, ct_idx q)
+{
+    const double dx = (double)x[p] - (double)x[q], dy = (double)y[p] - (double)y[q],
+                 dz = (double)z[p] - (double)z[q];
+    return dx * dx + dy * dy + dz * dz;
+}
+
 /* The shortest edge of the segments (INFINITY when none). */
-static double shortest_seg_edge(ct_idx nseg, const ct_idx *n1, const ct_idx *n2,
-                                const ct_idx *n3, const ct_idx *n4, const ct_real *x,
-                                const ct_real *y, const ct_real *z)
+static double shortest_seg_edge(const ctdi_pass *p, const ct_real *x, const ct_real *y,
+                                const ct_real *z)
 {
     double h2 = INFINITY;
-    for (ct_idx j = 0; j < nseg; j++) {
-        const ct_idx v[4] = {n1[j], n2[j], n3[j], n4[j]};
+    for (ct_idx j = 0; j < p->nseg; j++) {
+        const ct_idx v[4] = {p->n1[j], p->n2[j], p->n3[j], p->n4[j]};
         const int nv = v[3] == v[2] ? 3 : 4;
-        for (int a = 0; a < nv; a++) {
-            const ct_idx p = v[a], q = v[(a + 1) % nv];
-            const double dx = (double)x[p] - (double)x[q], dy = (double)y[p] - (double)y[q],
-                         dz = (double)z[p] - (double)z[q];
-            const double d2 = dx * dx + dy * dy + dz * dz;
-            h2 = d2 < h2 ? d2 : h2;
-        }
+        for (int a = 0; a < nv; a++)
+            h2 = fmin(h2, dist2(x, y, z, v[a], v[(a + 1) % nv]));
     }
     return sqrt(h2);
 }
 
-/* The shortest edge of the edges e1[k]-e2[k] (INFINITY when none). */
-static double shortest_edge(ct_idx ne, const ct_idx *e1, const ct_idx *e2, const ct_real *x,
-                            const ct_real *y, const ct_real *z)
+/* The shortest of TYPE11's edges (INFINITY when none). */
+static double shortest_edge(const ctdi_epass *e, const ct_real *x, const ct_real *y,
+                            const ct_real *z)
 {
     double h2 = INFINITY;
-    for (ct_idx k = 0; k < ne; k++) {
-        const double dx = (double)x[e1[k]] - (double)x[e2[k]],
-                     dy = (double)y[e1[k]] - (double)y[e2[k]],
-                     dz = (double)z[e1[k]] - (double)z[e2[k]];
-        const double d2 = dx * dx + dy * dy + dz * dz;
-        h2 = d2 < h2 ? d2 : h2;
-    }
+    for (ct_idx k = 0; k < e->ne; k++)
+        h2 = fmin(h2, dist2(x, y, z, e->e1[k], e->e2[k]));
     return sqrt(h2);
+}
+
+/* The note for a self-contact gap against the shortest edge h: 1 with the
+ * note in msg when the gap is more than half of h. */
+static int gap_note(char *msg, size_t len, const char *what, const char *who, double gap,
+                    double h)
+{
+    if (!(gap > 0.5 * h))
+        return 0;
+    snprintf(msg, len,
+             "self contact%s with a gap of %g, more than half the shortest edge (%g): %s comes "
+             "within the gap of its neighbours %s (expected a gap of at most half the shortest "
+             "edge, as Radioss recommends)",
+             what, gap, h, who,
+             gap >= h ? "from the start" : "when the segments between are compressed");
+    return 1;
 }
 
 int ctd_iface_self_gap_note(const ctd_iface *it, const ct_real *x, const ct_real *y,
@@ -129,35 +142,14 @@ int ctd_iface_self_gap_note(const ctd_iface *it, const ct_real *x, const ct_real
         return 0;
     for (int i = 0; i < it->npass; i++) {
         const ctdi_pass *p = &it->pass[i];
-        if (!p->self || p->nseg == 0)
-            continue;
-        const double h = shortest_seg_edge(p->nseg, p->n1, p->n2, p->n3, p->n4, x, y, z);
-        if (p->reach > 0.5 * h) {
-            snprintf(msg, len,
-                     "self contact with a gap of %g, more than half its shortest segment edge "
-                     "(%g): a node comes within the gap of its neighbours' segments %s "
-                     "(expected a gap of at most half the shortest edge, as Radioss "
-                     "recommends)",
-                     (double)p->reach, h,
-                     p->reach >= h ? "from the start" : "when the segments between are compressed");
+        if (p->self && p->nseg > 0 &&
+            gap_note(msg, len, "", "a node", (double)p->reach, shortest_seg_edge(p, x, y, z)))
             return 1;
-        }
     }
+    /* TYPE11's sgap: the distance of two edges' axes in contact. */
     const ctdi_epass *e = it->ep;
-    if (e && e->self && e->ne > 0) {
-        /* sgap: the distance of two edges' axes in contact. */
-        const double h = shortest_edge(e->ne, e->e1, e->e2, x, y, z);
-        if (e->sgap > 0.5 * h) {
-            snprintf(msg, len,
-                     "self contact of edges with a gap of %g, more than half the shortest edge "
-                     "(%g): an edge comes within the gap of the edges next to it %s (expected a "
-                     "gap of at most half the shortest edge)",
-                     (double)e->sgap, h,
-                     e->sgap >= h ? "from the start" : "when the segments between are compressed");
-            return 1;
-        }
-    }
-    return 0;
+    return e && e->self && e->ne > 0 &&
+           gap_note(msg, len, " of edges", "an edge", (double)e->sgap, shortest_edge(e, x, y, z));
 }
 
 /* The machine's physical memory in bytes (INFINITY when unknown). */
