@@ -233,6 +233,64 @@ int ct_resort_track(ct_idx nsec, const ct_idx *sec, ct_idx nmain, const ct_idx *
                     const ct_real *z, ct_real *xk, ct_real *yk, ct_real *zk, ct_real margin,
                     ct_real *bound, ct_real *step, double *amax);
 
+/*
+ * Neighbour exclusion for self contact on a fine mesh (Radioss's
+ * Irem_gap = 2). When the gap is more than half the shortest edge, a node
+ * starts within the gap of the segments next to its own and a flat sheet
+ * pushes itself apart. The exclusion of a query (a node, or an edge) is the
+ * set of items (segments, or edges) within distance r of it at the start
+ * that are joined to it through items all within r: the set grows from the
+ * items that hold one of the query's nodes (never paired in self contact)
+ * by shared nodes, and admits only the query's candidates, the items within
+ * r. An item within r joined only through farther ones (the other layer of
+ * a fold, a part that is not connected) is kept: the exclusion removes the
+ * surface around the query, not what lies near it.
+ *
+ * ct_exclusion_build takes the candidates (query, item) within r in any
+ * order; repeated ones count once. The items holding a query node join the
+ * growth whether candidates or not (they touch the query), and are
+ * excluded when they are candidates (a self search never pairs them).
+ * ex is overwritten (not freed). Items have nper nodes (4: segments,
+ * n4 == n3 for a triangle; 2: edges); query q's nodes are q1[q] and q2[q]
+ * (q2 NULL: q1 alone; q1 NULL: query q is node q, nq <= nnode). The result
+ * lists, per query, its excluded items ascending, the same for any thread
+ * count. CT_ERR_ARG for a missing array or a negative count, CT_ERR_RANGE
+ * for an index out of range, CT_ERR_NOMEM.
+ *
+ * ct_exclusion_build_nodeseg: the exclusion of every node (queries are
+ * global node indices) against the segments of a search input, the
+ * candidates being the pairs within r by the hull predicate (a bucket
+ * search with gap r, no margin, self contact). CT_ERR_ARG for r negative
+ * or not finite; the search's errors otherwise.
+ *
+ * ct_pairs_exclude removes from p the pairs (node, seg) the exclusion of
+ * node holds (its queries are global node indices), keeping the order;
+ * *removed (may be NULL) the count. CT_ERR_RANGE for a node beyond nq.
+ */
+typedef struct ct_exclusion {
+    ct_idx nq;    /* queries */
+    ct_idx *off;  /* nq + 1: query q's items are item[off[q] .. off[q+1]-1] */
+    ct_idx *item; /* ascending within each query */
+} ct_exclusion;
+
+typedef struct ct_exclusion_input {
+    ct_idx nnode;
+    ct_idx nitem;
+    int nper;                    /* 2 or 4 nodes per item */
+    const ct_idx *in[4];         /* item t's nodes in[0][t] .. in[nper-1][t] */
+    ct_idx nq;
+    const ct_idx *q1, *q2;       /* query nodes (see above) */
+    ct_idx ncand;
+    const ct_idx *cq, *ci;       /* candidate k: query cq[k], item ci[k] */
+} ct_exclusion_input;
+
+int ct_exclusion_build(ct_exclusion *ex, const ct_exclusion_input *in);
+int ct_exclusion_build_nodeseg(ct_exclusion *ex, const ct_search_input *in, ct_real r);
+void ct_exclusion_destroy(ct_exclusion *ex);
+/* 1 when query q excludes item (0 for q out of range). */
+int ct_exclusion_has(const ct_exclusion *ex, ct_idx q, ct_idx item);
+int ct_pairs_exclude(ct_pairs *p, const ct_exclusion *ex, int64_t *removed);
+
 #ifdef __cplusplus
 }
 #endif
