@@ -266,9 +266,13 @@ static void print_contact_at_start(const char *scene, const ctd_solver *s)
         char step[64] = "no step limit";
         if (r->dt_limit > 0 && r->dt_limit < CTD_DT_NONE)
             snprintf(step, sizeof step, "stable step %.4g s", r->dt_limit);
-        printf("%s: interface %s (type %d): %lld pair%s in contact at t = 0, %s\n", scene,
+        char excl[96] = "";
+        if (r->excluded > 0)
+            snprintf(excl, sizeof excl, ", %lld neighbour pair%s excluded (Irem_gap 2)",
+                     (long long)r->excluded, r->excluded == 1 ? "" : "s");
+        printf("%s: interface %s (type %d): %lld pair%s in contact at t = 0, %s%s\n", scene,
                s->hooks[i].name ? s->hooks[i].name : "?", s->hooks[i].type,
-               (long long)r->active, r->active == 1 ? "" : "s", step);
+               (long long)r->active, r->active == 1 ? "" : "s", step, excl);
         if (s->hooks[i].note[0])
             printf("%s: interface %s (type %d): note: %s\n", scene,
                    s->hooks[i].name ? s->hooks[i].name : "?", s->hooks[i].type,

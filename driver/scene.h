@@ -146,6 +146,10 @@
  *       Stmin, Stmax  >= 0 [0, 0 = no limit]; Stmax >= Stmin when set.
  *       gap       >= 0 [0: automatic]; Gap_max_s, Gap_max_m >= 0 [0: none].
  *       Igap0, Ipen0, Ipen_max, Inacti  [0]; Ipen_max >= 0.
+ *       Irem_gap  0, 1 or 2 [0, as 1]; 2 (types 7 and 11 only): each node's
+ *                 (edge's) neighbours on the surface within the gap at the
+ *                 start leave its contact (for a gap above half the
+ *                 shortest edge; ct_exclusion in ct_search.h).
  *       VisS      >= 0 [0.05 for 7, 11; 1.0 for 24; 0 otherwise].
  *       Ifric     0..4 [0]; Fric >= 0 [0]; C1..C6 [0] (Renard, Ifric 3,
  *                 needs 0 < C5 < C6; Ifric 4 needs C2 >= 0).
@@ -313,7 +317,7 @@ typedef struct ctd_scene_interface {
     ctd_scene_sel *main, *secondary, *grnd_IDs;
     char *search_name;
     char *pressure_area_name;
-    int64_t Istf, Igap0, Ipen0, Inacti, Ifric, Ifiltr;
+    int64_t Istf, Igap0, Ipen0, Inacti, Ifric, Ifiltr, Irem_gap;
     double Stfac, Stmin, Stmax, gap, Gap_max_s, Gap_max_m, Ipen_max, VisS;
     double Fric, C1, C2, C3, C4, C5, C6, Xfreq, Tstart, Tstop;
     double (*curve)[2];

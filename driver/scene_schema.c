@@ -108,6 +108,7 @@ static const cyaml_schema_field_t f_interface[] = {
     STR("search", OPT, ctd_scene_interface, search_name),
     STR("pressure_area", OPT, ctd_scene_interface, pressure_area_name),
     IF_INT(Istf), IF_INT(Igap0), IF_INT(Ipen0), IF_INT(Inacti), IF_INT(Ifric), IF_INT(Ifiltr),
+    IF_INT(Irem_gap),
     IF_NUM(Stfac), IF_NUM(Stmin), IF_NUM(Stmax), IF_NUM(gap), IF_NUM(Gap_max_s),
     IF_NUM(Gap_max_m), IF_NUM(Ipen_max), IF_NUM(VisS), IF_NUM(Fric), IF_NUM(C1), IF_NUM(C2),
     IF_NUM(C3), IF_NUM(C4), IF_NUM(C5), IF_NUM(C6), IF_NUM(Xfreq), IF_NUM(Tstart),

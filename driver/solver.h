@@ -94,6 +94,8 @@ typedef struct ctd_contact_report {
     double fvec[3];     /* that force as a vector */
     int64_t active;     /* active pairs */
     int64_t resorts;    /* re-sorts (searches) so far */
+    int64_t excluded;   /* Irem_gap 2: candidate pairs the neighbour
+                           exclusion took out of the first search */
     double t_search, t_narrow, t_force, t_assembly; /* seconds in this cycle */
     /* (in) 1 at output cycles: the hook may then fill the per-node fields
      * below (zeroed by the solver; each hook keeps the larger penetration

@@ -308,6 +308,8 @@ static void print_report(ctd_solver *s, FILE *f)
         const int64_t mem = ctd_solver_if_memory(s, i);
         if (mem >= 0)
             fprintf(f, ", memory %.3g MB", (double)mem / 1e6);
+        if (s->rep[i].excluded > 0)
+            fprintf(f, ", neighbour pairs excluded %lld", (long long)s->rep[i].excluded);
         fputc('\n', f);
         if (s->hooks[i].note[0])
             fprintf(f, "    note: %s\n", s->hooks[i].note);

@@ -50,6 +50,7 @@ static int hook_step(void *ctx, const ctd_state *s, ct_real *fx, ct_real *fy, ct
         rep->fvec[d] = r.force[d];
     rep->active = r.nactive;
     rep->resorts = r.resorts;
+    rep->excluded = r.excluded;
     rep->t_search = r.t[CTD_IT_SEARCH];
     rep->t_narrow = r.t[CTD_IT_NARROW];
     rep->t_force = r.t[CTD_IT_FORCE];
@@ -290,6 +291,7 @@ static ctd_iface_cfg card(const ctd_scene_interface *f)
     for (int i = 0; i < 6; i++)
         c.C[i] = (ct_real)C[i];
     c.Ifiltr = (int)f->Ifiltr;
+    c.Irem_gap = (int)f->Irem_gap;
     c.Xfreq = (ct_real)f->Xfreq;
     c.Tstart = f->Tstart;
     c.Tstop = f->Tstop;

@@ -233,6 +233,9 @@ static int check_cfg(const ctd_iface_cfg *c, ct_diag *diag)
                          "must be >= 0.");
     if (c->Ifric < 0 || c->Ifric >= CT_FRIC_NLAW || c->Ifiltr < 0 || c->Ifiltr > 3)
         return ctdi_fail(diag, CT_ERR_ARG, -1, "Ifric must be 0..4 and Ifiltr 0..3.");
+    if (c->Irem_gap < 0 || c->Irem_gap > 2 || (c->Irem_gap == 2 && c->type != 7 && c->type != 11))
+        return ctdi_fail(diag, CT_ERR_ARG, c->Irem_gap,
+                         "Irem_gap must be 0, 1 or 2, and 2 only for types 7 and 11.");
     if (!(c->Tstart >= 0) || !(c->Tstop >= 0) || (c->Tstop > 0 && c->Tstop <= c->Tstart))
         return ctdi_fail(diag, CT_ERR_ARG, -1, "Need Tstart >= 0 and Tstop > Tstart when set.");
     if (c->pressure_area != CTD_PAREA_MAIN &&
@@ -397,6 +400,7 @@ int ctd_iface_step(ctd_iface *it, double time, ct_real dt, const ct_real *x, con
     int on = time >= it->cfg.Tstart && (!(it->cfg.Tstop > 0) || time <= it->cfg.Tstop);
     rep->resorts = it->resorts;
     rep->deactivated = it->deactivated;
+    rep->excluded = it->excluded;
     if (!on) {
         if (it->was_on)
             ctd_iface_force_resort(it);
@@ -423,6 +427,7 @@ int ctd_iface_step(ctd_iface *it, double time, ct_real dt, const ct_real *x, con
         rep->dt = rep->dt_curve;
     rep->resorts = it->resorts;
     rep->deactivated = it->deactivated;
+    rep->excluded = it->excluded;
     if (rc != CT_OK)
         snprintf(rep->msg, sizeof rep->msg, "%s", it->msg);
     return rc;

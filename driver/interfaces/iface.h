@@ -126,6 +126,12 @@ typedef struct ctd_iface_cfg {
     int pressure_area;
     /* Active for Tstart <= time <= Tstop (Tstop 0: never stops). */
     double Tstart, Tstop;
+    /* 7, 11: Irem_gap 2 takes each node's (each edge's) surface neighbours
+     * within the gap out of its contact (ct_exclusion, ct_search.h): the
+     * segments (edges) within the interface's largest contact gap at the
+     * first search (the start, or Tstart) and joined to the node (edge)
+     * through segments (edges) all within it. 0 or 1: no exclusion. */
+    int Irem_gap;
     /* Re-sort margin (search distance gap + margin); 0 -> 0.2 times the
      * mean edge length of the main segments (or edges). */
     ct_real margin;
@@ -249,6 +255,8 @@ typedef struct ctd_iface_report {
     int resorted;          /* searches run in this step */
     int64_t resorts;       /* searches over the interface's life */
     int64_t deactivated;   /* pairs deactivated by Ipen_max so far */
+    int64_t excluded;      /* Irem_gap 2: the candidate pairs the neighbour
+                              exclusion took out of the first search */
     double t[CTD_IT_N];    /* seconds in each phase this step */
     char msg[512];         /* when the step fails: what the code alone
                               cannot say (empty otherwise) */

@@ -58,6 +58,10 @@ typedef struct ctdi_pass {
     /* Search and the re-sort criterion. */
     ct_search *search;
     ct_pairs pairs[2];
+    /* Irem_gap 2: 1 to build the neighbour exclusion at the next search,
+     * 2 built (applied to every search's pairs), 0 none. */
+    int excl_state;
+    ct_exclusion excl;
     int cur, need_sort, first;
     ct_real *x0, *y0, *z0;
     /* States, double-buffered. */
@@ -110,7 +114,7 @@ struct ctd_iface {
     ct_idx narea_seg, narea_ent;
     ct_idx *area_q, *area_off, *area_seg;
     int was_on;
-    int64_t resorts, deactivated;
+    int64_t resorts, deactivated, excluded;
     char msg[512]; /* the failing step's explanation (ctd_iface_report.msg) */
 };
 

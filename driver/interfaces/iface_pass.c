@@ -102,6 +102,7 @@ void ctdi_pass_free(ctdi_pass *p)
     ct_search_destroy(p->search);
     ct_pairs_destroy(&p->pairs[0]);
     ct_pairs_destroy(&p->pairs[1]);
+    ct_exclusion_destroy(&p->excl);
     for (int b = 0; b < 2; b++)
         for (int i = 0; i < CTDI_ST_N; i++)
             ct_free(p->st[b][i]);
@@ -163,6 +164,7 @@ int ctdi_pass_setup(ctd_iface *it, ctdi_pass *p, ct_idx nsec, ct_idx *sec_owned,
     p->law = law;
     p->need_sort = 1;
     p->first = 1;
+    p->excl_state = self && it->cfg.Irem_gap == 2;
     if (!sec_owned)
         return CT_ERR_NOMEM;
     p->n1 = ctdi_copy_idx(nseg, n1);
@@ -272,6 +274,28 @@ static void pair_stiffness(const ctd_iface *it, const ctdi_pass *p, ct_idx n,
     });
 }
 
+/* Irem_gap 2: the neighbour exclusion, built at the first search from the
+ * positions it searched (the largest contact gap as the distance), then
+ * applied to every search's pairs. */
+static int exclude_neighbours(ctd_iface *it, ctdi_pass *p, const ct_search_input *in,
+                              ct_pairs *np)
+{
+    if (p->excl_state == 0)
+        return CT_OK;
+    const int first = p->excl_state == 1;
+    int rc;
+    if (first) {
+        if ((rc = ct_exclusion_build_nodeseg(&p->excl, in, p->reach)) != CT_OK)
+            return rc;
+        p->excl_state = 2;
+    }
+    int64_t removed = 0;
+    rc = ct_pairs_exclude(np, &p->excl, &removed);
+    if (rc == CT_OK && first)
+        it->excluded += removed;
+    return rc;
+}
+
 /* The search and everything that depends on the pair list. */
 static int pass_search(ctd_iface *it, ctdi_pass *p, const ct_real *x, const ct_real *y,
                        const ct_real *z, const ct_real *m, int *did)
@@ -306,6 +330,8 @@ static int pass_search(ctd_iface *it, ctdi_pass *p, const ct_real *x, const ct_r
         return ctdi_pairs_too_many(it, ctdi_pair_limit(it, CTDI_PAIR_BYTES), 1, p->nsec,
                                    CTDI_PAIR_BYTES, p->sgap);
     if (rc != CT_OK)
+        return rc;
+    if ((rc = exclude_neighbours(it, p, &in, np)) != CT_OK)
         return rc;
     ct_idx n = np->n;
     if ((rc = grow_scratch(p, (size_t)n)) != CT_OK || (rc = grow_states(p, now, (size_t)n)))

@@ -118,18 +118,28 @@ static double shortest_edge(const ctdi_epass *e, const ct_real *x, const ct_real
 }
 
 /* The note for a self-contact gap against the shortest edge h: 1 with the
- * note in msg when the gap is more than half of h. */
+ * note in msg when the gap is more than half of h. With Irem_gap 2 the
+ * neighbours within the gap at the start are out of contact; those beyond
+ * it still come within it when the segments between are compressed. */
 static int gap_note(char *msg, size_t len, const char *what, const char *who, double gap,
-                    double h)
+                    double h, int irem)
 {
     if (!(gap > 0.5 * h))
         return 0;
-    snprintf(msg, len,
-             "self contact%s with a gap of %g, more than half the shortest edge (%g): %s comes "
-             "within the gap of its neighbours %s (expected a gap of at most half the shortest "
-             "edge, as Radioss recommends)",
-             what, gap, h, who,
-             gap >= h ? "from the start" : "when the segments between are compressed");
+    if (irem)
+        snprintf(msg, len,
+                 "self contact%s with a gap of %g, more than half the shortest edge (%g): "
+                 "Irem_gap 2 takes the neighbours within the gap at the start out of contact; "
+                 "%s still comes within the gap of its farther neighbours when the segments "
+                 "between are compressed",
+                 what, gap, h, who);
+    else
+        snprintf(msg, len,
+                 "self contact%s with a gap of %g, more than half the shortest edge (%g): %s "
+                 "comes within the gap of its neighbours %s (expected a gap of at most half the "
+                 "shortest edge, as Radioss recommends, or Irem_gap: 2)",
+                 what, gap, h, who,
+                 gap >= h ? "from the start" : "when the segments between are compressed");
     return 1;
 }
 
@@ -143,13 +153,15 @@ int ctd_iface_self_gap_note(const ctd_iface *it, const ct_real *x, const ct_real
     for (int i = 0; i < it->npass; i++) {
         const ctdi_pass *p = &it->pass[i];
         if (p->self && p->nseg > 0 &&
-            gap_note(msg, len, "", "a node", (double)p->reach, shortest_seg_edge(p, x, y, z)))
+            gap_note(msg, len, "", "a node", (double)p->reach, shortest_seg_edge(p, x, y, z),
+                     p->excl_state != 0))
             return 1;
     }
     /* TYPE11's sgap: the distance of two edges' axes in contact. */
     const ctdi_epass *e = it->ep;
     return e && e->self && e->ne > 0 &&
-           gap_note(msg, len, " of edges", "an edge", (double)e->sgap, shortest_edge(e, x, y, z));
+           gap_note(msg, len, " of edges", "an edge", (double)e->sgap, shortest_edge(e, x, y, z),
+                    e->excl_state != 0);
 }
 
 /* The machine's physical memory in bytes (INFINITY when unknown). */

@@ -67,6 +67,7 @@ void ctdi_type11_free(ctdi_epass *e)
     if (!e)
         return;
     free_pairs(e);
+    ct_exclusion_destroy(&e->excl);
     ct_free(e->e1);
     ct_free(e->e2);
     ct_free(e->gedge);
@@ -164,6 +165,7 @@ int ctdi_type11_setup(ctd_iface *it, const ctd_iface_data *d, ct_diag *diag)
         return CT_ERR_NOMEM;
     it->ep = e;
     e->need_sort = 1;
+    e->excl_state = c->Irem_gap == 2;
     e->bucket = c->algo != CT_SEARCH_DIRECT;
     ct_real k0 = c->Istf == 1 ? c->Stfac : c->Stfac * it->kconst / 2;
     if (k0 < c->Stmin)

@@ -43,6 +43,10 @@ struct ctdi_epass {
     size_t cap_tmp;
     ct_assemble_ws ws;
     int ws_ok;
+    /* Irem_gap 2 (type11_exclude.c): 1 to build at the next search, 2
+     * built, 0 none; queries and items are the edges. */
+    int excl_state;
+    ct_exclusion excl;
 };
 
 /* Pair arrays for n pairs (contents not kept; type11.c). */
@@ -53,5 +57,12 @@ int ctdi_epass_grow(ctdi_epass *e, size_t n);
  * per-pair stiffness (type11_search.c). *did is 1 when it searched. */
 int ctdi_type11_search(ctd_iface *it, ctdi_epass *e, const ct_real *x, const ct_real *y,
                        const ct_real *z, int *did);
+
+/* Irem_gap 2: at the first search, the neighbour exclusion of every edge
+ * from the search's pairs within the interface's largest pair gap (their
+ * distance by the narrow phase); at every search, the removal of the pairs
+ * that either edge excludes (type11_exclude.c). */
+int ctdi_type11_exclude(ctd_iface *it, ctdi_epass *e, const ct_real *x, const ct_real *y,
+                        const ct_real *z);
 
 #endif /* CTD_TYPE11_INTERNAL_H */

@@ -249,6 +249,8 @@ int ctdi_type11_search(ctd_iface *it, ctdi_epass *e, const ct_real *x, const ct_
                           it->margin, NULL))
         return CT_OK;
     int rc = edge_search(it, e, x, y, z);
+    if (rc == CT_OK)
+        rc = ctdi_type11_exclude(it, e, x, y, z);
     if (rc != CT_OK)
         return rc;
     const ct_idx n = e->n;

@@ -1,0 +1,208 @@
+/*
+ * test_irem_gap.c -- Irem_gap 2 in whole runs (TYPE7 and TYPE11): a fine
+ * sheet whose cells are smaller than the gap, stretched so that it is
+ * searched again and again, never touches itself with the neighbour
+ * exclusion and does without it; a fine accordion fold still stops its
+ * thrown layer on the clamped one (the facing layer is no neighbour); the
+ * field's bad values are refused with their line.
+ */
+#include "test_scene_features.h"
+
+#include "interfaces/iface.h"
+#include "meshgen.h"
+
+/* A steel shell sheet of 26 x 26 cells of 0.4 mm, its x edges pulled apart
+ * at 10 m/s; the gap (1 mm, 2.5 cells) takes in the neighbours of every
+ * node; %s is the extra field of both interfaces. */
+static const char *stretched_sheet =
+    "title: stretched fine sheet\n"
+    "end_time: %s\n"
+    "mesh:\n"
+    "  - generate: {kind: plate, part: 1, cells: [26, 26], size: [0.0104, 0.0104]}\n"
+    "parts:\n"
+    "  - {id: 1, element: shell, thickness: 0.001, " STEEL "}\n"
+    "boundary:\n"
+    "  - {kind: velocity, nodes: {part: 1, where: \"x < 0.0001\"}, value: [-10, 0, 0], "
+    "dofs: x}\n"
+    "  - {kind: velocity, nodes: {part: 1, where: \"x > 0.0103\"}, value: [10, 0, 0], "
+    "dofs: x}\n"
+    "interfaces:\n"
+    "  - {type: 7, name: self, main: {part: 1}, gap: 0.001%s}\n"
+    "  - {type: 11, name: edges, main: {part: 1}, gap: 0.001%s}\n";
+
+typedef struct contact_watch {
+    int64_t active_max[2];
+} contact_watch;
+
+static void watch_contact(void *ctx, const ctd_solver *s)
+{
+    contact_watch *w = ctx;
+    for (int i = 0; i < s->nhook && i < 2; i++)
+        if (s->rep[i].active > w->active_max[i])
+            w->active_max[i] = s->rep[i].active;
+}
+
+static void run_stretched(const char *end, const char *extra, contact_watch *w,
+                          int64_t resorts[2], int64_t excluded[2])
+{
+    char yaml[2048];
+    snprintf(yaml, sizeof yaml, stretched_sheet, end, extra, extra);
+    sf_run r;
+    sf_load(&r, yaml);
+    memset(w, 0, sizeof *w);
+    sf_solve(&r, watch_contact, w, 2);
+    for (int i = 0; i < 2; i++) {
+        resorts[i] = r.s.rep[i].resorts;
+        excluded[i] = r.s.rep[i].excluded;
+    }
+    sf_free(&r);
+}
+
+Test(irem_gap, stretched_fine_sheet_never_touches_itself)
+{
+    contact_watch with, without;
+    int64_t rs[2], ex[2], rs0[2], ex0[2];
+    run_stretched("5.0e-5", ", Irem_gap: 2", &with, rs, ex);
+    /* Without: a few cycles (the neighbours' contact soon drives the step
+     * down to nothing). */
+    run_stretched("1.0e-6", "", &without, rs0, ex0);
+    for (int i = 0; i < 2; i++) {
+        /* Searched again as the sheet stretched: the exclusion holds
+         * across re-sorts. */
+        cr_assert_gt(rs[i], 2, "interface %d: %lld searches", i, (long long)rs[i]);
+        cr_assert_eq(with.active_max[i], 0, "interface %d: %lld pairs in contact", i,
+                     (long long)with.active_max[i]);
+        cr_assert_gt(ex[i], 0);
+        /* Without it, every node is within the gap of its neighbours. */
+        cr_assert_gt(without.active_max[i], 0, "interface %d", i);
+        cr_assert_eq(ex0[i], 0);
+    }
+}
+
+/* A three-layer accordion (the folding-sheet scene one cell wide; at
+ * refine 3, cells of 1.67 mm under a 2 mm gap), the bottom layer clamped,
+ * the top one (16 mm up) thrown down at 20 m/s onto the middle one. */
+static const char *fine_fold =
+    "title: fine fold\n"
+    "end_time: 1.0e-3\n"
+    "solver: {dt_scale: 0.5}\n"
+    "mesh:\n"
+    "  - generate: {kind: folded, part: 1, cells: [8, 1], size: [0.005], layers: 3, "
+    "spacing: 0.008}\n"
+    "parts:\n"
+    "  - {id: 1, element: shell, thickness: 0.001, " STEEL "}\n"
+    "boundary:\n"
+    "  - {kind: fixed, nodes: {part: 1, where: \"y < 0.0001\"}}\n"
+    "  - {kind: initial_velocity, nodes: {part: 1, where: \"y > 0.0159\"}, "
+    "value: [0, -20, 0]}\n"
+    "interfaces:\n"
+    "  - {type: 7, name: self, main: {part: 1}, gap: 0.002, Irem_gap: 2}\n"
+    "  - {type: 11, name: edges, main: {part: 1}, gap: 0.002, Irem_gap: 2}\n";
+
+typedef struct fold_watch {
+    /* Per node of the thrown layer's flat part, the middle layer's two
+     * nodes of the same z whose x bracket its x (-1: not such a node). */
+    const ct_idx *b0, *b1;
+    double sep; /* the least height over the middle layer, over the run */
+    int64_t active_max;
+} fold_watch;
+
+static void watch_fold(void *ctx, const ctd_solver *s)
+{
+    fold_watch *w = ctx;
+    for (int i = 0; i < s->nnode; i++) {
+        const ct_idx j0 = w->b0[i], j1 = w->b1[i];
+        if (j0 < 0)
+            continue;
+        double t = (s->x[i] - s->x[j0]) / (s->x[j1] - s->x[j0]);
+        double d = s->y[i] - (s->y[j0] + t * (s->y[j1] - s->y[j0]));
+        w->sep = d < w->sep ? d : w->sep;
+    }
+    if (s->rep[0].active > w->active_max)
+        w->active_max = s->rep[0].active;
+}
+
+Test(irem_gap, fine_fold_still_stops_the_thrown_layer)
+{
+    sf_run r;
+    sf_load_refined(&r, fine_fold, 3);
+    const ct_nodes *nd = &r.m.mesh.nodes;
+    ct_idx *b0 = malloc(sizeof *b0 * (size_t)nd->n), *b1 = malloc(sizeof *b1 * (size_t)nd->n);
+    cr_assert(b0 && b1);
+    /* The top layer's nodes above the middle layer's flat part, each with
+     * the middle layer's nodes of the same z around its x (the layers'
+     * nodes are spread evenly along the folded sheet, not above each
+     * other). */
+    int ntop = 0;
+    for (ct_idx i = 0; i < nd->n; i++) {
+        b0[i] = b1[i] = -1;
+        if (!(nd->y[i] > 0.016 - 1e-9))
+            continue;
+        double lo = -1e300, hi = 1e300;
+        for (ct_idx j = 0; j < nd->n; j++) {
+            if (!(fabs(nd->y[j] - 0.008) < 1e-9 && fabs(nd->z[j] - nd->z[i]) < 1e-9))
+                continue;
+            if (nd->x[j] <= nd->x[i] && nd->x[j] > lo) {
+                lo = nd->x[j];
+                b0[i] = j;
+            }
+            if (nd->x[j] > nd->x[i] && nd->x[j] < hi) {
+                hi = nd->x[j];
+                b1[i] = j;
+            }
+        }
+        if (b0[i] < 0 || b1[i] < 0)
+            b0[i] = b1[i] = -1;
+        else
+            ntop++;
+    }
+    cr_assert_gt(ntop, 0);
+    fold_watch w = {b0, b1, 1e300, 0};
+    sf_solve(&r, watch_fold, &w, 2);
+    /* The layers met: pairs across the fold carried force, and the thrown
+     * layer never crossed the middle one. Were the facing layer's pairs
+     * excluded, it would pass through: 20 m/s over 1 ms is 20 mm, more
+     * than twice the spacing. */
+    cr_assert_gt(w.active_max, 0);
+    cr_assert_gt(w.sep, 0.0, "the thrown layer crossed the middle one (%g)", w.sep);
+    /* And it came down from 8 mm to about the gap (the contact is made at
+     * the distance along the normal, of tilted layers here). */
+    cr_assert_lt(w.sep, 0.003, "the layers did not meet (closest %g)", w.sep);
+    cr_assert_gt(r.s.rep[0].excluded, 0);
+    cr_assert_gt(r.s.rep[1].excluded, 0);
+    cr_assert_lt(fabs(r.s.error_max), 5e-3, "energy error %g", r.s.error_max);
+    free(b0);
+    free(b1);
+    sf_free(&r);
+}
+
+Test(irem_gap, library_refuses_impossible_values)
+{
+    ct_mesh m;
+    const double org[3] = {0, 0, 0};
+    cr_assert_eq(ctd_plate(&m, 3, 3, 1.0, 1.0, org, 0), CT_OK);
+    ctd_iface_data d;
+    memset(&d, 0, sizeof d);
+    d.nnode = m.nodes.n;
+    d.nseg = m.nseg;
+    d.n1 = m.n1;
+    d.n2 = m.n2;
+    d.n3 = m.n3;
+    d.n4 = m.n4;
+    const int type[4] = {7, 7, 24, 7}, irem[4] = {3, -1, 2, 2};
+    const int want[4] = {CT_ERR_ARG, CT_ERR_ARG, CT_ERR_ARG, CT_OK};
+    for (int k = 0; k < 4; k++) {
+        ctd_iface_cfg cfg = ctd_iface_default_cfg(type[k]);
+        cfg.Istf = 1;
+        cfg.gap = (ct_real)0.5;
+        cfg.Irem_gap = irem[k];
+        ctd_iface *it = NULL;
+        ct_diag diag;
+        cr_assert_eq(ctd_iface_init(&it, &cfg, &d, &diag), want[k], "type %d Irem_gap %d",
+                     type[k], irem[k]);
+        if (want[k] != CT_OK)
+            cr_assert(strstr(diag.msg, "Irem_gap") != NULL, "%s", diag.msg);
+        ctd_iface_destroy(it);
+    }
+    ct_mesh_destroy(&m);
+}
