@@ -10,6 +10,10 @@
 
 #include "interfaces/iface.h"
 #include "meshgen.h"
+#include "run.h"
+#include "test_scene.h"
+
+#include <criterion/redirect.h>
 
 /* A steel shell sheet of 26 x 26 cells of 0.4 mm, its x edges pulled apart
  * at 10 m/s; the gap (1 mm, 2.5 cells) takes in the neighbours of every
@@ -205,4 +209,59 @@ Test(irem_gap, library_refuses_impossible_values)
         ctd_iface_destroy(it);
     }
     ct_mesh_destroy(&m);
+}
+
+/* Distance from p to the axis-aligned square [x0, x0 + h] x [y0, y0 + h]
+ * in the plane z = 0 (p in it too). */
+static double square_dist(double px, double py, double x0, double y0, double h)
+{
+    double dx = px < x0 ? x0 - px : (px > x0 + h ? px - x0 - h : 0);
+    double dy = py < y0 ? y0 - py : (py > y0 + h ? py - y0 - h : 0);
+    return sqrt(dx * dx + dy * dy);
+}
+
+Test(irem_gap, check_counts_the_pairs_it_takes_out, .init = cr_redirect_stdout)
+{
+    /* The stretched sheet at rest: every pair (node, cell not its own)
+     * within the gap (1 mm; cells of 0.4 mm, no distance within 1e-3 of
+     * it) is a candidate of the first search and leaves it. */
+    char yaml[2048], path[256];
+    snprintf(yaml, sizeof yaml, stretched_sheet, "1.0e-6", ", Irem_gap: 2", ", Irem_gap: 2");
+    write_scene_text(path, sizeof path, "irem", yaml);
+    char *argv[] = {path, "--out", "/tmp"};
+    cr_assert_eq(ctd_check_cli(3, argv), CTD_EXIT_OK);
+    remove(path);
+    fflush(stdout);
+    const int n = 26;
+    const double h = 0.0104 / n, gap = 0.001;
+    int64_t want = 0;
+    for (int j = 0; j <= n; j++)
+        for (int i = 0; i <= n; i++)
+            for (int cj = 0; cj < n; cj++)
+                for (int ci = 0; ci < n; ci++) {
+                    int own = (ci == i || ci == i - 1) && (cj == j || cj == j - 1);
+                    double d = square_dist(i * h, j * h, ci * h, cj * h, h);
+                    cr_assert_gt(fabs(d - gap), 1e-3 * gap);
+                    want += !own && d <= gap;
+                }
+    char wanted[128];
+    snprintf(wanted, sizeof wanted,
+             "interface self (type 7): 0 pairs in contact at t = 0, no step limit, %lld "
+             "neighbour pairs excluded (Irem_gap 2)",
+             (long long)want);
+    FILE *f = cr_get_redirected_stdout();
+    char line[2048];
+    int found = 0, edges = 0, note = 0, clean = 0;
+    while (fgets(line, sizeof line, f)) {
+        found += strstr(line, wanted) != NULL;
+        edges += strstr(line, "interface edges (type 11): 0 pairs in contact") != NULL &&
+                 strstr(line, "neighbour pairs excluded (Irem_gap 2)") != NULL;
+        note += strstr(line, "note: self contact with a gap of 0.001, more than half the "
+                             "shortest edge (0.0004): Irem_gap 2 takes") != NULL;
+        clean += strstr(line, "initial penetration: none") != NULL;
+    }
+    cr_expect_eq(found, 1, "no line \"%s\"", wanted);
+    cr_expect_eq(edges, 1);
+    cr_expect_eq(note, 1);
+    cr_expect_eq(clean, 1);
 }
