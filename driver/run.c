@@ -24,6 +24,8 @@ static void usage(FILE *f)
             "                  output.dir)\n"
             "  --threads N     OpenMP threads (default: solver.threads or OpenMP's default)\n"
             "  --search ALGO   direct | topological | bucket | bsp: every interface's search\n"
+            "                  (self contact keeps its own under topological; TYPE11 runs\n"
+            "                  bucket for any but direct)\n"
             "  --end T         end time in seconds (default: the scene's end_time)\n"
             "  --refine N      multiply every generated mesh's cells by N (1..1000),\n"
             "                  replacing the scene's refine\n"
@@ -88,9 +90,22 @@ static int setup_open(run_setup *r, const char *who, const char *scene, int64_t 
     if (code != CTD_EXIT_OK)
         return code;
     if (search) {
+        /* Every interface's search, but the topological search on self
+         * contact: it would find nothing there (a node's closest main node
+         * is itself), so those keep the scene's, and the run says so. */
         int algo = ct_search_algo_from_name(search);
-        for (unsigned i = 0; i < r->sc->interfaces_count; i++)
-            r->sc->interfaces[i].search = algo;
+        for (unsigned i = 0; i < r->sc->interfaces_count; i++) {
+            ctd_scene_interface *f = &r->sc->interfaces[i];
+            if (algo == CT_SEARCH_TOPO && (f->type == 7 || (f->type == 24 && f->self))) {
+                if (!o->quiet)
+                    printf("%s: --search topological: interface %s (type %lld) is self contact, "
+                           "which the topological search cannot find; it keeps its %s search\n",
+                           scene, f->label, (long long)f->type,
+                           ct_search_algo_name((ct_search_algo)f->search));
+                continue;
+            }
+            f->search = algo;
+        }
     }
     /* Out of memory is exit 5, as for the scene and the solver's arrays
      * (a model too large for the machine is not a mistake in the file). */

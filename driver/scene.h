@@ -137,7 +137,10 @@
  *     secondary  a selection: required for 3, 5, 6; absent for 7, 11, 24
  *                means self contact on `main`.
  *     search     direct | topological | bucket | bsp (default: topological
- *                for 3 and 5, bucket otherwise).
+ *                for 3 and 5, bucket otherwise). Not topological for self
+ *                contact (7, and 24 without secondary): a node's closest
+ *                main node is itself, it would find nothing. Type 11's
+ *                edge search is direct or bucket.
  *     Radioss card fields, all optional (defaults in brackets):
  *       Istf      0, 1, 2, 3, 4, 5 or 1000 [0]: stiffness choice (TYPE24:
  *                 0 -> 2; 2 mean, 3 max, 4 min, 5 series, 1000 main only;

@@ -85,6 +85,15 @@ void cti_vcheck_interface(vctx *v, unsigned i, ctd_scene_interface *f)
         f->search = cti_venum(v, cti_vpath(v, "%s.search", b), f->search_name, search_names, 4);
     else
         f->search = (t == 3 || t == 5) ? CT_SEARCH_TOPO : CT_SEARCH_BUCKET;
+    if (f->search_name && f->search == CT_SEARCH_TOPO && (t == 7 || (t == 24 && f->self)))
+        cti_err(v->e, CT_ERR_ARG, 0, cti_vpath(v, "%s.search", b),
+                "topological cannot find self contact (a node's closest main node is itself): "
+                "expected direct, bucket or bsp for type %lld%s",
+                (long long)t, t == 24 ? " on one surface" : "");
+    else if (f->search_name && t == 11 && f->search != CT_SEARCH_DIRECT &&
+             f->search != CT_SEARCH_BUCKET)
+        cti_err(v->e, CT_ERR_ARG, 0, cti_vpath(v, "%s.search", b),
+                "type 11's edge search is direct or bucket, got %s", f->search_name);
     /* The pressure's area (the secondary nodes' areas are checked with the
      * model, ctd_interfaces_build). */
     static const char *const parea_names[] = {"main", "secondary"};

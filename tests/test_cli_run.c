@@ -558,3 +558,41 @@ Test(cli, check_scenes)
     ctt_rmtree(dir);
 }
 
+
+/* `--search topological` sets every interface's search but self contact's,
+ * which it cannot find (a node's closest main node is itself): the
+ * showcase's TYPE7 keeps its bucket search, says so, and still catches the
+ * folding layers; TYPE11's edge search names what it runs (bucket for any
+ * choice but direct). */
+Test(cli, run_search_override_keeps_self_contact)
+{
+    char dir[64], scene[2048], here[1024], cwd[512];
+    ctt_tmpdir(dir, "cli");
+    /* The repository's scenes, by an absolute path (the run is in dir). */
+    const char *f = __FILE__, *slash = strrchr(f, '/');
+    cr_assert_not_null(getcwd(cwd, sizeof cwd));
+    snprintf(here, sizeof here, "%s%s%.*s", f[0] == '/' ? "" : cwd, f[0] == '/' ? "" : "/",
+             (int)(slash - f), f);
+    snprintf(scene, sizeof scene, "%s/../data/scenes/showcase.yaml", here);
+    ctt_cli r = {0};
+    ctt_cli_run(&r, dir, 2, "run %s --out o --search topological", scene);
+    cr_assert_eq(r.status, 0, "%s%s", r.out, r.err);
+    cr_expect(strstr(r.out, "--search topological: interface sheet-self (type 7) is self contact, "
+                            "which the topological search cannot find; it keeps its bucket "
+                            "search\n") != NULL,
+              "%s", r.out);
+    cr_expect(strstr(r.out, "interface ball-sheet (type 24, topological search)") != NULL, "%s",
+              r.out);
+    const char *t7 = strstr(r.out, "interface sheet-self (type 7, bucket search): max force ");
+    cr_assert_not_null(t7, "%s", r.out);
+    const char *act = strstr(t7, "max active pairs ");
+    cr_assert_not_null(act);
+    cr_expect_gt(atol(act + strlen("max active pairs ")), 0, "%s", r.out);
+    snprintf(scene, sizeof scene, "%s/../data/scenes/folding-sheet.yaml", here);
+    ctt_cli_run(&r, dir, 2, "run %s --out o --search bsp --end 1e-5", scene);
+    cr_assert_eq(r.status, 0, "%s%s", r.out, r.err);
+    cr_expect(strstr(r.out, "interface self (type 7, bsp search)") != NULL, "%s", r.out);
+    cr_expect(strstr(r.out, "interface edges (type 11, bucket search)") != NULL, "%s", r.out);
+    ctt_cli_free(&r);
+    ctt_rmtree(dir);
+}

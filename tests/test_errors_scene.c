@@ -156,6 +156,11 @@ Test(errors_scene, interfaces)
          "expected an integer in 0..4, got 9"},
         {"interfaces:\n  - {type: 7, main: {part: 2}, Ifiltr: 9}\n", 0, 9,
          "interfaces[0].Ifiltr", "expected an integer in 0..3, got 9"},
+        {"interfaces:\n  - {type: 7, main: {part: 2}, search: topological}\n", 0, 9,
+         "interfaces[0].search", "topological cannot find self contact (a node's closest main "
+         "node is itself): expected direct, bucket or bsp for type 7"},
+        {"interfaces:\n  - {type: 11, main: {part: 2}, search: bsp}\n", 0, 9,
+         "interfaces[0].search", "type 11's edge search is direct or bucket, got bsp"},
         {"interfaces:\n  - {type: 7, main: {part: 2}, Irem_gap: 3}\n", 0, 9,
          "interfaces[0].Irem_gap", "expected an integer in 0..2, got 3"},
         {"interfaces:\n  - {type: 24, main: {part: 2}, Irem_gap: 2}\n", 0, 9,

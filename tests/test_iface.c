@@ -634,3 +634,31 @@ Test(iface, secondary_node_area)
     ctd_iface_destroy(it);
     tn_free(&t);
 }
+
+/* The topological search finds no self contact (a node's closest main node
+ * is itself): TYPE7, and TYPE24 on one surface, refuse it. */
+Test(iface, topological_search_refused_for_self_contact)
+{
+    fold f;
+    fold_make(&f, 4, 3, 0.19, 0.1, 0);
+    ctd_iface_data d = fold_data(&f);
+    const int type[3] = {7, 24, 7}, algo[3] = {CT_SEARCH_TOPO, CT_SEARCH_TOPO, CT_SEARCH_BSP};
+    const int want[3] = {CT_ERR_ARG, CT_ERR_ARG, CT_OK};
+    for (int k = 0; k < 3; k++) {
+        ctd_iface_cfg cfg = ctd_iface_default_cfg(type[k]);
+        cfg.Istf = 1;
+        cfg.Stfac = 100;
+        cfg.self = 1;
+        cfg.two_sided = 1;
+        cfg.algo = (ct_search_algo)algo[k];
+        ct_diag diag;
+        ctd_iface *it = NULL;
+        cr_expect_eq(ctd_iface_init(&it, &cfg, &d, &diag), want[k], "type %d: %s", type[k],
+                     diag.msg);
+        if (want[k] != CT_OK)
+            cr_expect(strstr(diag.msg, "topological search cannot find self contact") != NULL,
+                      "%s", diag.msg);
+        ctd_iface_destroy(it);
+    }
+    fold_free(&f);
+}

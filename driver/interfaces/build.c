@@ -571,7 +571,11 @@ static int build_one(const ctd_model *m, const ctd_scene_interface *f, unsigned 
     ctd_iface_set_kelem(it, kelem);
     hook->name = f->label;
     hook->type = t;
-    hook->search = ct_search_algo_name((ct_search_algo)f->search);
+    /* TYPE11's edge search is its own: direct, or a bucket grid for any
+     * other choice (`--search` sets every interface's). */
+    hook->search = ct_search_algo_name(t == 11 && f->search != CT_SEARCH_DIRECT
+                                           ? CT_SEARCH_BUCKET
+                                           : (ct_search_algo)f->search);
     hook->ctx = h;
     hook->contact_step = hook_step;
     hook->destroy = hook_destroy;

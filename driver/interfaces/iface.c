@@ -222,6 +222,10 @@ static int check_cfg(const ctd_iface_cfg *c, ct_diag *diag)
     if (c->algo < 0 || c->algo >= CT_SEARCH_NALGO || c->quad < 0 ||
         c->quad >= CT_QUAD_NMETHOD || c->asm_variant < 0 || c->asm_variant >= CT_ASM_NVARIANT)
         return ctdi_fail(diag, CT_ERR_ARG, -1, "Unknown search, projection or assembly.");
+    if (c->algo == CT_SEARCH_TOPO && (c->type == 7 || (c->type == 24 && c->self)))
+        return ctdi_fail(diag, CT_ERR_ARG, -1,
+                         "The topological search cannot find self contact (TYPE7, TYPE24 on "
+                         "one surface): a node's closest main node is itself.");
     if (!(c->Stfac > 0) || !(c->Stmin >= 0) || !(c->Stmax >= 0) ||
         (c->Stmax > 0 && c->Stmax < c->Stmin))
         return ctdi_fail(diag, CT_ERR_ARG, -1, "Stfac must be > 0 and 0 <= Stmin <= Stmax.");
