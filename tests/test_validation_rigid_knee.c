@@ -50,10 +50,17 @@ static double curve_work(const ctd_scene_interface *f, double p)
     return w;
 }
 
-Test(validation_rigid, type6_knee_bolster_curve)
+/* The scene at a refine (1: as it is); csv names the plot's data (NULL:
+ * none). */
+static void knee_bolster_curve(int64_t refine, const char *csv_name)
 {
     rv_run r;
-    rv_load(&r, "data/scenes/knee-bolster.yaml");
+    memset(&r, 0, sizeof r);
+    char path[1024];
+    rv_path(path, sizeof path, "data/scenes/knee-bolster.yaml");
+    static ctd_scene_err se;
+    cr_assert_eq(ctd_scene_load_refined(path, refine, &r.sc, &se), CT_OK, "%s: %s", path,
+                 se.count ? se.msg[0].text : "?");
     rv_build(&r);
     const ctd_scene_interface *f = &r.sc->interfaces[0];
     cr_assert_eq(f->type, 6);
@@ -70,7 +77,7 @@ Test(validation_rigid, type6_knee_bolster_curve)
     rv_run_solver(&r, ctd_solver_default_opts());
 
     /* The path: every sample with the pole below z = 0. */
-    FILE *csv = ctv_csv("rigid_knee", "p_mm,F_loading,F_unloading,F_curve");
+    FILE *csv = csv_name ? ctv_csv(csv_name, "p_mm,F_loading,F_unloading,F_curve") : NULL;
     double err_max = 0, pmax = 0, pmax_err = 0;
     int nload = 0, nunload = 0;
     for (size_t k = 0; k < r.n; k++) {
@@ -98,7 +105,8 @@ Test(validation_rigid, type6_knee_bolster_curve)
             ctv_row(csv, 4, 1e3 * f->curve[k][0], NAN, NAN, f->curve[k][1]);
     if (csv)
         fclose(csv);
-    ctv_plot("rigid_knee", "TYPE6 knee bolster: force against penetration",
+    if (csv_name)
+        ctv_plot(csv_name, "TYPE6 knee bolster: force against penetration",
              "knee penetration (mm)", "interface force (N)",
              "1,2,points,loading (simulated);1,3,points,unloading (simulated);"
              "1,4,linespoints,input curve",
@@ -118,16 +126,20 @@ Test(validation_rigid, type6_knee_bolster_curve)
     double pstop = 0.5 * (lo + hi);
     double e_rest = r.h[r.n - 1].vc[0][2] / v0;
 
-    char note[200];
-    snprintf(note, sizeof note,
-             "data/scenes/knee-bolster.yaml as is: %d loading and %d unloading samples, "
-             "largest error at p = %.3g mm",
-             nload, nunload, 1e3 * pmax_err);
-    ctv_result("type6_knee", "largest |F - f(p)| / f(p) on the path", err_max, 0, TOL, note);
-    double e2 = ctv_result("type6_knee", "crush depth (m)", pmax, pstop, TOL,
-                           "where the curve's work is M v0^2 / 2");
-    double e3 = ctv_result("type6_knee", "restitution", e_rest, 1.0, TOL,
-                           "elastic curve: the knee leaves at its impact speed");
+    double e2 = fabs(pmax - pstop) / pstop, e3 = fabs(e_rest - 1.0);
+    if (csv_name) {
+        char note[200];
+        snprintf(note, sizeof note,
+                 "data/scenes/knee-bolster.yaml as is: %d loading and %d unloading samples, "
+                 "largest error at p = %.3g mm",
+                 nload, nunload, 1e3 * pmax_err);
+        ctv_result("type6_knee", "largest |F - f(p)| / f(p) on the path", err_max, 0, TOL,
+                   note);
+        e2 = ctv_result("type6_knee", "crush depth (m)", pmax, pstop, TOL,
+                        "where the curve's work is M v0^2 / 2");
+        e3 = ctv_result("type6_knee", "restitution", e_rest, 1.0, TOL,
+                        "elastic curve: the knee leaves at its impact speed");
+    }
     cr_expect(nload >= 5 && nunload >= 5, "%d loading and %d unloading samples", nload,
               nunload);
     cr_expect(err_max <= TOL, "the path leaves the curve by %.3e at p = %.4g m", err_max,
@@ -135,4 +147,15 @@ Test(validation_rigid, type6_knee_bolster_curve)
     cr_expect(e2 <= TOL, "crush %.5g m against %.5g m", pmax, pstop);
     cr_expect(e3 <= TOL, "restitution %.6f", e_rest);
     rv_free(&r);
+}
+
+Test(validation_rigid, type6_knee_bolster_curve) { knee_bolster_curve(1, "rigid_knee"); }
+
+/* Refined 3 times (4083 nodes): the search reaches only the largest
+ * penetration of the last step and two margins, and drops the knee's nodes
+ * far in front of the bolster (iface_pass.c, type6.c); the pairs must
+ * still hold the pole at every step, or the force would leave the curve. */
+Test(validation_rigid, type6_knee_bolster_curve_refined)
+{
+    knee_bolster_curve(3, NULL);
 }

@@ -274,6 +274,22 @@ static void pair_stiffness(const ctd_iface *it, const ctdi_pass *p, ct_idx n,
     });
 }
 
+/* The gap of the search (its distance is this plus the margin). TYPE6's
+ * rigid bodies crush into each other as deep as the curve goes, far beyond
+ * the gap, and the search distance is unsigned: it reaches the largest
+ * penetration of the last step and two margins beyond, so that it holds
+ * every pair whose penetration can grow until the next re-sort (a pair's
+ * penetration grows by at most the motion since the search, below the
+ * margin until the criterion asks for a new one; the other margin covers
+ * the step since the last narrow phase). The TYPE6 law asks for a re-sort
+ * when the largest penetration passes p->plimit all the same. */
+static ct_real search_gap(const ctd_iface *it, const ctdi_pass *p)
+{
+    if (p->law != CTDI_LAW_TYPE6)
+        return p->sgap;
+    return p->reach + (p->pmax > 0 ? p->pmax : 0) + 2 * it->margin;
+}
+
 /* Irem_gap 2: the neighbour exclusion, built at the first search from the
  * positions it searched (the largest contact gap as the distance), then
  * applied to every search's pairs. */
@@ -319,7 +335,7 @@ static int pass_search(ctd_iface *it, ctdi_pass *p, const ct_real *x, const ct_r
     in.n2 = p->n2;
     in.n3 = p->n3;
     in.n4 = p->n4;
-    in.gap = p->sgap;
+    in.gap = search_gap(it, p);
     in.margin = it->margin;
     in.self = p->self;
     in.filter = it->cfg.filter;
@@ -333,6 +349,11 @@ static int pass_search(ctd_iface *it, ctdi_pass *p, const ct_real *x, const ct_r
         return rc;
     if ((rc = exclude_neighbours(it, p, &in, np)) != CT_OK)
         return rc;
+    if (p->law == CTDI_LAW_TYPE6) {
+        p->plimit = (p->pmax > 0 ? p->pmax : 0) + 2 * it->margin;
+        if (!p->two_sided)
+            ctdi_type6_prune(it, p, np, x, y, z);
+    }
     ct_idx n = np->n;
     if ((rc = grow_scratch(p, (size_t)n)) != CT_OK || (rc = grow_states(p, now, (size_t)n)))
         return rc;

@@ -26,6 +26,7 @@
 
 #include "ct_internal.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -106,6 +107,55 @@ int ctdi_type6_setup(ctd_iface *it, const ctd_iface_data *d, ct_diag *diag)
     return ctdi_add_pass(it, l, k, &m, 0, 0, CTDI_LAW_TYPE6, "main segments", diag);
 }
 
+void ctdi_type6_prune(const ctd_iface *it, const ctdi_pass *p, ct_pairs *pp, const ct_real *x,
+                      const ct_real *y, const ct_real *z)
+{
+    const double keep = (double)p->reach + 2 * (double)it->margin;
+    ct_idx w = 0;
+    for (ct_idx k = 0; k < pp->n; k++) {
+        const ct_idx j = pp->seg[k], v[4] = {p->n1[j], p->n2[j], p->n3[j], p->n4[j]};
+        double c[4][3], q[3] = {0, 0, 0};
+        for (int a = 0; a < 4; a++) {
+            c[a][0] = x[v[a]];
+            c[a][1] = y[v[a]];
+            c[a][2] = z[v[a]];
+            for (int d = 0; d < 3; d++)
+                q[d] += 0.25 * c[a][d];
+        }
+        /* The normal of the diagonals (a triangle's n4 == n3 gives its
+         * edges' cross product), the plane through the corners' mean and
+         * the corners' largest distance to it. */
+        double e[3], f[3], n[3];
+        for (int d = 0; d < 3; d++) {
+            e[d] = c[2][d] - c[0][d];
+            f[d] = c[3][d] - c[1][d];
+        }
+        n[0] = e[1] * f[2] - e[2] * f[1];
+        n[1] = e[2] * f[0] - e[0] * f[2];
+        n[2] = e[0] * f[1] - e[1] * f[0];
+        const double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        int drop = 0;
+        if (len > 0) {
+            double warp = 0;
+            for (int a = 0; a < 4; a++) {
+                double h = fabs(((c[a][0] - q[0]) * n[0] + (c[a][1] - q[1]) * n[1] +
+                                 (c[a][2] - q[2]) * n[2]) / len);
+                warp = h > warp ? h : warp;
+            }
+            const ct_idx s = pp->node[k];
+            const double front = (((double)x[s] - q[0]) * n[0] + ((double)y[s] - q[1]) * n[1] +
+                                  ((double)z[s] - q[2]) * n[2]) / len;
+            drop = front > keep + warp;
+        }
+        if (drop)
+            continue;
+        pp->node[w] = pp->node[k];
+        pp->seg[w] = pp->seg[k];
+        w++;
+    }
+    pp->n = w;
+}
+
 int ctdi_type6_normal(ctd_iface *it, ctdi_pass *p, ct_idx n)
 {
     ct_real **r = p->r;
@@ -116,6 +166,10 @@ int ctdi_type6_normal(ctd_iface *it, ctdi_pass *p, ct_idx n)
         return rc;
     p->pmax = pm;
     p->kcurve = kc;
+    /* Deeper than the last search's pairs hold for certain: search again
+     * next step, with the reach this depth asks for. */
+    if (pm > p->plimit)
+        p->need_sort = 1;
     p->e_law = pm > 0 ? ctdi_curve_integral(it->ncurve, it->curve_p, it->curve_f, 0, pm) : 0;
     const ct_real *restrict pen = p->geo.pen, *restrict fel = r[CTDI_R_FEL];
     ct_real *restrict kt = r[CTDI_R_KTAN], *restrict K = r[CTDI_R_K], *restrict en = r[CTDI_R_EN],
