@@ -149,7 +149,8 @@
  *       Stmin, Stmax  >= 0 [0, 0 = no limit]; Stmax >= Stmin when set.
  *       gap       >= 0 [0: automatic]; Gap_max_s, Gap_max_m >= 0 [0: none].
  *       Igap0, Ipen0, Ipen_max, Inacti  [0]; Ipen_max >= 0.
- *       Irem_gap  0, 1 or 2 [0, as 1]; 2 (types 7 and 11 only): each node's
+ *       Irem_gap  0, 1 or 2 [0, as 1]; 2 (self contact: types 7, 11, and 24
+ *                 without secondary, as Radioss's TYPE25 Igap 2): each node's
  *                 (edge's) neighbours on the surface within the gap at the
  *                 start leave its contact (for a gap above half the
  *                 shortest edge; ct_exclusion in ct_search.h).

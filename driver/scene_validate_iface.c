@@ -130,9 +130,11 @@ void cti_vcheck_interface(vctx *v, unsigned i, ctd_scene_interface *f)
     if (f->Irem_gap < 0 || f->Irem_gap > 2)
         cti_err(v->e, CT_ERR_ARG, 0, cti_vpath(v, "%s.Irem_gap", b),
                 "expected an integer in 0..2, got %lld", (long long)f->Irem_gap);
-    else if (f->Irem_gap == 2 && t != 7 && t != 11)
+    else if (f->Irem_gap == 2 && t != 7 && t != 11 && !(t == 24 && f->self))
         cti_err(v->e, CT_ERR_ARG, 0, cti_vpath(v, "%s.Irem_gap", b),
-                "2 is only used by types 7 and 11 (self contact), got type %lld", (long long)t);
+                "2 is only used by self contact: types 7, 11, and 24 without secondary, got "
+                "type %lld%s",
+                (long long)t, t == 24 ? " with a secondary side" : "");
     if (f->Ifiltr < 0 || f->Ifiltr > 3)
         cti_err(v->e, CT_ERR_ARG, 0, cti_vpath(v, "%s.Ifiltr", b),
                 "expected an integer in 0..3, got %lld", (long long)f->Ifiltr);

@@ -2,7 +2,7 @@
  * test_irem_gap.c -- Irem_gap 2 in whole runs (TYPE7 and TYPE11): a fine
  * sheet whose cells are smaller than the gap, stretched so that it is
  * searched again and again, never touches itself with the neighbour
- * exclusion and does without it; a fine accordion fold still stops its
+ * exclusion (TYPE7 and TYPE11, TYPE24 on one surface) and does without it; a fine accordion fold still stops its
  * thrown layer on the clamped one (the facing layer is no neighbour); the
  * field's bad values are refused with their line.
  */
@@ -18,21 +18,25 @@
 /* A steel shell sheet of 26 x 26 cells of 0.4 mm, its x edges pulled apart
  * at 10 m/s; the gap (1 mm, 2.5 cells) takes in the neighbours of every
  * node; %s is the extra field of both interfaces. */
-static const char *stretched_sheet =
-    "title: stretched fine sheet\n"
-    "end_time: %s\n"
-    "mesh:\n"
-    "  - generate: {kind: plate, part: 1, cells: [26, 26], size: [0.0104, 0.0104]}\n"
-    "parts:\n"
-    "  - {id: 1, element: shell, thickness: 0.001, " STEEL "}\n"
-    "boundary:\n"
-    "  - {kind: velocity, nodes: {part: 1, where: \"x < 0.0001\"}, value: [-10, 0, 0], "
-    "dofs: x}\n"
-    "  - {kind: velocity, nodes: {part: 1, where: \"x > 0.0103\"}, value: [10, 0, 0], "
-    "dofs: x}\n"
+#define STRETCHED_SHEET                                                                        \
+    "title: stretched fine sheet\n"                                                             \
+    "end_time: %s\n"                                                                            \
+    "mesh:\n"                                                                                   \
+    "  - generate: {kind: plate, part: 1, cells: [26, 26], size: [0.0104, 0.0104]}\n"          \
+    "parts:\n"                                                                                  \
+    "  - {id: 1, element: shell, thickness: 0.001, " STEEL "}\n"                               \
+    "boundary:\n"                                                                               \
+    "  - {kind: velocity, nodes: {part: 1, where: \"x < 0.0001\"}, value: [-10, 0, 0], "       \
+    "dofs: x}\n"                                                                                \
+    "  - {kind: velocity, nodes: {part: 1, where: \"x > 0.0103\"}, value: [10, 0, 0], "        \
+    "dofs: x}\n"                                                                                \
     "interfaces:\n"
-    "  - {type: 7, name: self, main: {part: 1}, gap: 0.001%s}\n"
-    "  - {type: 11, name: edges, main: {part: 1}, gap: 0.001%s}\n";
+static const char *stretched_sheet =
+    STRETCHED_SHEET "  - {type: 7, name: self, main: {part: 1}, gap: 0.001%s}\n"
+                    "  - {type: 11, name: edges, main: {part: 1}, gap: 0.001%s}\n";
+/* TYPE24 on one surface: its gap is the shells' half thicknesses, 1 mm. */
+static const char *stretched_sheet_24 =
+    STRETCHED_SHEET "  - {type: 24, name: self, main: {part: 1}%s}\n%s";
 
 typedef struct contact_watch {
     int64_t active_max[2];
@@ -46,16 +50,17 @@ static void watch_contact(void *ctx, const ctd_solver *s)
             w->active_max[i] = s->rep[i].active;
 }
 
-static void run_stretched(const char *end, const char *extra, contact_watch *w,
-                          int64_t resorts[2], int64_t excluded[2])
+static void run_stretched(const char *scene, const char *end, const char *extra,
+                          contact_watch *w, int64_t resorts[2], int64_t excluded[2])
 {
     char yaml[2048];
-    snprintf(yaml, sizeof yaml, stretched_sheet, end, extra, extra);
+    snprintf(yaml, sizeof yaml, scene, end, extra, scene == stretched_sheet ? extra : "");
     sf_run r;
     sf_load(&r, yaml);
     memset(w, 0, sizeof *w);
+    resorts[1] = excluded[1] = 0;
     sf_solve(&r, watch_contact, w, 2);
-    for (int i = 0; i < 2; i++) {
+    for (int i = 0; i < r.s.nhook; i++) {
         resorts[i] = r.s.rep[i].resorts;
         excluded[i] = r.s.rep[i].excluded;
     }
@@ -66,10 +71,10 @@ Test(irem_gap, stretched_fine_sheet_never_touches_itself)
 {
     contact_watch with, without;
     int64_t rs[2], ex[2], rs0[2], ex0[2];
-    run_stretched("5.0e-5", ", Irem_gap: 2", &with, rs, ex);
+    run_stretched(stretched_sheet, "5.0e-5", ", Irem_gap: 2", &with, rs, ex);
     /* Without: a few cycles (the neighbours' contact soon drives the step
      * down to nothing). */
-    run_stretched("1.0e-6", "", &without, rs0, ex0);
+    run_stretched(stretched_sheet, "1.0e-6", "", &without, rs0, ex0);
     for (int i = 0; i < 2; i++) {
         /* Searched again as the sheet stretched: the exclusion holds
          * across re-sorts. */
@@ -81,6 +86,19 @@ Test(irem_gap, stretched_fine_sheet_never_touches_itself)
         cr_assert_gt(without.active_max[i], 0, "interface %d", i);
         cr_assert_eq(ex0[i], 0);
     }
+}
+
+Test(irem_gap, stretched_fine_sheet_type24)
+{
+    contact_watch with, without;
+    int64_t rs[2], ex[2], rs0[2], ex0[2];
+    run_stretched(stretched_sheet_24, "5.0e-5", ", Irem_gap: 2", &with, rs, ex);
+    run_stretched(stretched_sheet_24, "1.0e-6", "", &without, rs0, ex0);
+    cr_assert_gt(rs[0], 2, "%lld searches", (long long)rs[0]);
+    cr_assert_eq(with.active_max[0], 0, "%lld pairs in contact", (long long)with.active_max[0]);
+    cr_assert_gt(ex[0], 0);
+    cr_assert_gt(without.active_max[0], 0);
+    cr_assert_eq(ex0[0], 0);
 }
 
 /* A three-layer accordion (the folding-sheet scene one cell wide; at
@@ -193,12 +211,18 @@ Test(irem_gap, library_refuses_impossible_values)
     d.n2 = m.n2;
     d.n3 = m.n3;
     d.n4 = m.n4;
-    const int type[4] = {7, 7, 24, 7}, irem[4] = {3, -1, 2, 2};
-    const int want[4] = {CT_ERR_ARG, CT_ERR_ARG, CT_ERR_ARG, CT_OK};
-    for (int k = 0; k < 4; k++) {
+    d.K = (ct_real)1e6; /* a given stiffness: TYPE24 has no segment inputs here */
+    /* TYPE24 on one surface (self 1) takes it, as Radioss's TYPE25 Igap 2;
+     * with a secondary side (self 0) it has no neighbours to exclude. */
+    const int type[6] = {7, 7, 24, 7, 24, 11}, irem[6] = {3, -1, 2, 2, 2, 2},
+              self[6] = {1, 1, 0, 1, 1, 1};
+    const int want[6] = {CT_ERR_ARG, CT_ERR_ARG, CT_ERR_ARG, CT_OK, CT_OK, CT_OK};
+    for (int k = 0; k < 6; k++) {
         ctd_iface_cfg cfg = ctd_iface_default_cfg(type[k]);
         cfg.Istf = 1;
         cfg.gap = (ct_real)0.5;
+        cfg.self = self[k];
+        cfg.two_sided = 1;
         cfg.Irem_gap = irem[k];
         ctd_iface *it = NULL;
         ct_diag diag;

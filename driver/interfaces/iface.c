@@ -237,9 +237,11 @@ static int check_cfg(const ctd_iface_cfg *c, ct_diag *diag)
                          "must be >= 0.");
     if (c->Ifric < 0 || c->Ifric >= CT_FRIC_NLAW || c->Ifiltr < 0 || c->Ifiltr > 3)
         return ctdi_fail(diag, CT_ERR_ARG, -1, "Ifric must be 0..4 and Ifiltr 0..3.");
-    if (c->Irem_gap < 0 || c->Irem_gap > 2 || (c->Irem_gap == 2 && c->type != 7 && c->type != 11))
+    if (c->Irem_gap < 0 || c->Irem_gap > 2 ||
+        (c->Irem_gap == 2 && c->type != 7 && c->type != 11 && !(c->type == 24 && c->self)))
         return ctdi_fail(diag, CT_ERR_ARG, c->Irem_gap,
-                         "Irem_gap must be 0, 1 or 2, and 2 only for types 7 and 11.");
+                         "Irem_gap must be 0, 1 or 2, and 2 only for types 7, 11 and 24 on one "
+                         "surface (self contact).");
     if (!(c->Tstart >= 0) || !(c->Tstop >= 0) || (c->Tstop > 0 && c->Tstop <= c->Tstart))
         return ctdi_fail(diag, CT_ERR_ARG, -1, "Need Tstart >= 0 and Tstop > Tstart when set.");
     if (c->pressure_area != CTD_PAREA_MAIN &&

@@ -126,11 +126,12 @@ typedef struct ctd_iface_cfg {
     int pressure_area;
     /* Active for Tstart <= time <= Tstop (Tstop 0: never stops). */
     double Tstart, Tstop;
-    /* 7, 11: Irem_gap 2 takes each node's (each edge's) surface neighbours
-     * within the gap out of its contact (ct_exclusion, ct_search.h): the
-     * segments (edges) within the interface's largest contact gap at the
-     * first search (the start, or Tstart) and joined to the node (edge)
-     * through segments (edges) all within it. 0 or 1: no exclusion. */
+    /* 7, 11 and 24 on one surface (Radioss's TYPE25 Igap 2 there): Irem_gap
+     * 2 takes each node's (each edge's) surface neighbours within the gap
+     * out of its contact (ct_exclusion, ct_search.h): the segments (edges)
+     * within the interface's largest contact gap at the first search (the
+     * start, or Tstart) and joined to the node (edge) through segments
+     * (edges) all within it. 0 or 1: no exclusion. */
     int Irem_gap;
     /* Re-sort margin (search distance gap + margin); 0 -> 0.2 times the
      * mean edge length of the main segments (or edges). */
