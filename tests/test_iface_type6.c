@@ -8,6 +8,8 @@
 #include "interfaces/iface_internal.h"
 #include "test_iface_type356.h"
 
+#include "meshgen.h"
+
 /* ---- TYPE6: the user curve ----------------------------------------------- */
 
 Test(iface_type356, type6_curve_force_energy_timestep)
@@ -235,4 +237,124 @@ Test(iface_type356, type6_energy_positive_part_of_the_curve)
     sum *= b / nq;
     cr_assert(fabs(e - sum) <= CTT_TOL(1e-8, 1e-4) * sum, "three crossings: %.12g, quadrature %.12g",
               e, sum);
+}
+
+/* ---- TYPE6: the prune of the search's pairs ------------------------------ */
+
+/* The distance from p to the triangle a b c, by dense sampling refined
+ * around the best sample: an estimate of the test's own (from above, to
+ * about 1e-6 of the triangle's size). */
+static double tri_dist_sampled(const double p[3], const double a[3], const double b[3],
+                               const double c[3])
+{
+    double best = 1e300, bu = 0, bv = 0, step = 1.0 / 64;
+    for (int pass = 0; pass < 4; pass++) {
+        double u0 = bu, v0 = bv;
+        for (int i = -64; i <= 64; i++)
+            for (int j = -64; j <= 64; j++) {
+                double u = (pass ? u0 : 0.5) + i * step, v = (pass ? v0 : 0.5) + j * step;
+                if (u < 0 || v < 0 || u + v > 1)
+                    continue;
+                double d2 = 0;
+                for (int k = 0; k < 3; k++) {
+                    double q = a[k] + u * (b[k] - a[k]) + v * (c[k] - a[k]);
+                    d2 += (p[k] - q) * (p[k] - q);
+                }
+                if (d2 < best) {
+                    best = d2;
+                    bu = u;
+                    bv = v;
+                }
+            }
+        step /= 32;
+    }
+    return sqrt(best);
+}
+
+Test(iface_type356, type6_prune_keeps_every_future_closest_pair)
+{
+    /* A bumpy surface of triangles (planar: no warp), nodes above and
+     * below it, all pairs within reach. After the prune, move every node
+     * and corner by at most half a margin (their relative motion below a
+     * margin, as the re-sort criterion allows): each node's closest
+     * triangle, found by sampling, must be among its kept pairs. */
+    enum { NX = 6, NV = (NX + 1) * (NX + 1), NT = 2 * NX * NX, NS = 40 };
+    const double M = 0.05;
+    uint64_t st = 12345;
+    ct_real x[NV + NS], y[NV + NS], z[NV + NS];
+    for (int j = 0; j <= NX; j++)
+        for (int i = 0; i <= NX; i++) {
+            int v = i + (NX + 1) * j;
+            x[v] = (ct_real)i;
+            y[v] = (ct_real)j;
+            z[v] = (ct_real)(0.3 * sin(1.3 * i) * cos(0.9 * j));
+        }
+    ct_idx n1[NT], n2[NT], n3[NT], n4[NT];
+    for (int j = 0, t = 0; j < NX; j++)
+        for (int i = 0; i < NX; i++) {
+            ct_idx a = i + (NX + 1) * j, b = a + 1, c = a + NX + 2, d = a + NX + 1;
+            n1[t] = a, n2[t] = b, n3[t] = c, n4[t++] = c;
+            n1[t] = a, n2[t] = c, n3[t] = d, n4[t++] = d;
+        }
+    for (int k = 0; k < NS; k++) {
+        x[NV + k] = (ct_real)(0.5 + 5 * ((double)(ctd_splitmix64(&st) >> 11) / 9007199254740992.0));
+        y[NV + k] = (ct_real)(0.5 + 5 * ((double)(ctd_splitmix64(&st) >> 11) / 9007199254740992.0));
+        z[NV + k] = (ct_real)(-1.0 + 2 * ((double)(ctd_splitmix64(&st) >> 11) / 9007199254740992.0));
+    }
+    ctd_iface it;
+    ctdi_pass p;
+    memset(&it, 0, sizeof it);
+    memset(&p, 0, sizeof p);
+    it.margin = (ct_real)M;
+    p.n1 = n1, p.n2 = n2, p.n3 = n3, p.n4 = n4, p.nseg = NT;
+    p.reach = (ct_real)0.02;
+    ct_pairs pp;
+    cr_assert_eq(ct_pairs_init(&pp, NS * NT), CT_OK);
+    for (int k = 0; k < NS; k++)
+        for (int t = 0; t < NT; t++) {
+            pp.node[pp.n] = NV + k;
+            pp.seg[pp.n++] = t;
+        }
+    cr_assert_eq(ctdi_type6_prune(&it, &p, &pp, x, y, z), CT_OK);
+    cr_assert_lt(pp.n, NS * NT / 4, "the prune kept %d of %d pairs", (int)pp.n, NS * NT);
+    /* Moves. */
+    int checked = 0;
+    const int ntrial = ctt_checking() ? 2 : 6;
+    for (int trial = 0; trial < ntrial; trial++) {
+        double X[NV + NS], Y[NV + NS], Z[NV + NS];
+        for (int v = 0; v < NV + NS; v++) {
+            double d[3], n2s = 0;
+            for (int k = 0; k < 3; k++) {
+                d[k] = 2 * ((double)(ctd_splitmix64(&st) >> 11) / 9007199254740992.0) - 1;
+                n2s += d[k] * d[k];
+            }
+            double s = 0.5 * M * 0.999 / sqrt(n2s > 0 ? n2s : 1);
+            X[v] = x[v] + s * d[0];
+            Y[v] = y[v] + s * d[1];
+            Z[v] = z[v] + s * d[2];
+        }
+        for (int k = 0; k < NS; k++) {
+            const double q[3] = {X[NV + k], Y[NV + k], Z[NV + k]};
+            double best = 1e300;
+            int bt = -1;
+            for (int t = 0; t < NT; t++) {
+                const double a[3] = {X[n1[t]], Y[n1[t]], Z[n1[t]]};
+                const double b[3] = {X[n2[t]], Y[n2[t]], Z[n2[t]]};
+                const double c[3] = {X[n3[t]], Y[n3[t]], Z[n3[t]]};
+                double d = tri_dist_sampled(q, a, b, c);
+                if (d < best - 1e-9) {
+                    best = d;
+                    bt = t;
+                }
+            }
+            int kept = 0;
+            for (ct_idx m = 0; m < pp.n; m++)
+                kept |= pp.node[m] == NV + k && pp.seg[m] == bt;
+            cr_expect(kept, "trial %d: node %d's closest triangle %d was pruned", trial, k, bt);
+            checked++;
+        }
+    }
+    cr_assert_eq(checked, ntrial * NS);
+    ct_free(p.prune);
+    ct_pairs_destroy(&pp);
 }

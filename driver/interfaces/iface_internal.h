@@ -56,8 +56,11 @@ typedef struct ctdi_pass {
     ct_real pmax, kcurve;
     /* TYPE6: the largest penetration the last search's pairs hold for
      * certain (iface_pass.c, search_gap); beyond it the law asks for a
-     * re-sort. */
+     * re-sort. The prune's per-pair distances (2 per pair, grown as the
+     * search's lists grow, kept). */
     ct_real plimit;
+    double *prune;
+    size_t prune_cap;
     double e_law;
     /* Search and the re-sort criterion. */
     ct_search *search;
@@ -311,12 +314,13 @@ int ctdi_add_pass(ctd_iface *it, const ct_idx *const lists[6], const ct_idx coun
  * masses, summed once when data.mass_min was 0). */
 int ctdi_type6_normal(ctd_iface *it, ctdi_pass *p, ct_idx n);
 ct_real ctdi_type6_dt(ctd_iface *it, const ctdi_pass *p, const ct_real *m);
-/* TYPE6 one-sided, after a search: drop the pairs whose node is in front
- * of its segment by more than the gap, two margins and the segment's warp
- * (it cannot reach the segment before the next re-sort), keeping the
- * order. The unsigned search reaches as far in front as behind. */
-void ctdi_type6_prune(const ctd_iface *it, const ctdi_pass *p, ct_pairs *pp, const ct_real *x,
-                      const ct_real *y, const ct_real *z);
+/* TYPE6, after a search: keep a node's pairs whose distance is within two
+ * margins of the larger of the contact gap and the node's closest pair's
+ * distance, in order (type6.c says why). The search reaches as deep as the
+ * bodies are (iface_pass.c): without this a node at the surface pairs
+ * with every segment within the crush depth. */
+int ctdi_type6_prune(const ctd_iface *it, ctdi_pass *p, ct_pairs *pp, const ct_real *x,
+                     const ct_real *y, const ct_real *z);
 
 /* The integral of max(0, f) from a to b (a <= b) for the piecewise-linear
  * curve (x, y) of n >= 2 points with the end intervals extrapolated, as

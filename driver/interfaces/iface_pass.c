@@ -103,6 +103,7 @@ void ctdi_pass_free(ctdi_pass *p)
     ct_pairs_destroy(&p->pairs[0]);
     ct_pairs_destroy(&p->pairs[1]);
     ct_exclusion_destroy(&p->excl);
+    ct_free(p->prune);
     for (int b = 0; b < 2; b++)
         for (int i = 0; i < CTDI_ST_N; i++)
             ct_free(p->st[b][i]);
@@ -134,6 +135,9 @@ size_t ctdi_pass_memory(const ctdi_pass *p, ct_idx nnode)
     b += ((p->kseg ? 1 : 0) + (p->gseg ? 1 : 0)) * (size_t)p->nseg * sizeof(ct_real);
     b += 3 * (size_t)nnode * sizeof(ct_real);
     b += ct_search_memory(p->search) + ct_assemble_ws_memory(&p->ws);
+    b += p->prune_cap * sizeof(double);
+    if (p->excl.off)
+        b += ((size_t)p->excl.nq + 1 + (size_t)p->excl.off[p->excl.nq]) * sizeof(ct_idx);
     return b;
 }
 
@@ -351,8 +355,8 @@ static int pass_search(ctd_iface *it, ctdi_pass *p, const ct_real *x, const ct_r
         return rc;
     if (p->law == CTDI_LAW_TYPE6) {
         p->plimit = (p->pmax > 0 ? p->pmax : 0) + 2 * it->margin;
-        if (!p->two_sided)
-            ctdi_type6_prune(it, p, np, x, y, z);
+        if ((rc = ctdi_type6_prune(it, p, np, x, y, z)) != CT_OK)
+            return rc;
     }
     ct_idx n = np->n;
     if ((rc = grow_scratch(p, (size_t)n)) != CT_OK || (rc = grow_states(p, now, (size_t)n)))

@@ -95,6 +95,8 @@ size_t ctdi_type11_memory(const ctdi_epass *e, ct_idx nnode)
      * positions at the last sort (nnode + 1 each). */
     b += ((size_t)e->nan + (size_t)e->nbn + (size_t)e->na + 2) * sizeof(ct_idx);
     b += 3 * ((size_t)nnode + 1) * sizeof(ct_real);
+    if (e->excl.off)
+        b += ((size_t)e->excl.nq + 1 + (size_t)e->excl.off[e->excl.nq]) * sizeof(ct_idx);
     return b + ct_assemble_ws_memory(&e->ws);
 }
 

@@ -28,6 +28,7 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 /* The integral over a width w of the positive part of the linear function
@@ -107,13 +108,86 @@ int ctdi_type6_setup(ctd_iface *it, const ctd_iface_data *d, ct_diag *diag)
     return ctdi_add_pass(it, l, k, &m, 0, 0, CTDI_LAW_TYPE6, "main segments", diag);
 }
 
-void ctdi_type6_prune(const ctd_iface *it, const ctdi_pass *p, ct_pairs *pp, const ct_real *x,
-                      const ct_real *y, const ct_real *z)
+/* The squared distance from p to the triangle a b c (its closest point by
+ * the regions of the vertices, edges and face). */
+static double tri_dist2(const double p[3], const double a[3], const double b[3],
+                        const double c[3])
 {
-    const double keep = (double)p->reach + 2 * (double)it->margin;
-    ct_idx w = 0;
-    for (ct_idx k = 0; k < pp->n; k++) {
-        const ct_idx j = pp->seg[k], v[4] = {p->n1[j], p->n2[j], p->n3[j], p->n4[j]};
+    double ab[3], ac[3], ap[3];
+    for (int d = 0; d < 3; d++) {
+        ab[d] = b[d] - a[d];
+        ac[d] = c[d] - a[d];
+        ap[d] = p[d] - a[d];
+    }
+#define DOT(u, v) ((u)[0] * (v)[0] + (u)[1] * (v)[1] + (u)[2] * (v)[2])
+    double d1 = DOT(ab, ap), d2 = DOT(ac, ap), q[3];
+    double bp[3] = {p[0] - b[0], p[1] - b[1], p[2] - b[2]};
+    double cp[3] = {p[0] - c[0], p[1] - c[1], p[2] - c[2]};
+    double d3 = DOT(ab, bp), d4 = DOT(ac, bp), d5 = DOT(ab, cp), d6 = DOT(ac, cp);
+#undef DOT
+    double va = d3 * d6 - d5 * d4, vb = d5 * d2 - d1 * d6, vc = d1 * d4 - d3 * d2;
+    double u, v; /* q = a + u ab + v ac */
+    if (d1 <= 0 && d2 <= 0) {
+        u = v = 0;
+    } else if (d3 >= 0 && d4 <= d3) {
+        u = 1;
+        v = 0;
+    } else if (vc <= 0 && d1 >= 0 && d3 <= 0) {
+        u = d1 / (d1 - d3);
+        v = 0;
+    } else if (d6 >= 0 && d5 <= d6) {
+        u = 0;
+        v = 1;
+    } else if (vb <= 0 && d2 >= 0 && d6 <= 0) {
+        u = 0;
+        v = d2 / (d2 - d6);
+    } else if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
+        double t = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+        u = 1 - t;
+        v = t;
+    } else {
+        double den = 1 / (va + vb + vc);
+        u = vb * den;
+        v = vc * den;
+    }
+    double r2 = 0;
+    for (int d = 0; d < 3; d++) {
+        q[d] = a[d] + u * ab[d] + v * ac[d];
+        r2 += (p[d] - q[d]) * (p[d] - q[d]);
+    }
+    return r2;
+}
+
+int ctdi_type6_prune(const ctd_iface *it, ctdi_pass *p, ct_pairs *pp, const ct_real *x,
+                     const ct_real *y, const ct_real *z)
+{
+    /* The carrier of a node is its pair of smallest |distance| (select.c;
+     * a pinch's second carrier penetrates, so is within the gap). A pair's
+     * distance changes by at most the motion bound of the re-sort
+     * criterion, below a margin until the next search, whatever the bodies
+     * do (turning included): a pair farther than the node's closest by more
+     * than two margins, and beyond the gap by as much, cannot carry the node
+     * before then. The distance here is to the two triangles a b c, a c d;
+     * the narrow phase's surface over the same corners (4 triangles around
+     * the centroid, or bilinear) is within twice the warp w (the corners'
+     * largest distance to their mean plane) of it, hence the 2 w on either
+     * side. A NaN distance (a NaN corner) keeps its pair, for the narrow
+     * phase to report. The search's order is kept: a node's pairs are
+     * consecutive. */
+    const ct_idx n = pp->n;
+    if (2 * (size_t)n > p->prune_cap || !p->prune) {
+        size_t cap = 2 * (size_t)n + (size_t)n / 2 + 64;
+        ct_free(p->prune);
+        p->prune = ct_calloc(cap, sizeof *p->prune);
+        p->prune_cap = p->prune ? cap : 0;
+        if (!p->prune)
+            return CT_ERR_NOMEM;
+    }
+    double *restrict dk = p->prune, *restrict wk = p->prune + n;
+    CTI_PAR_FOR(n > CTDI_PAR_MIN, (schedule(static)),
+    for (ct_idx k = 0; k < n; k++) {
+        const ct_idx j = pp->seg[k], s = pp->node[k];
+        const ct_idx v[4] = {p->n1[j], p->n2[j], p->n3[j], p->n4[j]};
         double c[4][3], q[3] = {0, 0, 0};
         for (int a = 0; a < 4; a++) {
             c[a][0] = x[v[a]];
@@ -122,38 +196,51 @@ void ctdi_type6_prune(const ctd_iface *it, const ctdi_pass *p, ct_pairs *pp, con
             for (int d = 0; d < 3; d++)
                 q[d] += 0.25 * c[a][d];
         }
-        /* The normal of the diagonals (a triangle's n4 == n3 gives its
-         * edges' cross product), the plane through the corners' mean and
-         * the corners' largest distance to it. */
-        double e[3], f[3], n[3];
-        for (int d = 0; d < 3; d++) {
-            e[d] = c[2][d] - c[0][d];
-            f[d] = c[3][d] - c[1][d];
-        }
-        n[0] = e[1] * f[2] - e[2] * f[1];
-        n[1] = e[2] * f[0] - e[0] * f[2];
-        n[2] = e[0] * f[1] - e[1] * f[0];
-        const double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-        int drop = 0;
-        if (len > 0) {
-            double warp = 0;
-            for (int a = 0; a < 4; a++) {
-                double h = fabs(((c[a][0] - q[0]) * n[0] + (c[a][1] - q[1]) * n[1] +
-                                 (c[a][2] - q[2]) * n[2]) / len);
-                warp = h > warp ? h : warp;
+        const double ps[3] = {x[s], y[s], z[s]};
+        double d2 = tri_dist2(ps, c[0], c[1], c[2]);
+        if (v[3] != v[2])
+            d2 = fmin(d2, tri_dist2(ps, c[0], c[2], c[3]));
+        /* The warp: the corners' largest distance to the plane through their
+         * mean normal to the diagonals' cross product (0 for a triangle). */
+        double warp = 0;
+        if (v[3] != v[2]) {
+            double e[3], f[3], nv[3];
+            for (int d = 0; d < 3; d++) {
+                e[d] = c[2][d] - c[0][d];
+                f[d] = c[3][d] - c[1][d];
             }
-            const ct_idx s = pp->node[k];
-            const double front = (((double)x[s] - q[0]) * n[0] + ((double)y[s] - q[1]) * n[1] +
-                                  ((double)z[s] - q[2]) * n[2]) / len;
-            drop = front > keep + warp;
+            nv[0] = e[1] * f[2] - e[2] * f[1];
+            nv[1] = e[2] * f[0] - e[0] * f[2];
+            nv[2] = e[0] * f[1] - e[1] * f[0];
+            const double len = sqrt(nv[0] * nv[0] + nv[1] * nv[1] + nv[2] * nv[2]);
+            for (int a = 0; a < 4 && len > 0; a++)
+                warp = fmax(warp, fabs(((c[a][0] - q[0]) * nv[0] + (c[a][1] - q[1]) * nv[1] +
+                                        (c[a][2] - q[2]) * nv[2]) / len));
         }
-        if (drop)
-            continue;
-        pp->node[w] = pp->node[k];
-        pp->seg[w] = pp->seg[k];
-        w++;
+        dk[k] = sqrt(d2);
+        wk[k] = 2 * warp;
+    });
+    const double two_m = 2 * (double)it->margin, gap = (double)p->reach;
+    ct_idx w = 0;
+    for (ct_idx a = 0; a < n;) {
+        ct_idx b = a;
+        double dmin = INFINITY;
+        while (b < n && pp->node[b] == pp->node[a]) {
+            dmin = fmin(dmin, dk[b] + wk[b]);
+            b++;
+        }
+        const double keep = (gap > dmin ? gap : dmin) + two_m;
+        for (ct_idx k = a; k < b; k++) {
+            if (dk[k] - wk[k] > keep)
+                continue;
+            pp->node[w] = pp->node[k];
+            pp->seg[w] = pp->seg[k];
+            w++;
+        }
+        a = b;
     }
     pp->n = w;
+    return CT_OK;
 }
 
 int ctdi_type6_normal(ctd_iface *it, ctdi_pass *p, ct_idx n)
