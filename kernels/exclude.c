@@ -44,6 +44,15 @@ static inline ct_idx item_node(const ct_exclusion_input *in, ct_idx t, int j)
     return in->in[j][t];
 }
 
+/* 1 when item t's node j is not one of its nodes before j. */
+static int first_at(const ct_exclusion_input *in, ct_idx t, int j)
+{
+    for (int i = 0; i < j; i++)
+        if (item_node(in, t, i) == item_node(in, t, j))
+            return 0;
+    return 1;
+}
+
 static int check_input(const ct_exclusion_input *in)
 {
     if (!in || in->nnode < 0 || in->nitem < 0 || in->nq < 0 || in->ncand < 0 ||
@@ -78,14 +87,9 @@ static int node_items(const ct_exclusion_input *in, ct_idx **off_out, ct_idx **a
     if (!off)
         return CT_ERR_NOMEM;
     for (ct_idx t = 0; t < in->nitem; t++)
-        for (int j = 0; j < in->nper; j++) {
-            ct_idx v = item_node(in, t, j);
-            int again = 0;
-            for (int i = 0; i < j; i++)
-                again |= item_node(in, t, i) == v;
-            if (!again)
-                off[v + 1]++;
-        }
+        for (int j = 0; j < in->nper; j++)
+            if (first_at(in, t, j))
+                off[item_node(in, t, j) + 1]++;
     for (ct_idx v = 0; v < in->nnode; v++)
         off[v + 1] += off[v];
     ct_idx *adj = ct_calloc((size_t)off[in->nnode] + 1, sizeof *adj);
@@ -97,14 +101,11 @@ static int node_items(const ct_exclusion_input *in, ct_idx **off_out, ct_idx **a
         return CT_ERR_NOMEM;
     }
     for (ct_idx t = 0; t < in->nitem; t++)
-        for (int j = 0; j < in->nper; j++) {
-            ct_idx v = item_node(in, t, j);
-            int again = 0;
-            for (int i = 0; i < j; i++)
-                again |= item_node(in, t, i) == v;
-            if (!again)
+        for (int j = 0; j < in->nper; j++)
+            if (first_at(in, t, j)) {
+                ct_idx v = item_node(in, t, j);
                 adj[off[v] + fill[v]++] = t;
-        }
+            }
     ct_free(fill);
     *off_out = off;
     *adj_out = adj;

@@ -293,6 +293,25 @@ Test(exclusion, pairs_lose_exactly_the_excluded_and_keep_their_order)
     ct_mesh_destroy(&u.m);
 }
 
+/* Items of two nodes (edges e1[t] e2[t]) and ncand candidates. */
+static ct_exclusion_input edge_input(ct_idx nnode, ct_idx nitem, const ct_idx *e1,
+                                     const ct_idx *e2, ct_idx nq, ct_idx ncand, const ct_idx *cq,
+                                     const ct_idx *ci)
+{
+    ct_exclusion_input e;
+    memset(&e, 0, sizeof e);
+    e.nnode = nnode;
+    e.nitem = nitem;
+    e.nper = 2;
+    e.in[0] = e1;
+    e.in[1] = e2;
+    e.nq = nq;
+    e.ncand = ncand;
+    e.cq = cq;
+    e.ci = ci;
+    return e;
+}
+
 Test(exclusion, edges_grow_through_shared_nodes)
 {
     /* Items of two nodes: a polyline 0-1-2-...-9 along x (h = 1) and a
@@ -315,19 +334,9 @@ Test(exclusion, edges_grow_through_shared_nodes)
         ci[i] = 2 + i;
         ci[5 + i] = 9 + 2 + i;
     }
-    ct_exclusion_input e;
-    memset(&e, 0, sizeof e);
-    e.nnode = 20;
-    e.nitem = 18;
-    e.nper = 2;
-    e.in[0] = e1;
-    e.in[1] = e2;
-    e.nq = 1;
+    ct_exclusion_input e = edge_input(20, 18, e1, e2, 1, 10, cq, ci);
     e.q1 = q1;
     e.q2 = q2;
-    e.ncand = 10;
-    e.cq = cq;
-    e.ci = ci;
     ct_exclusion ex;
     cr_assert_eq(ct_exclusion_build(&ex, &e), CT_OK);
     ct_idx want[] = {2, 3, 4, 5, 6};
@@ -352,17 +361,7 @@ Test(exclusion, edges_grow_through_shared_nodes)
 Test(exclusion, bad_input_is_refused)
 {
     ct_idx a[2] = {0, 1}, b[2] = {1, 2}, cq[1] = {0}, ci[1] = {5};
-    ct_exclusion_input e;
-    memset(&e, 0, sizeof e);
-    e.nnode = 3;
-    e.nitem = 2;
-    e.nper = 2;
-    e.in[0] = a;
-    e.in[1] = b;
-    e.nq = 3;
-    e.ncand = 1;
-    e.cq = cq;
-    e.ci = ci;
+    ct_exclusion_input e = edge_input(3, 2, a, b, 3, 1, cq, ci);
     ct_exclusion ex;
     cr_assert_eq(ct_exclusion_build(&ex, &e), CT_ERR_RANGE); /* item 5 of 2 */
     cr_assert_null(ex.off);
