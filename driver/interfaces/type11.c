@@ -19,20 +19,30 @@
 
 static void free_pairs(ctdi_epass *e)
 {
-    ct_free(e->pa);
-    ct_free(e->pb);
     for (int i = 0; i < 4; i++)
         ct_free(e->sl[i]);
     for (int i = 0; i < E_N; i++)
         ct_free(e->r[i]);
     ct_free(e->flag);
     ct_free(e->iflag);
-    e->pa = e->pb = NULL;
     memset(e->sl, 0, sizeof e->sl);
     memset(e->r, 0, sizeof e->r);
     e->flag = NULL;
     e->iflag = NULL;
     e->cap = 0;
+}
+
+int ctdi_epass_grow_ids(ctdi_epass *e, size_t n)
+{
+    if (n <= e->cap_ids && e->pa)
+        return CT_OK;
+    ct_free(e->pa);
+    ct_free(e->pb);
+    size_t c = n + n / 2 + 64;
+    e->pa = ct_calloc(c, sizeof(ct_idx));
+    e->pb = ct_calloc(c, sizeof(ct_idx));
+    e->cap_ids = e->pa && e->pb ? c : 0;
+    return e->cap_ids ? CT_OK : CT_ERR_NOMEM;
 }
 
 int ctdi_epass_grow(ctdi_epass *e, size_t n)
@@ -41,8 +51,7 @@ int ctdi_epass_grow(ctdi_epass *e, size_t n)
         return CT_OK;
     free_pairs(e);
     size_t c = n + n / 2 + 64;
-    int ok = (e->pa = ct_calloc(c, sizeof(ct_idx))) != NULL;
-    ok &= (e->pb = ct_calloc(c, sizeof(ct_idx))) != NULL;
+    int ok = 1;
     for (int i = 0; i < 4; i++)
         ok &= (e->sl[i] = ct_calloc(c, sizeof(ct_idx))) != NULL;
     for (int i = 0; i < E_N; i++)
@@ -67,6 +76,11 @@ void ctdi_type11_free(ctdi_epass *e)
     if (!e)
         return;
     free_pairs(e);
+    ct_free(e->pa);
+    ct_free(e->pb);
+    for (int i = 0; i < CTDI_FGEO_N; i++)
+        ct_free(e->fr[i]);
+    ct_free(e->fflag);
     ct_exclusion_destroy(&e->excl);
     ct_free(e->e1);
     ct_free(e->e2);
@@ -88,7 +102,9 @@ void ctdi_type11_free(ctdi_epass *e)
 
 size_t ctdi_type11_memory(const ctdi_epass *e, ct_idx nnode)
 {
-    size_t b = sizeof *e + e->cap * (6 * sizeof(ct_idx) + E_N * sizeof(ct_real) + 5);
+    size_t b = sizeof *e + e->cap * (4 * sizeof(ct_idx) + E_N * sizeof(ct_real) + 5);
+    b += e->cap_ids * 2 * sizeof(ct_idx);
+    b += (size_t)CTDI_FCHUNK * (CTDI_FGEO_N * sizeof(ct_real) + 1);
     b += (size_t)e->ne * (2 * sizeof(ct_idx) + 7 * sizeof(ct_real));
     b += (e->cap_cell + e->cap_ce + e->cap_tmp) * sizeof(ct_idx);
     /* The unique nodes of each side, the pair counts per A edge, the
@@ -260,8 +276,18 @@ int ctdi_type11_setup(ctd_iface *it, const ctd_iface_data *d, ct_diag *diag)
     e->cnt = ct_calloc((size_t)e->na + 2, sizeof(ct_idx));
     if (!e->x0 || !e->y0 || !e->z0 || !e->box || !e->cnt)
         return CT_ERR_NOMEM;
-    if ((rc = ctdi_epass_grow(e, 0)) != CT_OK)
+    if ((rc = ctdi_epass_grow(e, 0)) != CT_OK || (rc = ctdi_epass_grow_ids(e, 0)) != CT_OK)
         return rc;
+    /* The filter's chunk of measured pairs (type11_filter.c). */
+    for (int i = 0; i < CTDI_FGEO_N; i++)
+        if (!(e->fr[i] = ct_calloc(CTDI_FCHUNK, sizeof(ct_real))))
+            return CT_ERR_NOMEM;
+    if (!(e->fflag = ct_calloc(CTDI_FCHUNK, 1)))
+        return CT_ERR_NOMEM;
+    ct_real **f = e->fr;
+    ct_edge_geo fg = {f[0], f[1], f[2], f[3], f[4], f[5], f[6], f[7], f[8], f[9], f[10], f[11],
+                      f[12], f[13], e->fflag};
+    e->fgeo = fg;
     rc = ct_assemble_ws_init(&e->ws);
     e->ws_ok = rc == CT_OK;
     return rc;

@@ -13,8 +13,16 @@ enum { E_DIST = 0, E_PEN, E_NX, E_NY, E_NZ, E_SA, E_SB, E_PAX, E_PAY, E_PAZ, E_P
        E_PBZ, E_GAP, E_K0, E_FEL, E_KTAN, E_EN, E_VN, E_MS, E_MM, E_FN, E_FX, E_FY, E_FZ, E_DD,
        E_W1, E_W2, E_W3, E_W4, E_VR2, E_N };
 
-/* The bytes of one pair in the edge pass's arrays (ctdi_epass_grow). */
+/* The bytes of one pair in the edge pass's arrays (ctdi_epass_grow and
+ * its ids), and of one pair the search lists before the filter keeps it
+ * (ctdi_epass_grow_ids). */
 #define CTDI_EPAIR_BYTES (6 * sizeof(ct_idx) + 5 + E_N * sizeof(ct_real))
+#define CTDI_EPAIR_ID_BYTES (2 * sizeof(ct_idx))
+
+/* The filter measures the search's pairs in chunks of this many, into
+ * arrays of its own (an edge-edge geometry: 14 reals and a flag). */
+#define CTDI_FCHUNK 16384
+#define CTDI_FGEO_N 14
 
 struct ctdi_epass {
     ct_idx na, nb, ne;     /* edges of A, of B (0: self), total */
@@ -26,10 +34,14 @@ struct ctdi_epass {
     int self, bucket, need_sort;
     ct_real k0;
     ct_real *x0, *y0, *z0;
-    /* Pairs and per-pair arrays. */
+    /* Pairs (pa, pb: grown for the search's list, cap_ids) and per-pair
+     * arrays (grown for the pairs the filter keeps, cap). */
     ct_idx n;
-    size_t cap;
+    size_t cap, cap_ids;
     ct_idx *pa, *pb, *sl[4];
+    ct_real *fr[CTDI_FGEO_N];
+    uint8_t *fflag;
+    ct_edge_geo fgeo;
     ct_real *r[E_N];
     uint8_t *flag;
     int32_t *iflag;
@@ -43,14 +55,16 @@ struct ctdi_epass {
     size_t cap_tmp;
     ct_assemble_ws ws;
     int ws_ok;
-    /* Irem_gap 2 (type11_exclude.c): 1 to build at the next search, 2
+    /* Irem_gap 2 (type11_filter.c): 1 to build at the next search, 2
      * built, 0 none; queries and items are the edges. */
     int excl_state;
     ct_exclusion excl;
 };
 
-/* Pair arrays for n pairs (contents not kept; type11.c). */
+/* Per-pair arrays for n pairs, and the pair ids for n pairs (contents not
+ * kept; type11.c). */
 int ctdi_epass_grow(ctdi_epass *e, size_t n);
+int ctdi_epass_grow_ids(ctdi_epass *e, size_t n);
 
 /* The search when the re-sort criterion asks for it (or a re-sort was
  * forced), then the pairs' node slots, the assembly preparation and the
@@ -58,11 +72,11 @@ int ctdi_epass_grow(ctdi_epass *e, size_t n);
 int ctdi_type11_search(ctd_iface *it, ctdi_epass *e, const ct_real *x, const ct_real *y,
                        const ct_real *z, int *did);
 
-/* Irem_gap 2: at the first search, the neighbour exclusion of every edge
- * from the search's pairs within the interface's largest pair gap (their
- * distance by the narrow phase); at every search, the removal of the pairs
- * that either edge excludes (type11_exclude.c). */
-int ctdi_type11_exclude(ctd_iface *it, ctdi_epass *e, const ct_real *x, const ct_real *y,
-                        const ct_real *z);
+/* After a search (type11_filter.c): keep the pairs within their gap and
+ * the margin by the narrow phase's distance; with Irem_gap 2, build the
+ * neighbour exclusion at the first search and remove the pairs that either
+ * edge excludes. The order stays canonical. */
+int ctdi_type11_filter(ctd_iface *it, ctdi_epass *e, const ct_real *x, const ct_real *y,
+                       const ct_real *z);
 
 #endif /* CTD_TYPE11_INTERNAL_H */

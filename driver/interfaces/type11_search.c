@@ -225,8 +225,8 @@ static int edge_search(ctd_iface *it, ctdi_epass *e, const ct_real *x, const ct_
             return CT_ERR_TOOBIG;
         cnt[a + 1] = (ct_idx)tot;
     }
-    if ((rc = ctdi_pair_budget(it, tot, na, CTDI_EPAIR_BYTES, e->sgap)) != CT_OK ||
-        (rc = ctdi_epass_grow(e, (size_t)tot)) != CT_OK)
+    if ((rc = ctdi_pair_budget(it, tot, na, CTDI_EPAIR_ID_BYTES, e->sgap)) != CT_OK ||
+        (rc = ctdi_epass_grow_ids(e, (size_t)tot)) != CT_OK)
         return rc;
     ct_idx *pa = e->pa, *pb = e->pb;
 #pragma omp parallel for schedule(dynamic, 64) if (na > CTDI_PAR_MIN)
@@ -250,7 +250,10 @@ int ctdi_type11_search(ctd_iface *it, ctdi_epass *e, const ct_real *x, const ct_
         return CT_OK;
     int rc = edge_search(it, e, x, y, z);
     if (rc == CT_OK)
-        rc = ctdi_type11_exclude(it, e, x, y, z);
+        rc = ctdi_type11_filter(it, e, x, y, z);
+    if (rc == CT_OK &&
+        (rc = ctdi_pair_budget(it, e->n, e->na, CTDI_EPAIR_BYTES, e->sgap)) == CT_OK)
+        rc = ctdi_epass_grow(e, (size_t)e->n);
     if (rc != CT_OK)
         return rc;
     const ct_idx n = e->n;
