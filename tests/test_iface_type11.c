@@ -100,23 +100,6 @@ Test(iface_type11, pair_budget_stops_the_step)
     tn_free(&t);
 }
 
-/* The distance from point p to the segment a b. */
-static double point_seg(const double p[3], const double a[3], const double b[3])
-{
-    double ab[3], ap[3], l2 = 0, t = 0;
-    for (int k = 0; k < 3; k++) {
-        ab[k] = b[k] - a[k];
-        ap[k] = p[k] - a[k];
-        l2 += ab[k] * ab[k];
-        t += ap[k] * ab[k];
-    }
-    t = l2 > 0 ? fmin(1, fmax(0, t / l2)) : 0;
-    double d2 = 0;
-    for (int k = 0; k < 3; k++)
-        d2 += (ap[k] - t * ab[k]) * (ap[k] - t * ab[k]);
-    return sqrt(d2);
-}
-
 /* The distance of segments a0 a1 and b0 b1 by a golden-section search on
  * s of the distance from a(s) to segment b (convex in s): the test's own. */
 static double seg_seg(const double a0[3], const double a1[3], const double b0[3],
@@ -130,7 +113,7 @@ static double seg_seg(const double a0[3], const double a1[3], const double b0[3]
             p1[k] = a0[k] + s1 * (a1[k] - a0[k]);
             p2[k] = a0[k] + s2 * (a1[k] - a0[k]);
         }
-        if (point_seg(p1, b0, b1) < point_seg(p2, b0, b1))
+        if (ctt_point_seg_dist(p1, b0, b1) < ctt_point_seg_dist(p2, b0, b1))
             hi = s2;
         else
             lo = s1;
@@ -138,7 +121,7 @@ static double seg_seg(const double a0[3], const double a1[3], const double b0[3]
     double p[3];
     for (int k = 0; k < 3; k++)
         p[k] = a0[k] + 0.5 * (lo + hi) * (a1[k] - a0[k]);
-    return fmin(point_seg(p, b0, b1), fmin(point_seg(a0, b0, b1), point_seg(a1, b0, b1)));
+    return fmin(ctt_point_seg_dist(p, b0, b1), fmin(ctt_point_seg_dist(a0, b0, b1), ctt_point_seg_dist(a1, b0, b1)));
 }
 
 /* The search lists the pairs whose inflated boxes overlap, a superset; the

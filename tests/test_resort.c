@@ -157,23 +157,6 @@ Test(resort, predicate_triangle_and_degenerate)
  * projection onto a face's plane when it falls inside the face (signed
  * areas), else the nearest of the face's edges (clamped parameter); zero
  * inside the tetrahedron (four orientations of one sign). */
-static double seg_dist(const double p[3], const double a[3], const double b[3])
-{
-    double ab[3], ap[3], l2 = 0, t = 0;
-    for (int k = 0; k < 3; k++) {
-        ab[k] = b[k] - a[k];
-        ap[k] = p[k] - a[k];
-        l2 += ab[k] * ab[k];
-        t += ap[k] * ab[k];
-    }
-    t = l2 > 0 ? t / l2 : 0;
-    t = t < 0 ? 0 : (t > 1 ? 1 : t);
-    double r2 = 0;
-    for (int k = 0; k < 3; k++)
-        r2 += (ap[k] - t * ab[k]) * (ap[k] - t * ab[k]);
-    return sqrt(r2);
-}
-
 static void cross(const double u[3], const double v[3], double w[3])
 {
     w[0] = u[1] * v[2] - u[2] * v[1];
@@ -194,7 +177,8 @@ static double tri_dist(const double p[3], const double a[3], const double b[3],
         nn += n[k] * n[k];
         h += (p[k] - a[k]) * n[k];
     }
-    double best = fmin(seg_dist(p, a, b), fmin(seg_dist(p, b, c), seg_dist(p, c, a)));
+    double best = fmin(ctt_point_seg_dist(p, a, b),
+                       fmin(ctt_point_seg_dist(p, b, c), ctt_point_seg_dist(p, c, a)));
     if (nn > 0) {
         double q[3];
         for (int k = 0; k < 3; k++)

@@ -40,4 +40,23 @@ static inline double ctt_rel(double a, double b)
     return s > 0 ? fabs(a - b) / s : 0.0;
 }
 
+/* The distance from point p to the segment a b (the tests' own, written
+ * apart from the kernels). */
+static inline double ctt_point_seg_dist(const double p[3], const double a[3], const double b[3])
+{
+    double ab[3], ap[3], l2 = 0, t = 0;
+    for (int k = 0; k < 3; k++) {
+        ab[k] = b[k] - a[k];
+        ap[k] = p[k] - a[k];
+        l2 += ab[k] * ab[k];
+        t += ap[k] * ab[k];
+    }
+    t = l2 > 0 ? t / l2 : 0;
+    t = t < 0 ? 0 : (t > 1 ? 1 : t);
+    double r2 = 0;
+    for (int k = 0; k < 3; k++)
+        r2 += (ap[k] - t * ab[k]) * (ap[k] - t * ab[k]);
+    return sqrt(r2);
+}
+
 #endif
