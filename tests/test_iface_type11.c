@@ -121,7 +121,8 @@ static double seg_seg(const double a0[3], const double a1[3], const double b0[3]
     double p[3];
     for (int k = 0; k < 3; k++)
         p[k] = a0[k] + 0.5 * (lo + hi) * (a1[k] - a0[k]);
-    return fmin(ctt_point_seg_dist(p, b0, b1), fmin(ctt_point_seg_dist(a0, b0, b1), ctt_point_seg_dist(a1, b0, b1)));
+    return fmin(ctt_point_seg_dist(p, b0, b1),
+                fmin(ctt_point_seg_dist(a0, b0, b1), ctt_point_seg_dist(a1, b0, b1)));
 }
 
 /* The search lists the pairs whose inflated boxes overlap, a superset; the

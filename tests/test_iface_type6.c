@@ -271,6 +271,9 @@ static double tri_dist_sampled(const double p[3], const double a[3], const doubl
     return sqrt(best);
 }
 
+/* A uniform number in [0, 1). */
+static double unit(uint64_t *st) { return (double)(ctd_splitmix64(st) >> 11) / 9007199254740992.0; }
+
 Test(iface_type356, type6_prune_keeps_every_future_closest_pair)
 {
     /* A bumpy surface of triangles (planar: no warp), nodes above and
@@ -297,9 +300,9 @@ Test(iface_type356, type6_prune_keeps_every_future_closest_pair)
             n1[t] = a, n2[t] = c, n3[t] = d, n4[t++] = d;
         }
     for (int k = 0; k < NS; k++) {
-        x[NV + k] = (ct_real)(0.5 + 5 * ((double)(ctd_splitmix64(&st) >> 11) / 9007199254740992.0));
-        y[NV + k] = (ct_real)(0.5 + 5 * ((double)(ctd_splitmix64(&st) >> 11) / 9007199254740992.0));
-        z[NV + k] = (ct_real)(-1.0 + 2 * ((double)(ctd_splitmix64(&st) >> 11) / 9007199254740992.0));
+        x[NV + k] = (ct_real)(0.5 + 5 * unit(&st));
+        y[NV + k] = (ct_real)(0.5 + 5 * unit(&st));
+        z[NV + k] = (ct_real)(-1.0 + 2 * unit(&st));
     }
     ctd_iface it;
     ctdi_pass p;
@@ -325,7 +328,7 @@ Test(iface_type356, type6_prune_keeps_every_future_closest_pair)
         for (int v = 0; v < NV + NS; v++) {
             double d[3], n2s = 0;
             for (int k = 0; k < 3; k++) {
-                d[k] = 2 * ((double)(ctd_splitmix64(&st) >> 11) / 9007199254740992.0) - 1;
+                d[k] = 2 * unit(&st) - 1;
                 n2s += d[k] * d[k];
             }
             double s = 0.5 * M * 0.999 / sqrt(n2s > 0 ? n2s : 1);

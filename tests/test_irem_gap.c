@@ -2,9 +2,10 @@
  * test_irem_gap.c -- Irem_gap 2 in whole runs (TYPE7 and TYPE11): a fine
  * sheet whose cells are smaller than the gap, stretched so that it is
  * searched again and again, never touches itself with the neighbour
- * exclusion (TYPE7 and TYPE11, TYPE24 on one surface) and does without it; a fine accordion fold still stops its
- * thrown layer on the clamped one (the facing layer is no neighbour); the
- * field's bad values are refused with their line.
+ * exclusion (TYPE7 and TYPE11, TYPE24 on one surface) and does without it; a
+ * fine accordion fold still stops its thrown layer on the clamped one (the
+ * facing layer is no neighbour); the field's bad values are refused with
+ * their line.
  */
 #include "test_scene_features.h"
 

@@ -2,14 +2,14 @@
  * type11_filter.c -- what TYPE11 keeps of its search's pairs. The search
  * (type11_search.c) lists the pairs of edges whose boxes, inflated by half
  * the search distance (the largest pair gap + the margin), overlap: a
- * superset of the pairs within that distance (a box's corner reaches
- * sqrt(3) times further than its face). The narrow phase measures them once
- * per search, in chunks into arrays of the filter's own (the per-pair
- * arrays of the step are sized for the pairs kept), and a pair stays when its edges are within its gap and the
- * margin: its distance shrinks by less than the margin until the re-sort
- * criterion asks for a new search, so no pair that comes within its gap
- * before then is lost. Pairs the narrow phase skipped (a degenerate or
- * non-finite edge) stay, for the step to report them.
+ * superset of the pairs within that distance (a box's corner reaches sqrt(3)
+ * times further than its face). The narrow phase measures them once per
+ * search, in chunks into arrays of the filter's own (the per-pair arrays of
+ * the step are sized for the pairs kept), and a pair stays when its edges
+ * are within its gap and the margin: its distance shrinks by less than the
+ * margin until the re-sort criterion asks for a new search, so no pair that
+ * comes within its gap before then is lost. Pairs the narrow phase skipped
+ * (a degenerate or non-finite edge) stay, for the step to report them.
  *
  * Irem_gap 2: at the first search, the edges within the largest pair gap of
  * an edge and joined to it through edges within it (its neighbours on the
@@ -49,7 +49,8 @@ static int build_exclusion(ctd_iface *it, ctdi_epass *e, const ct_real *x, const
             if (!(e->fgeo.dist[k - k0] <= e->sgap))
                 continue;
             if (w + 2 > cap) {
-                ct_idx *a = realloc(cq, 2 * cap * sizeof *cq), *b = a ? realloc(ci, 2 * cap * sizeof *ci) : NULL;
+                ct_idx *a = realloc(cq, 2 * cap * sizeof *cq);
+                ct_idx *b = a ? realloc(ci, 2 * cap * sizeof *ci) : NULL;
                 if (a)
                     cq = a;
                 if (b)
