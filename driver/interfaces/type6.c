@@ -108,56 +108,6 @@ int ctdi_type6_setup(ctd_iface *it, const ctd_iface_data *d, ct_diag *diag)
     return ctdi_add_pass(it, l, k, &m, 0, 0, CTDI_LAW_TYPE6, "main segments", diag);
 }
 
-/* The squared distance from p to the triangle a b c (its closest point by
- * the regions of the vertices, edges and face). */
-static double tri_dist2(const double p[3], const double a[3], const double b[3],
-                        const double c[3])
-{
-    double ab[3], ac[3], ap[3];
-    for (int d = 0; d < 3; d++) {
-        ab[d] = b[d] - a[d];
-        ac[d] = c[d] - a[d];
-        ap[d] = p[d] - a[d];
-    }
-#define DOT(u, v) ((u)[0] * (v)[0] + (u)[1] * (v)[1] + (u)[2] * (v)[2])
-    double d1 = DOT(ab, ap), d2 = DOT(ac, ap), q[3];
-    double bp[3] = {p[0] - b[0], p[1] - b[1], p[2] - b[2]};
-    double cp[3] = {p[0] - c[0], p[1] - c[1], p[2] - c[2]};
-    double d3 = DOT(ab, bp), d4 = DOT(ac, bp), d5 = DOT(ab, cp), d6 = DOT(ac, cp);
-#undef DOT
-    double va = d3 * d6 - d5 * d4, vb = d5 * d2 - d1 * d6, vc = d1 * d4 - d3 * d2;
-    double u, v; /* q = a + u ab + v ac */
-    if (d1 <= 0 && d2 <= 0) {
-        u = v = 0;
-    } else if (d3 >= 0 && d4 <= d3) {
-        u = 1;
-        v = 0;
-    } else if (vc <= 0 && d1 >= 0 && d3 <= 0) {
-        u = d1 / (d1 - d3);
-        v = 0;
-    } else if (d6 >= 0 && d5 <= d6) {
-        u = 0;
-        v = 1;
-    } else if (vb <= 0 && d2 >= 0 && d6 <= 0) {
-        u = 0;
-        v = d2 / (d2 - d6);
-    } else if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
-        double t = (d4 - d3) / ((d4 - d3) + (d5 - d6));
-        u = 1 - t;
-        v = t;
-    } else {
-        double den = 1 / (va + vb + vc);
-        u = vb * den;
-        v = vc * den;
-    }
-    double r2 = 0;
-    for (int d = 0; d < 3; d++) {
-        q[d] = a[d] + u * ab[d] + v * ac[d];
-        r2 += (p[d] - q[d]) * (p[d] - q[d]);
-    }
-    return r2;
-}
-
 int ctdi_type6_prune(const ctd_iface *it, ctdi_pass *p, ct_pairs *pp, const ct_real *x,
                      const ct_real *y, const ct_real *z)
 {
@@ -196,10 +146,14 @@ int ctdi_type6_prune(const ctd_iface *it, ctdi_pass *p, ct_pairs *pp, const ct_r
             for (int d = 0; d < 3; d++)
                 q[d] += 0.25 * c[a][d];
         }
-        const double ps[3] = {x[s], y[s], z[s]};
-        double d2 = tri_dist2(ps, c[0], c[1], c[2]);
+        /* The search's own point-triangle distance (predicate.c). */
+        ct_real ps[3] = {x[s], y[s], z[s]}, cr[4][3];
+        for (int a = 0; a < 4; a++)
+            for (int d = 0; d < 3; d++)
+                cr[a][d] = (ct_real)c[a][d];
+        double d2 = (double)cti_dist2_point_triangle(ps, cr[0], cr[1], cr[2]);
         if (v[3] != v[2])
-            d2 = fmin(d2, tri_dist2(ps, c[0], c[2], c[3]));
+            d2 = fmin(d2, (double)cti_dist2_point_triangle(ps, cr[0], cr[2], cr[3]));
         /* The warp: the corners' largest distance to the plane through their
          * mean normal to the diagonals' cross product (0 for a triangle). */
         double warp = 0;
