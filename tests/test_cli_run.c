@@ -566,14 +566,13 @@ Test(cli, check_scenes)
  * choice but direct). */
 Test(cli, run_search_override_keeps_self_contact)
 {
-    char dir[64], scene[2048], here[1024], cwd[512];
+    char dir[64], scene[2048], rel[1024], cwd[512];
     ctt_tmpdir(dir, "cli");
     /* The repository's scenes, by an absolute path (the run is in dir). */
-    const char *f = __FILE__, *slash = strrchr(f, '/');
     cr_assert_not_null(getcwd(cwd, sizeof cwd));
-    snprintf(here, sizeof here, "%s%s%.*s", f[0] == '/' ? "" : cwd, f[0] == '/' ? "" : "/",
-             (int)(slash - f), f);
-    snprintf(scene, sizeof scene, "%s/../data/scenes/showcase.yaml", here);
+    ctt_tests_path(rel, sizeof rel, "../data/scenes/");
+    const char *base = rel[0] == '/' ? "" : cwd, *sep = rel[0] == '/' ? "" : "/";
+    snprintf(scene, sizeof scene, "%s%s%sshowcase.yaml", base, sep, rel);
     ctt_cli r = {0};
     ctt_cli_run(&r, dir, 2, "run %s --out o --search topological", scene);
     cr_assert_eq(r.status, 0, "%s%s", r.out, r.err);
@@ -588,7 +587,7 @@ Test(cli, run_search_override_keeps_self_contact)
     const char *act = strstr(t7, "max active pairs ");
     cr_assert_not_null(act);
     cr_expect_gt(atol(act + strlen("max active pairs ")), 0, "%s", r.out);
-    snprintf(scene, sizeof scene, "%s/../data/scenes/folding-sheet.yaml", here);
+    snprintf(scene, sizeof scene, "%s%s%sfolding-sheet.yaml", base, sep, rel);
     ctt_cli_run(&r, dir, 2, "run %s --out o --search bsp --end 1e-5", scene);
     cr_assert_eq(r.status, 0, "%s%s", r.out, r.err);
     cr_expect(strstr(r.out, "interface self (type 7, bsp search)") != NULL, "%s", r.out);

@@ -16,11 +16,9 @@
 /* tests/data/radioss/NAME, found from this file's path. */
 static inline void data_path(char *buf, size_t n, const char *name)
 {
-    const char *f = __FILE__, *slash = strrchr(f, '/');
-    if (slash)
-        snprintf(buf, n, "%.*s/data/radioss/%s", (int)(slash - f), f, name);
-    else
-        snprintf(buf, n, "data/radioss/%s", name);
+    char rel[512];
+    snprintf(rel, sizeof rel, "data/radioss/%s", name);
+    ctt_tests_path(buf, n, rel);
 }
 
 static inline void load(const char *path, ctd_deck *d)

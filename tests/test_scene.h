@@ -13,14 +13,14 @@
 
 #include <criterion/criterion.h>
 
+#include "test_util.h"
+
 /* tests/data/scenes/NAME, found from this file's path. */
 static inline void scene_path(char *buf, size_t n, const char *name)
 {
-    const char *f = __FILE__, *slash = strrchr(f, '/');
-    if (slash)
-        snprintf(buf, n, "%.*s/data/scenes/%s", (int)(slash - f), f, name);
-    else
-        snprintf(buf, n, "data/scenes/%s", name);
+    char rel[512];
+    snprintf(rel, sizeof rel, "data/scenes/%s", name);
+    ctt_tests_path(buf, n, rel);
 }
 
 /* Write the scene `text` to /tmp/ct_scene_<pid>_<tag>.yaml, its path in p. */

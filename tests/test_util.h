@@ -6,7 +6,9 @@
 
 #include <criterion/criterion.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "contact.h"
 
@@ -38,6 +40,17 @@ static inline double ctt_rel(double a, double b)
 {
     double s = fabs(a) > fabs(b) ? fabs(a) : fabs(b);
     return s > 0 ? fabs(a - b) / s : 0.0;
+}
+
+/* tests/REL (a path below the tests' folder), found from this file's path:
+ * relative to the working directory when the build named the file so. */
+static inline void ctt_tests_path(char *buf, size_t n, const char *rel)
+{
+    const char *f = __FILE__, *slash = strrchr(f, '/');
+    if (slash)
+        snprintf(buf, n, "%.*s/%s", (int)(slash - f), f, rel);
+    else
+        snprintf(buf, n, "%s", rel);
 }
 
 /* The distance from point p to the segment a b (the tests' own, written
