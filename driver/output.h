@@ -126,6 +126,7 @@ typedef struct ctd_if_summary {
     int type;
     const char *search;
     int64_t max_active, resorts;
+    double margin;  /* the re-sort margin in use (0: none chosen) */
     double max_force;
     int64_t memory; /* bytes held at the end (the peak), -1: unknown */
 } ctd_if_summary;

@@ -201,9 +201,9 @@ int ctd_output_summary(ctd_output *o, const ctd_run_summary *s)
         ctd_json_string(f, i->name);
         fprintf(f, ", \"type\": %d, \"search\": ", i->type);
         ctd_json_string(f, i->search);
-        fprintf(f, ", \"max_active\": %lld, \"resorts\": %lld, \"max_force\": %.9g, "
-                   "\"memory_bytes\": %lld}",
-                (long long)i->max_active, (long long)i->resorts,
+        fprintf(f, ", \"max_active\": %lld, \"resorts\": %lld, \"margin\": %.9g, "
+                   "\"max_force\": %.9g, \"memory_bytes\": %lld}",
+                (long long)i->max_active, (long long)i->resorts, i->margin,
                 i->max_force == i->max_force ? i->max_force : 0.0, (long long)i->memory);
     }
     fputs(s->ninterface ? "\n  ],\n" : "],\n", f);

@@ -136,6 +136,21 @@
  *     main       a surface selection, required.
  *     secondary  a selection: required for 3, 5, 6; absent for 7, 11, 24
  *                means self contact on `main`.
+ *     margin     number >= 0 [0: 0.2 times the mean main edge length]: the
+ *                re-sort margin, in length units (not a Radioss field).
+ *                The search collects the pairs within gap + margin and
+ *                runs again when the nodes have moved by the margin since
+ *                (ct_resort_needed): a larger margin searches less often
+ *                and keeps more candidates; every pair in contact is found
+ *                with any margin. Not margin-free: the interface's stable
+ *                step counts the stiffness of a node's closest candidate
+ *                even while it is open, and its tunnelling limit the
+ *                relative speeds of all candidates, so a larger margin can
+ *                lower the step (sliding-block.yaml at 3x: 4.94e-6 ->
+ *                4.11e-6 s before any contact). TYPE6 searches its largest
+ *                penetration plus two margins deep: there a larger margin
+ *                costs more than it saves. The run's report prints the
+ *                margin used.
  *     search     direct | topological | bucket | bsp (default: topological
  *                for 3 and 5, bucket otherwise). Not topological for self
  *                contact (7, and 24 without secondary): a node's closest
@@ -324,6 +339,7 @@ typedef struct ctd_scene_interface {
     int64_t Istf, Igap0, Ipen0, Inacti, Ifric, Ifiltr, Irem_gap;
     double Stfac, Stmin, Stmax, gap, Gap_max_s, Gap_max_m, Ipen_max, VisS;
     double Fric, C1, C2, C3, C4, C5, C6, Xfreq, Tstart, Tstop;
+    double margin;             /* re-sort margin; 0: 0.2 x mean main edge */
     double (*curve)[2];
     unsigned curve_count;
     /* Filled by the loader. */

@@ -112,7 +112,7 @@ static const cyaml_schema_field_t f_interface[] = {
     IF_NUM(Stfac), IF_NUM(Stmin), IF_NUM(Stmax), IF_NUM(gap), IF_NUM(Gap_max_s),
     IF_NUM(Gap_max_m), IF_NUM(Ipen_max), IF_NUM(VisS), IF_NUM(Fric), IF_NUM(C1), IF_NUM(C2),
     IF_NUM(C3), IF_NUM(C4), IF_NUM(C5), IF_NUM(C6), IF_NUM(Xfreq), IF_NUM(Tstart),
-    IF_NUM(Tstop),
+    IF_NUM(Tstop), IF_NUM(margin),
     CYAML_FIELD_SEQUENCE("curve", OPT | PTR, ctd_scene_interface, curve, &v_point, 1,
                          CYAML_UNLIMITED),
     CYAML_FIELD_END};

@@ -188,6 +188,8 @@ void cti_vcheck_interface(vctx *v, unsigned i, ctd_scene_interface *f)
     else
         cti_vnum(v, pxs, f->Xfreq, -INFINITY, 0, INFINITY, 0, "a finite number");
     cti_vnum(v, cti_vpath(v, "%s.Tstart", b), f->Tstart, 0, 0, INFINITY, 0, "a time >= 0");
+    cti_vnum(v, cti_vpath(v, "%s.margin", b), f->margin, 0, 0, INFINITY, 1,
+             "a length >= 0 (0: 0.2 times the mean main edge length)");
     if (cti_vnum(v, cti_vpath(v, "%s.Tstop", b), f->Tstop, 0, 0, INFINITY, 0,
                  "a time >= 0 (0: never)") &&
         f->Tstop > 0 && !(f->Tstop > f->Tstart))

@@ -125,6 +125,7 @@ static int contact_forces(ctd_solver *s, int want_fields)
         w->if_force[i] = r->force;
         w->if_active[i] = r->active;
         w->if_resorts[i] = r->resorts;
+        w->if_margin[i] = r->margin;
         if (r->force > s->if_force_max[i])
             s->if_force_max[i] = r->force;
         if (r->active > s->if_active_max[i])

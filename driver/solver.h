@@ -94,6 +94,7 @@ typedef struct ctd_contact_report {
     double fvec[3];     /* that force as a vector */
     int64_t active;     /* active pairs */
     int64_t resorts;    /* re-sorts (searches) so far */
+    double margin;      /* the re-sort margin in use (0: not chosen yet) */
     int64_t excluded;   /* Irem_gap 2: candidate pairs the neighbour
                            exclusion took out of the first search */
     double t_search, t_narrow, t_force, t_assembly; /* seconds in this cycle */

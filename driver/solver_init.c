@@ -53,6 +53,7 @@ void ctd_solver_destroy(ctd_solver *s)
         free(w->if_force);
         free(w->if_active);
         free(w->if_resorts);
+        free(w->if_margin);
         free(w->if_names);
         ctd_output_close(w->out);
         free(w);
@@ -117,11 +118,12 @@ int ctd_solver_init(ctd_solver *s, ctd_model *m, const ctd_solver_opts *opts,
     w->if_force = calloc((size_t)nh + 1, sizeof(double));
     w->if_active = calloc((size_t)nh + 1, sizeof(int64_t));
     w->if_resorts = calloc((size_t)nh + 1, sizeof(int64_t));
+    w->if_margin = calloc((size_t)nh + 1, sizeof(double));
     w->if_names = calloc((size_t)nh + 1, sizeof(char *));
     if (!w->nact || !w->free_node || !w->bc_node || !w->part_sum || !w->vc_old || !w->L_old ||
         !s->rep ||
         !s->if_force_max || !s->if_active_max || !w->if_force || !w->if_active ||
-        !w->if_resorts || !w->if_names)
+        !w->if_resorts || !w->if_margin || !w->if_names)
         return ctd_errf(err, errlen, CT_ERR_NOMEM, "out of memory");
     for (int i = 0; i < nh; i++) {
         if (!s->hooks[i].contact_step)

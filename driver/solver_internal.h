@@ -45,6 +45,7 @@ typedef struct cti_solver_work {
     ctd_output *out;
     double *if_force;             /* per-interface values for the CSV row */
     int64_t *if_active, *if_resorts;
+    double *if_margin;
     const char **if_names;
     double t_start, last_progress;
     int progress_shown;

@@ -305,6 +305,8 @@ static void print_report(ctd_solver *s, FILE *f)
                    "re-sorts %lld", s->w->if_names[i], s->hooks[i].type,
                 s->hooks[i].search ? s->hooks[i].search : "?", s->if_force_max[i],
                 (long long)s->if_active_max[i], (long long)s->w->if_resorts[i]);
+        if (s->w->if_margin[i] > 0)
+            fprintf(f, " (margin %.3g)", s->w->if_margin[i]);
         const int64_t mem = ctd_solver_if_memory(s, i);
         if (mem >= 0)
             fprintf(f, ", memory %.3g MB", (double)mem / 1e6);
@@ -383,6 +385,7 @@ int cti_solver_finish(ctd_solver *s)
             ifs[i].search = s->hooks[i].search ? s->hooks[i].search : "";
             ifs[i].max_active = s->if_active_max[i];
             ifs[i].resorts = w->if_resorts[i];
+            ifs[i].margin = w->if_margin[i];
             ifs[i].max_force = s->if_force_max[i];
             ifs[i].memory = ctd_solver_if_memory(s, i);
         }

@@ -50,6 +50,7 @@ static int hook_step(void *ctx, const ctd_state *s, ct_real *fx, ct_real *fy, ct
         rep->fvec[d] = r.force[d];
     rep->active = r.nactive;
     rep->resorts = r.resorts;
+    rep->margin = (double)r.margin;
     rep->excluded = r.excluded;
     rep->t_search = r.t[CTD_IT_SEARCH];
     rep->t_narrow = r.t[CTD_IT_NARROW];
@@ -295,6 +296,7 @@ static ctd_iface_cfg card(const ctd_scene_interface *f)
     c.Xfreq = (ct_real)f->Xfreq;
     c.Tstart = f->Tstart;
     c.Tstop = f->Tstop;
+    c.margin = (ct_real)f->margin;
     c.pressure_area = f->pressure_area;
     return c;
 }

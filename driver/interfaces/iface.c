@@ -405,6 +405,7 @@ int ctd_iface_step(ctd_iface *it, double time, ct_real dt, const ct_real *x, con
         return CT_ERR_ARG;
     int on = time >= it->cfg.Tstart && (!(it->cfg.Tstop > 0) || time <= it->cfg.Tstop);
     rep->resorts = it->resorts;
+    rep->margin = it->margin;
     rep->deactivated = it->deactivated;
     rep->excluded = it->excluded;
     if (!on) {
@@ -432,6 +433,7 @@ int ctd_iface_step(ctd_iface *it, double time, ct_real dt, const ct_real *x, con
     if (rep->dt_curve < rep->dt)
         rep->dt = rep->dt_curve;
     rep->resorts = it->resorts;
+    rep->margin = it->margin;
     rep->deactivated = it->deactivated;
     rep->excluded = it->excluded;
     if (rc != CT_OK)

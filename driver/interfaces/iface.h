@@ -255,6 +255,8 @@ typedef struct ctd_iface_report {
     ct_idx ncand, nactive; /* candidate and active pairs (all passes) */
     int resorted;          /* searches run in this step */
     int64_t resorts;       /* searches over the interface's life */
+    ct_real margin;        /* the re-sort margin in use (cfg.margin, or the
+                              default chosen at the first step; 0 before) */
     int64_t deactivated;   /* pairs deactivated by Ipen_max so far */
     int64_t excluded;      /* Irem_gap 2: the candidate pairs the neighbour
                               exclusion took out of the first search */
