@@ -141,16 +141,15 @@
  *                The search collects the pairs within gap + margin and
  *                runs again when the nodes have moved by the margin since
  *                (ct_resort_needed): a larger margin searches less often
- *                and keeps more candidates; every pair in contact is found
- *                with any margin. Not margin-free: the interface's stable
- *                step counts the stiffness of a node's closest candidate
- *                even while it is open, and its tunnelling limit the
- *                relative speeds of all candidates, so a larger margin can
- *                lower the step (sliding-block.yaml at 3x: 4.94e-6 ->
- *                4.11e-6 s before any contact). TYPE6 searches its largest
- *                penetration plus two margins deep: there a larger margin
- *                costs more than it saves. The run's report prints the
- *                margin used.
+ *                and keeps more candidates. The contacts and the step do
+ *                not change with it: every pair in contact is found with
+ *                any margin, and the interface's stable step counts an
+ *                open pair within 0.2 mean edges of contact plus what it
+ *                can close in two steps, not every candidate (so a margin
+ *                below the default counts fewer). TYPE6 searches its
+ *                largest penetration plus two margins deep: there a larger
+ *                margin costs more than it saves. The run's report prints
+ *                the margin used.
  *     search     direct | topological | bucket | bsp (default: topological
  *                for 3 and 5, bucket otherwise). Not topological for self
  *                contact (7, and 24 without secondary): a node's closest

@@ -67,6 +67,8 @@ static int element_forces(ctd_solver *s)
     return 0;
 }
 
+static double stable_dt_bodies(ctd_solver *s);
+
 /* The interfaces: contact forces into w->fc.., added to w->f... */
 static int contact_forces(ctd_solver *s, int want_fields)
 {
@@ -84,8 +86,15 @@ static int contact_forces(ctd_solver *s, int want_fields)
             w->nact[i] = 0;
         }
     });
+    /* The largest step that can follow (stable_dt's other limits, the
+     * output interval): the interfaces' open pairs count in their step
+     * when they can close their clearance in two such steps. */
+    double dt_max = s->dt_scale * stable_dt_bodies(s);
+    if (s->every > 0 && s->every < dt_max)
+        dt_max = s->every;
     ctd_state st = {s->time, w->dt_prev, s->cycle, nn, s->x, s->y, s->z, s->vx, s->vy, s->vz,
-                    s->model->mesh.nodes.m, s->model->node_part};
+                    s->model->mesh.nodes.m, s->model->node_part,
+                    dt_max < CTD_DT_NONE ? dt_max : 0};
     double ec = 0;
     for (int i = 0; i < s->nhook; i++) {
         ctd_contact_report *r = &s->rep[i];
@@ -177,6 +186,17 @@ static void fail_node(ctd_solver *s, ct_idx i, const char *what)
 /* The stable step at x(n), before the safety factor. */
 static double stable_dt(ctd_solver *s)
 {
+    double dt = stable_dt_bodies(s);
+    for (int i = 0; i < s->nhook; i++)
+        if (s->rep[i].dt_limit > 0 && s->rep[i].dt_limit < dt)
+            dt = s->rep[i].dt_limit;
+    return dt;
+}
+
+/* Its part from the elements (at x(n), after element_forces) and the
+ * rigid bodies' rotation: all but the interfaces. */
+static double stable_dt_bodies(ctd_solver *s)
+{
     ctd_model *m = s->model;
     double dt = CTD_DT_NONE;
     for (int k = 0; k < m->nset; k++) {
@@ -191,9 +211,6 @@ static double stable_dt(ctd_solver *s)
         if (d < dt)
             dt = d;
     }
-    for (int i = 0; i < s->nhook; i++)
-        if (s->rep[i].dt_limit > 0 && s->rep[i].dt_limit < dt)
-            dt = s->rep[i].dt_limit;
     for (int b = 0; b < m->nbody; b++) {
         const double *om = m->body[b].rigid.omega;
         double wn = sqrt(om[0] * om[0] + om[1] * om[1] + om[2] * om[2]);

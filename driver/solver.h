@@ -76,6 +76,10 @@ typedef struct ctd_state {
     const ct_real *vx, *vy, *vz;
     const ct_real *m;
     const int32_t *part;
+    /* The largest step the solver can take after this cycle: dt_scale
+     * times the elements' and rigid bodies' limits at x(n) (contact only
+     * lowers it); 0: unknown. */
+    double dt_max;
 } ctd_state;
 
 /* What one interface reports for one cycle. The solver zeroes the report

@@ -74,27 +74,20 @@ Test(iface_nodal_step, light_segment_nodes_set_the_step)
     tn_free(&t);
 }
 
-/* A node above the vertex shared by four quads has four candidate pairs but
- * one carrier (pair_select.c): its spring counts once, the step is
- * sqrt(2 m / K), not sqrt(2 m / (4 K)). The carrier's stiffness counts
- * while the pair is open too (the node lifted a little above the surface,
- * within the search distance), so the step does not jump back up in a
- * cycle of chatter. */
-Test(iface_nodal_step, one_carrier_per_node_open_or_closed)
+/* The 2 x 2 grid of quads on [-1, 1]^2 (nodes 0..8, mean edge 1) and one
+ * secondary node 9 (t: 10 nodes, mass 1), TYPE24 with K, no damping. */
+static ctd_iface *grid_iface(tnodes *t, double K, double margin)
 {
-    const double K = 1e4;
-    /* Quads of the 2 x 2 grid of nodes 0..8 on [-1, 1]^2. */
     static const ct_idx g1[4] = {0, 1, 3, 4}, g2[4] = {1, 2, 4, 5}, g3[4] = {4, 5, 7, 8},
                         g4[4] = {3, 4, 6, 7}, sec[1] = {9};
-    tnodes t;
-    tn_init(&t, 10);
+    tn_init(t, 10);
     for (int j = 0; j < 3; j++)
         for (int i = 0; i < 3; i++)
-            tn_set(&t, (ct_idx)(3 * j + i), i - 1, j - 1, 0);
+            tn_set(t, (ct_idx)(3 * j + i), i - 1, j - 1, 0);
     ctd_iface_cfg c = ctd_iface_default_cfg(24);
     c.gap = 0;
     c.VisS = 0;
-    c.margin = (ct_real)0.1;
+    c.margin = (ct_real)margin;
     ctd_iface_data d;
     memset(&d, 0, sizeof d);
     d.nnode = 10;
@@ -109,6 +102,20 @@ Test(iface_nodal_step, one_carrier_per_node_open_or_closed)
     ctd_iface *it = NULL;
     ct_diag diag;
     cr_assert_eq(ctd_iface_init(&it, &c, &d, &diag), CT_OK, "%s", diag.msg);
+    return it;
+}
+
+/* A node above the vertex shared by four quads has four candidate pairs but
+ * one carrier (pair_select.c): its spring counts once, the step is
+ * sqrt(2 m / K), not sqrt(2 m / (4 K)). The carrier's stiffness counts
+ * while the pair is open too (the node lifted a little above the surface,
+ * within the search distance), so the step does not jump back up in a
+ * cycle of chatter. */
+Test(iface_nodal_step, one_carrier_per_node_open_or_closed)
+{
+    const double K = 1e4;
+    tnodes t;
+    ctd_iface *it = grid_iface(&t, K, 0.1);
     const double want = sqrt(2.0 / K), tol = CTT_TOL(1e-12, 1e-6);
     const double z[2] = {-0.01, 0.02};
     for (int k = 0; k < 2; k++) {
@@ -119,6 +126,43 @@ Test(iface_nodal_step, one_carrier_per_node_open_or_closed)
         cr_assert_eq(rep.nactive, k == 0 ? 1 : 0);
         cr_expect(fabs((double)rep.dt_nodal - want) <= tol * want,
                   "z = %g: dt_nodal %.9g, expected %.9g", z[k], (double)rep.dt_nodal, want);
+    }
+    ctd_iface_destroy(it);
+    tn_free(&t);
+}
+
+/* With the caller's largest next step (ctd_iface_set_dt_max), an open
+ * carrier enters the step within band + 2 |v| dtmax of contact, band =
+ * 0.2 mean edges = 0.2 here, whatever the margin (1.5: every position
+ * below is a candidate). Without it every carrier does. */
+Test(iface_nodal_step, open_carrier_counts_near_contact_whatever_the_margin)
+{
+    const double K = 1e4, dtmax = 1e-4;
+    tnodes t;
+    ctd_iface *it = grid_iface(&t, K, 1.5);
+    const double want = sqrt(2.0 / K), tol = CTT_TOL(1e-12, 1e-6);
+    /* z, vz, whether dtmax is given, whether the spring counts. At z = 0.5
+     * the clearance beyond the band is 0.3: the node at rest does not
+     * count; at 1000 it closes 0.2 in two steps, not enough; at 2000,
+     * 0.4. */
+    static const struct { double z, vz; int given, counts; } c[] = {
+        {0.15, 0, 1, 1}, {0.5, 0, 1, 0}, {0.5, -1000, 1, 0}, {0.5, -2000, 1, 1},
+        {0.5, 0, 0, 1},  {1.2, 0, 0, 1}};
+    for (size_t k = 0; k < sizeof c / sizeof c[0]; k++) {
+        tn_set(&t, 9, 0, 0, c[k].z);
+        t.vz[9] = (ct_real)c[k].vz;
+        ctd_iface_set_dt_max(it, c[k].given ? (ct_real)dtmax : 0);
+        ctd_iface_report rep;
+        tstep(it, &t, (double)k * 1e-6, 1e-6, &rep);
+        cr_assert_eq(rep.ncand, 4, "z = %g: %d candidates", c[k].z, (int)rep.ncand);
+        cr_assert_eq(rep.nactive, 0);
+        if (c[k].counts)
+            cr_expect(fabs((double)rep.dt_nodal - want) <= tol * want,
+                      "z = %g, vz = %g: dt_nodal %.9g, expected %.9g", c[k].z, c[k].vz,
+                      (double)rep.dt_nodal, want);
+        else
+            cr_expect(!(rep.dt_nodal < CT_DT_NONE), "z = %g, vz = %g: dt_nodal %.9g, expected "
+                      "no limit", c[k].z, c[k].vz, (double)rep.dt_nodal);
     }
     ctd_iface_destroy(it);
     tn_free(&t);

@@ -61,7 +61,7 @@ static void iface_memory(const char *name, int refine, int cycles, double *count
         cr_assert(f[a]);
     }
     ctd_state st = {0, 1e-7, 0, n, m.mesh.nodes.x, m.mesh.nodes.y, m.mesh.nodes.z,
-                    v, v, v, m.mesh.nodes.m, m.node_part};
+                    v, v, v, m.mesh.nodes.m, m.node_part, 0};
     const double h0 = heap_bytes();
     ctd_contact_hook *hooks = NULL;
     int nhook = 0;

@@ -27,6 +27,7 @@ static int hook_step(void *ctx, const ctd_state *s, ct_real *fx, ct_real *fy, ct
 {
     hook_ctx *h = ctx;
     ctd_iface_report r;
+    ctd_iface_set_dt_max(h->it, (ct_real)s->dt_max);
     int rc = ctd_iface_step(h->it, s->time, (ct_real)s->dt, s->x, s->y, s->z, s->vx, s->vy,
                             s->vz, s->m, fx, fy, fz, &r);
     if (rc == CT_OK && !(r.dt > 0)) {

@@ -354,6 +354,12 @@ void ctd_iface_set_kelem(ctd_iface *it, const ct_real *kelem)
         it->kelem = kelem;
 }
 
+void ctd_iface_set_dt_max(ctd_iface *it, ct_real dt_max)
+{
+    if (it)
+        it->dt_max = dt_max > 0 && dt_max < CT_DT_NONE ? dt_max : 0;
+}
+
 void ctd_iface_force_resort(ctd_iface *it)
 {
     if (!it)

@@ -290,6 +290,15 @@ int ctd_iface_step(ctd_iface *it, double time, ct_real dt, const ct_real *x, con
  * used by the nodal time step of the report. */
 void ctd_iface_set_kelem(ctd_iface *it, const ct_real *kelem);
 
+/* The largest step the caller can take after the next ctd_iface_step (its
+ * other limits: elements, bodies, safety factor; contact only lowers it).
+ * With it, an open pair enters the interface's stable step only when it
+ * can close its clearance in two such steps at its present relative speed
+ * (and always when in contact); without it (0, the default) every pair
+ * that carries its node does, and the step then depends on the search
+ * margin that made the pair a candidate. */
+void ctd_iface_set_dt_max(ctd_iface *it, ct_real dt_max);
+
 /* Force a search at the next cycle. */
 void ctd_iface_force_resort(ctd_iface *it);
 

@@ -105,6 +105,11 @@ struct ctd_iface {
     ct_real mass_min;
     int mass_set;
     ct_real margin;
+    ct_real dt_max; /* ctd_iface_set_dt_max (0: unknown) */
+    /* The clearance within which an open pair enters the stable step
+     * (ctdi_dt_counts): 0.2 times the mean main edge length (the default
+     * margin), set with the margin at the first step. */
+    ct_real band;
     int npass;
     ctdi_pass pass[2];
     ctdi_epass *ep;
@@ -201,6 +206,29 @@ static inline void ctdi_report_pass(ctd_iface_report *rep, const double t[6], ct
 /* Fold a pass's largest contact stiffness, smallest gap (CT_DT_NONE: no
  * pair) and largest squared relative speed into the report: rep->kmax and
  * the tunnelling limit rep->dt_tunnel (ct_dt_tunnel). */
+/* Whether a pair enters the interface's stable step (its nodal spring and
+ * the tunnelling limit): in contact (pen > 0), or open by no more than
+ * band + 2 |v| dtmax (clearance |dist| - gap; band = it->band, 0.2 times
+ * the mean main edge length, the default margin; |v| = sqrt(v2) the
+ * relative speed at the contact point; dtmax the largest step the solver
+ * may take next, ctd_iface_set_dt_max). The band keeps the step down
+ * through the separations of chatter (a pair that opens for a few cycles
+ * would otherwise let the step jump to the elements' and meet its spring
+ * again with it); the speed term counts a fast pair at least a cycle
+ * before it can touch. A pair farther off does not count, however wide the
+ * search margin that made it a candidate: for any margin at least the
+ * band, the step does not depend on the margin. With dtmax unknown (<= 0)
+ * every pair counts (every candidate within the margin), as does a NaN
+ * distance. */
+static inline int ctdi_dt_counts(ct_real pen, ct_real dist, ct_real gap, ct_real v2, ct_real dt,
+                                 ct_real band)
+{
+    if (pen > 0 || !(dt > 0))
+        return 1;
+    const ct_real c = (dist < 0 ? -dist : dist) - gap - band;
+    return !(c > 0) || c * c <= 4 * v2 * dt * dt;
+}
+
 static inline void ctdi_report_limits(ctd_iface_report *rep, ct_real kmax, ct_real gmin,
                                       ct_real v2max)
 {

@@ -203,10 +203,12 @@ int ctdi_pass_normal_force(ctd_iface *it, ctdi_pass *p, ct_idx n, ct_real dt)
     return CT_OK;
 }
 
-/* Time-step limits over the pairs. The nodal step: each carrying pair's
- * stiffness (the linear law's K even while the pair is open, so that the
- * step does not jump back to the element step in a cycle of chatter;
- * TYPE7's tangent stiffness, K0 when open) is spread onto its nodes with
+/* Time-step limits over the pairs that enter the step (ctdi_dt_counts:
+ * in contact, or within two steps' approach of it). The nodal step: each
+ * such carrying pair's stiffness (the linear law's K even while the pair
+ * is open, so that the step does not jump back to the element step in a
+ * cycle of chatter; TYPE7's tangent stiffness, K0 when open) is spread
+ * onto its nodes with
  * the weights |w| (1 on the secondary node, h_i on the segment's), summed
  * per node over the pairs and passes, and ctdi_nodal_finish takes
  * sqrt(2 m / (kelem + kc)) per node: the Gershgorin bound of the contact
@@ -216,6 +218,11 @@ int ctdi_pass_normal_force(ctd_iface *it, ctdi_pass *p, ct_idx n, ct_real dt)
 int ctdi_pass_timestep(ctd_iface *it, ctdi_pass *p, ct_idx n, const ct_real *m,
                        ctd_iface_report *rep)
 {
+    const ct_real dt = it->dt_max, band = it->band;
+    const ct_real *restrict gap = p->geo.gap, *restrict rx = p->r[CTDI_R_VRX],
+                            *restrict ry = p->r[CTDI_R_VRY], *restrict rz = p->r[CTDI_R_VRZ],
+                            *restrict kt = p->r[CTDI_R_KTAN], *restrict pen = p->geo.pen,
+                            *restrict dist = p->geo.dist;
     ct_real dmin;
     ct_idx imin;
     int rc = CT_OK;
@@ -230,9 +237,10 @@ int ctdi_pass_timestep(ctd_iface *it, ctdi_pass *p, ct_idx n, const ct_real *m,
         const uint8_t *restrict carry = p->carry;
         ct_real *restrict kdt = p->r[CTDI_R_KDT];
         CTI_PAR_FOR_SIMD(n > CTDI_PAR_MIN, (schedule(static)),
-        for (ct_idx k = 0; k < n; k++)
-            kdt[k] = carry[k] ? ks[k] : 0;
-        );
+        for (ct_idx k = 0; k < n; k++) {
+            const ct_real v2 = rx[k] * rx[k] + ry[k] * ry[k] + rz[k] * rz[k];
+            kdt[k] = carry[k] && ctdi_dt_counts(pen[k], dist[k], gap[k], v2, dt, band) ? ks[k] : 0;
+        });
         ct_asm_map map = ct_asm_map_nodeseg(n, p->pairs[p->cur].node, p->s[0], p->s[1],
                                             p->s[2], p->s[3]);
         for (int s = 0; s < map.nslot; s++)
@@ -250,16 +258,15 @@ int ctdi_pass_timestep(ctd_iface *it, ctdi_pass *p, ct_idx n, const ct_real *m,
         if (dmin < rep->dt_kin)
             rep->dt_kin = dmin;
     }
-    const ct_real *restrict gap = p->geo.gap, *restrict rx = p->r[CTDI_R_VRX],
-                            *restrict ry = p->r[CTDI_R_VRY], *restrict rz = p->r[CTDI_R_VRZ],
-                            *restrict kt = p->r[CTDI_R_KTAN];
     ct_real gmin = CT_DT_NONE, v2max = 0, kmax = 0;
     CTI_PAR_FOR(n > CTDI_PAR_MIN,
                 (schedule(static) reduction(min : gmin) reduction(max : v2max, kmax)),
     for (ct_idx k = 0; k < n; k++) {
+        ct_real v2 = rx[k] * rx[k] + ry[k] * ry[k] + rz[k] * rz[k];
+        if (!ctdi_dt_counts(pen[k], dist[k], gap[k], v2, dt, band))
+            continue;
         if (gap[k] > 0 && gap[k] < gmin)
             gmin = gap[k];
-        ct_real v2 = rx[k] * rx[k] + ry[k] * ry[k] + rz[k] * rz[k];
         if (v2 > v2max)
             v2max = v2;
         if (kt[k] > kmax)

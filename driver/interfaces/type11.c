@@ -359,7 +359,7 @@ int ctdi_type11_step(ctd_iface *it, ct_real dt, const ct_real *x, const ct_real 
     ctdi_epass *e = it->ep;
     if (e->na == 0)
         return CT_OK;
-    if (!(it->margin > 0)) {
+    if (!(it->band > 0)) {
         double s = 0;
         for (ct_idx i = 0; i < e->ne; i++) {
             ct_idx p = e->e1[i], q = e->e2[i];
@@ -368,7 +368,9 @@ int ctdi_type11_step(ctd_iface *it, ct_real dt, const ct_real *x, const ct_real 
             s += sqrt(dx * dx + dy * dy + dz * dz);
         }
         double h = e->ne > 0 ? s / (double)e->ne : 0;
-        it->margin = (ct_real)(h > 0 ? 0.2 * h : e->sgap);
+        it->band = (ct_real)(h > 0 ? 0.2 * h : e->sgap);
+        if (!(it->margin > 0))
+            it->margin = it->band;
     }
     double t0 = ctd_wtime();
     int did;
@@ -452,9 +454,12 @@ int ctdi_type11_step(ctd_iface *it, ct_real dt, const ct_real *x, const ct_real 
     if (dmin < rep->dt_kin)
         rep->dt_kin = dmin;
     const ct_real *restrict gap = r[E_GAP], *restrict vr2 = r[E_VR2], *restrict kt = r[E_KTAN];
+    const ct_real *restrict pen = r[E_PEN], *restrict dist = r[E_DIST];
     ct_real gmin = CT_DT_NONE, v2max = 0, kmax = 0;
 #pragma omp parallel for schedule(static) reduction(min : gmin) reduction(max : v2max, kmax) if (n > CTDI_PAR_MIN)
     for (ct_idx k = 0; k < n; k++) {
+        if (!ctdi_dt_counts(pen[k], dist[k], gap[k], vr2[k], it->dt_max, it->band))
+            continue;
         if (gap[k] > 0 && gap[k] < gmin)
             gmin = gap[k];
         if (vr2[k] > v2max)
