@@ -285,9 +285,12 @@ static void print_contact_at_start(const char *scene, const ctd_solver *s)
         if (r->excluded > 0)
             snprintf(excl, sizeof excl, ", %lld neighbour pair%s excluded (Irem_gap 2)",
                      (long long)r->excluded, r->excluded == 1 ? "" : "s");
-        printf("%s: interface %s (type %d): %lld pair%s in contact at t = 0, %s%s\n", scene,
+        char margin[64] = "";
+        if (r->margin > 0)
+            snprintf(margin, sizeof margin, ", re-sort margin %.3g", r->margin);
+        printf("%s: interface %s (type %d): %lld pair%s in contact at t = 0, %s%s%s\n", scene,
                s->hooks[i].name ? s->hooks[i].name : "?", s->hooks[i].type,
-               (long long)r->active, r->active == 1 ? "" : "s", step, excl);
+               (long long)r->active, r->active == 1 ? "" : "s", step, excl, margin);
         if (s->hooks[i].note[0])
             printf("%s: interface %s (type %d): note: %s\n", scene,
                    s->hooks[i].name ? s->hooks[i].name : "?", s->hooks[i].type,

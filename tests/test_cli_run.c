@@ -520,6 +520,9 @@ Test(cli, check_scenes)
     cr_expect(strstr(r.out, "drop.yaml: interface drop (type 24): 0 pairs in contact at t = 0, "
                             "stable step ") != NULL, "%s", r.out);
     cr_expect(strstr(r.out, "drop.yaml: initial penetration: none") != NULL, "%s", r.out);
+    /* The margin the interface chose (0.2 x its mean main edge), which the
+     * run's report prints too. */
+    cr_expect(strstr(r.out, ", re-sort margin ") != NULL, "%s", r.out);
     ctt_cli_run(&r, dir, 2, "check pen.yaml");
     cr_assert_eq(r.status, 0, "%s", r.err);
     cr_expect(strstr(r.out, "pen.yaml: interface pen (type 24): 4 pairs in contact at t = 0") !=
