@@ -261,7 +261,7 @@ static inline void cti_brick_gauss_point(int g, const ct_real *CT_RESTRICT jb,
                                          ct_real (*CT_RESTRICT D)[4][3][CTD_BRICK_LANES],
                                          ct_real (*CT_RESTRICT R)[4][3][CTD_BRICK_LANES],
                                          ct_real *CT_RESTRICT W, ct_real *CT_RESTRICT V,
-                                         int *CT_RESTRICT ok, ct_real lambda, ct_real mu)
+                                         ct_real *CT_RESTRICT ok, ct_real lambda, ct_real mu)
 {
     enum { L = CTD_BRICK_LANES };
 #pragma omp simd
@@ -287,7 +287,7 @@ static inline void cti_brick_gauss_point(int g, const ct_real *CT_RESTRICT jb,
         ct_real dF = F[0][0] * (F[1][1] * F[2][2] - F[1][2] * F[2][1]) -
                      F[0][1] * (F[1][0] * F[2][2] - F[1][2] * F[2][0]) +
                      F[0][2] * (F[1][0] * F[2][1] - F[1][1] * F[2][0]);
-        ok[l] &= dF > 0;
+        ok[l] = dF > 0 ? ok[l] : 0;
         V[l] += d0 * dF;
 #pragma GCC unroll 16
         for (int i = 0; i < 3; i++)
@@ -362,7 +362,7 @@ int ctd_brick_forces(ctd_brick *b, const ct_real *CT_RESTRICT x, const ct_real *
         const ct_real *CT_RESTRICT jb = jinv + (size_t)bk * 72 * L;
         const ct_real *CT_RESTRICT db = jdet + (size_t)bk * 8 * L;
         _Alignas(64) ct_real p[8][3][L], D[3][4][3][L], R[3][4][3][L], W[L], V[L];
-        _Alignas(64) int ok[L];
+        _Alignas(64) ct_real ok[L];
         for (int a = 0; a < 8; a++)
             for (int l = 0; l < L; l++) {
                 ct_idx v = lc[a * L + l];
@@ -402,7 +402,7 @@ int ctd_brick_forces(ctd_brick *b, const ct_real *CT_RESTRICT x, const ct_real *
                     }
             /* The stable step (elements.h): volume over the largest face
              * area over the wave speed; an inverted element gives 0. */
-            ct_real amax = 0;
+            ct_real a2max = 0;
             for (int q = 0; q < 6; q++) {
                 const int i0 = FACE[q][0], i1 = FACE[q][1], i2 = FACE[q][2], i3 = FACE[q][3];
                 ct_real d1x = p[i2][0][l] - p[i0][0][l], d1y = p[i2][1][l] - p[i0][1][l],
@@ -411,9 +411,12 @@ int ctd_brick_forces(ctd_brick *b, const ct_real *CT_RESTRICT x, const ct_real *
                         d2z = p[i3][2][l] - p[i1][2][l];
                 ct_real cx = d1y * d2z - d1z * d2y, cy = d1z * d2x - d1x * d2z,
                         cz = d1x * d2y - d1y * d2x;
-                const ct_real a = CTI_SQRT(cx * cx + cy * cy + cz * cz) / 2;
-                amax = a > amax ? a : amax; /* fmax's answer: amax is never NaN */
+                const ct_real a2 = cx * cx + cy * cy + cz * cz;
+                a2max = a2 > a2max ? a2 : a2max; /* fmax's answer: never NaN */
             }
+            /* One root for the largest face: the rounded root is monotone,
+             * so this is the largest of the six roots, bit for bit. */
+            const ct_real amax = CTI_SQRT(a2max) / 2;
             ct_real dt = (V[l] > 0 && amax > 0) ? V[l] / amax / cw : 0;
             dte[e] = dt;
             best = CTI_MIN(best, dt);
