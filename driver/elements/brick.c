@@ -361,26 +361,30 @@ int ctd_brick_forces(ctd_brick *b, const ct_real *CT_RESTRICT x, const ct_real *
         const ct_idx *CT_RESTRICT lc = b->lconn + (size_t)bk * 8 * L;
         const ct_real *CT_RESTRICT jb = jinv + (size_t)bk * 72 * L;
         const ct_real *CT_RESTRICT db = jdet + (size_t)bk * 8 * L;
-        _Alignas(64) ct_real p[8][3][L], D[3][4][3][L], R[3][4][3][L], W[L], V[L];
+        _Alignas(64) ct_real p[8][3][L], u[8][3][L], D[3][4][3][L], R[3][4][3][L], W[L], V[L];
         _Alignas(64) ct_real ok[L];
+        /* The corners' positions and displacements, each node's read once
+         * (not once per edge it ends). */
         for (int a = 0; a < 8; a++)
             for (int l = 0; l < L; l++) {
                 ct_idx v = lc[a * L + l];
                 p[a][0][l] = x[v];
                 p[a][1][l] = y[v];
                 p[a][2][l] = z[v];
+                u[a][0][l] = p[a][0][l] - X0[v];
+                u[a][1][l] = p[a][1][l] - Y0[v];
+                u[a][2][l] = p[a][2][l] - Z0[v];
             }
         /* The displacement differences along the edges of each axis. */
         for (int k = 0; k < 3; k++)
-            for (int m = 0; m < 4; m++)
-                for (int l = 0; l < L; l++) {
-                    ct_idx v1 = lc[CTI_EDGE[k][m][1] * L + l], v0 = lc[CTI_EDGE[k][m][0] * L + l];
-                    const int a1 = CTI_EDGE[k][m][1], a0 = CTI_EDGE[k][m][0];
-                    D[k][m][0][l] = (p[a1][0][l] - X0[v1]) - (p[a0][0][l] - X0[v0]);
-                    D[k][m][1][l] = (p[a1][1][l] - Y0[v1]) - (p[a0][1][l] - Y0[v0]);
-                    D[k][m][2][l] = (p[a1][2][l] - Z0[v1]) - (p[a0][2][l] - Z0[v0]);
-                    R[k][m][0][l] = R[k][m][1][l] = R[k][m][2][l] = 0;
-                }
+            for (int m = 0; m < 4; m++) {
+                const int a1 = CTI_EDGE[k][m][1], a0 = CTI_EDGE[k][m][0];
+                for (int i = 0; i < 3; i++)
+                    for (int l = 0; l < L; l++) {
+                        D[k][m][i][l] = u[a1][i][l] - u[a0][i][l];
+                        R[k][m][i][l] = 0;
+                    }
+            }
         for (int l = 0; l < L; l++) {
             W[l] = V[l] = 0;
             ok[l] = 1;
