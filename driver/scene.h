@@ -58,7 +58,11 @@
  *   solver      optional mapping:
  *                 dt_scale  number in (0, 1] (0.9): safety factor on the
  *                           stable time step;
- *                 threads   integer >= 0 (0: OpenMP's default);
+ *                 threads   integer >= 0 (0: OpenMP's default, OMP_NUM_THREADS
+ *                           or every core, but when OMP_NUM_THREADS is not
+ *                           set at most one thread per 2000 nodes: a smaller
+ *                           model runs faster on fewer; `--threads N`
+ *                           overrides both);
  *                 cycle_limit integer in 1 .. 1e15 (1e8): a run whose stable
  *                           step would need more cycles than this to reach
  *                           end_time stops at once with an error (exit 2)

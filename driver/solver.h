@@ -153,6 +153,10 @@ int ctd_interfaces_build(const ctd_model *m, const ctd_scene *sc, ctd_contact_ho
 
 struct ctd_solver;
 
+/* With no thread count given (opts.threads, solver.threads, nor
+ * OMP_NUM_THREADS), a run takes at most one thread per this many nodes. */
+#define CTD_NODES_PER_THREAD 2000
+
 typedef struct ctd_solver_opts {
     double end_time;     /* > 0: overrides the scene's */
     double dt_scale;     /* > 0: overrides solver.dt_scale (any value: for experiments) */

@@ -106,7 +106,8 @@ static inline void ctt_cli_free(ctt_cli *r)
 
 /*
  * Run `PREFIX OMP_NUM_THREADS=threads contact ARGS` with the shell in
- * directory dir: PREFIX is shell text run first in the same shell (e.g.
+ * directory dir (threads 0: with OMP_NUM_THREADS unset, `contact` chooses):
+ * PREFIX is shell text run first in the same shell (e.g.
  * "ulimit -v 100000;"), "" for none; ARGS is a printf format of shell
  * words (the caller quotes what needs quoting). The output and error
  * streams go to dir/.cli_out and dir/.cli_err, read back into r (which is
@@ -119,9 +120,11 @@ static inline void ctt_cli_vrun(ctt_cli *r, const char *dir, const char *prefix,
     ctt_contact_path(bin, sizeof bin);
     int na = vsnprintf(args, sizeof args, fmt, ap);
     cr_assert(na >= 0 && (size_t)na < sizeof args, "arguments too long");
-    int nc = snprintf(cmd, sizeof cmd,
-                      "cd '%s' && %s OMP_NUM_THREADS=%d '%s' %s >'%s/.cli_out' 2>'%s/.cli_err'",
-                      dir, prefix, threads, bin, args, dir, dir);
+    char env[64] = "env -u OMP_NUM_THREADS";
+    if (threads > 0)
+        snprintf(env, sizeof env, "OMP_NUM_THREADS=%d", threads);
+    int nc = snprintf(cmd, sizeof cmd, "cd '%s' && %s %s '%s' %s >'%s/.cli_out' 2>'%s/.cli_err'",
+                      dir, prefix, env, bin, args, dir, dir);
     cr_assert(nc > 0 && (size_t)nc < sizeof cmd, "command too long");
     int st = system(cmd);
     cr_assert(st != -1, "system(%s) failed", cmd);

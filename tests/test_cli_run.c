@@ -20,6 +20,7 @@
  */
 #include <errno.h>
 #include <hwloc.h>
+#include <omp.h>
 #include <signal.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -595,6 +596,41 @@ Test(cli, run_search_override_keeps_self_contact)
     cr_assert_eq(r.status, 0, "%s%s", r.out, r.err);
     cr_expect(strstr(r.out, "interface self (type 7, bsp search)") != NULL, "%s", r.out);
     cr_expect(strstr(r.out, "interface edges (type 11, bucket search)") != NULL, "%s", r.out);
+    ctt_cli_free(&r);
+    ctt_rmtree(dir);
+}
+
+/* The threads of a run nobody gave a count (no --threads, no
+ * solver.threads, OMP_NUM_THREADS unset): one per CTD_NODES_PER_THREAD
+ * nodes at most, OpenMP's count above that; any count given wins. */
+Test(cli, run_threads_follow_the_model_size_unless_given)
+{
+    char dir[64], scene[2048], rel[1024], cwd[512];
+    ctt_tmpdir(dir, "cli");
+    cr_assert_not_null(getcwd(cwd, sizeof cwd));
+    ctt_tests_path(rel, sizeof rel, "../data/scenes/");
+    const char *base = rel[0] == '/' ? "" : cwd, *sep = rel[0] == '/' ? "" : "/";
+    snprintf(scene, sizeof scene, "%s%s%sshowcase.yaml", base, sep, rel);
+    const int cores = omp_get_num_procs();
+    ctt_cli r = {0};
+    /* 730 nodes: one thread. */
+    ctt_cli_run(&r, dir, 0, "run %s --out o --end 1e-5", scene);
+    cr_assert_eq(r.status, 0, "%s%s", r.out, r.err);
+    cr_expect(strstr(r.out, "730 nodes") != NULL, "%s", r.out);
+    cr_expect(strstr(r.out, " s wall, 1 thread)") != NULL, "%s", r.out);
+    /* Given, by the option or the environment: two. */
+    ctt_cli_run(&r, dir, 0, "run %s --out o --end 1e-5 --threads 2", scene);
+    cr_assert_eq(r.status, 0, "%s%s", r.out, r.err);
+    cr_expect(strstr(r.out, " s wall, 2 threads)") != NULL, "%s", r.out);
+    ctt_cli_run(&r, dir, 2, "run %s --out o --end 1e-5", scene);
+    cr_assert_eq(r.status, 0, "%s%s", r.out, r.err);
+    cr_expect(strstr(r.out, " s wall, 2 threads)") != NULL, "%s", r.out);
+    /* 3659 nodes (refine 2): up to two, as many as the machine has. */
+    ctt_cli_run(&r, dir, 0, "run %s --out o --end 1e-6 --refine 2", scene);
+    cr_assert_eq(r.status, 0, "%s%s", r.out, r.err);
+    cr_expect(strstr(r.out, "3659 nodes") != NULL, "%s", r.out);
+    cr_expect(strstr(r.out, cores >= 2 ? " s wall, 2 threads)" : " s wall, 1 thread)") != NULL,
+              "%s", r.out);
     ctt_cli_free(&r);
     ctt_rmtree(dir);
 }
