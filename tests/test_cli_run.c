@@ -568,15 +568,22 @@ Test(cli, check_scenes)
  * showcase's TYPE7 keeps its bucket search, says so, and still catches the
  * folding layers; TYPE11's edge search names what it runs (bucket for any
  * choice but direct). */
-Test(cli, run_search_override_keeps_self_contact)
+/* The repository's scene `name` by an absolute path (the runs are in a
+ * directory of their own). */
+static void repo_scene(char *scene, size_t n, const char *name)
 {
-    char dir[64], scene[2048], rel[1024], cwd[512];
-    ctt_tmpdir(dir, "cli");
-    /* The repository's scenes, by an absolute path (the run is in dir). */
+    char rel[1024], cwd[512];
     cr_assert_not_null(getcwd(cwd, sizeof cwd));
     ctt_tests_path(rel, sizeof rel, "../data/scenes/");
     const char *base = rel[0] == '/' ? "" : cwd, *sep = rel[0] == '/' ? "" : "/";
-    snprintf(scene, sizeof scene, "%s%s%sshowcase.yaml", base, sep, rel);
+    snprintf(scene, n, "%s%s%s%s", base, sep, rel, name);
+}
+
+Test(cli, run_search_override_keeps_self_contact)
+{
+    char dir[64], scene[2048];
+    ctt_tmpdir(dir, "cli");
+    repo_scene(scene, sizeof scene, "showcase.yaml");
     ctt_cli r = {0};
     ctt_cli_run(&r, dir, 2, "run %s --out o --search topological", scene);
     cr_assert_eq(r.status, 0, "%s%s", r.out, r.err);
@@ -591,7 +598,7 @@ Test(cli, run_search_override_keeps_self_contact)
     const char *act = strstr(t7, "max active pairs ");
     cr_assert_not_null(act);
     cr_expect_gt(atol(act + strlen("max active pairs ")), 0, "%s", r.out);
-    snprintf(scene, sizeof scene, "%s%s%sfolding-sheet.yaml", base, sep, rel);
+    repo_scene(scene, sizeof scene, "folding-sheet.yaml");
     ctt_cli_run(&r, dir, 2, "run %s --out o --search bsp --end 1e-5", scene);
     cr_assert_eq(r.status, 0, "%s%s", r.out, r.err);
     cr_expect(strstr(r.out, "interface self (type 7, bsp search)") != NULL, "%s", r.out);
@@ -605,12 +612,9 @@ Test(cli, run_search_override_keeps_self_contact)
  * nodes at most, OpenMP's count above that; any count given wins. */
 Test(cli, run_threads_follow_the_model_size_unless_given)
 {
-    char dir[64], scene[2048], rel[1024], cwd[512];
+    char dir[64], scene[2048];
     ctt_tmpdir(dir, "cli");
-    cr_assert_not_null(getcwd(cwd, sizeof cwd));
-    ctt_tests_path(rel, sizeof rel, "../data/scenes/");
-    const char *base = rel[0] == '/' ? "" : cwd, *sep = rel[0] == '/' ? "" : "/";
-    snprintf(scene, sizeof scene, "%s%s%sshowcase.yaml", base, sep, rel);
+    repo_scene(scene, sizeof scene, "showcase.yaml");
     const int cores = omp_get_num_procs();
     ctt_cli r = {0};
     /* 730 nodes: one thread. */
