@@ -203,9 +203,6 @@ static inline void ctdi_report_pass(ctd_iface_report *rep, const double t[6], ct
     rep->nactive += (ct_idx)nactive;
 }
 
-/* Fold a pass's largest contact stiffness, smallest gap (CT_DT_NONE: no
- * pair) and largest squared relative speed into the report: rep->kmax and
- * the tunnelling limit rep->dt_tunnel (ct_dt_tunnel). */
 /* Whether a pair enters the interface's stable step (its nodal spring and
  * the tunnelling limit): in contact (pen > 0), or open by no more than
  * band + 2 |v| dtmax (clearance |dist| - gap; band = it->band, 0.2 times
@@ -229,6 +226,9 @@ static inline int ctdi_dt_counts(ct_real pen, ct_real dist, ct_real gap, ct_real
     return !(c > 0) || c * c <= 4 * v2 * dt * dt;
 }
 
+/* Fold a pass's largest contact stiffness, smallest gap (CT_DT_NONE: no
+ * pair) and largest squared relative speed into the report: rep->kmax and
+ * the tunnelling limit rep->dt_tunnel (ct_dt_tunnel). */
 static inline void ctdi_report_limits(ctd_iface_report *rep, ct_real kmax, ct_real gmin,
                                       ct_real v2max)
 {

@@ -204,12 +204,12 @@ int ctdi_pass_normal_force(ctd_iface *it, ctdi_pass *p, ct_idx n, ct_real dt)
 }
 
 /* Time-step limits over the pairs that enter the step (ctdi_dt_counts:
- * in contact, or within two steps' approach of it). The nodal step: each
- * such carrying pair's stiffness (the linear law's K even while the pair
- * is open, so that the step does not jump back to the element step in a
- * cycle of chatter; TYPE7's tangent stiffness, K0 when open) is spread
- * onto its nodes with
- * the weights |w| (1 on the secondary node, h_i on the segment's), summed
+ * in contact, or open within the band and two steps' approach of it). The
+ * nodal step: each such carrying pair's stiffness (the linear law's K even
+ * while the pair is open, so that the step does not jump back to the
+ * element step in a cycle of chatter; TYPE7's tangent stiffness, K0 when
+ * open) is spread onto its nodes with the weights |w| (1 on the secondary
+ * node, h_i on the segment's), summed
  * per node over the pairs and passes, and ctdi_nodal_finish takes
  * sqrt(2 m / (kelem + kc)) per node: the Gershgorin bound of the contact
  * springs on the lumped masses. A node pressed by several pairs, or loaded
@@ -239,7 +239,8 @@ int ctdi_pass_timestep(ctd_iface *it, ctdi_pass *p, ct_idx n, const ct_real *m,
         CTI_PAR_FOR_SIMD(n > CTDI_PAR_MIN, (schedule(static)),
         for (ct_idx k = 0; k < n; k++) {
             const ct_real v2 = rx[k] * rx[k] + ry[k] * ry[k] + rz[k] * rz[k];
-            kdt[k] = carry[k] && ctdi_dt_counts(pen[k], dist[k], gap[k], v2, dt, band) ? ks[k] : 0;
+            const int counts = ctdi_dt_counts(pen[k], dist[k], gap[k], v2, dt, band);
+            kdt[k] = carry[k] && counts ? ks[k] : 0;
         });
         ct_asm_map map = ct_asm_map_nodeseg(n, p->pairs[p->cur].node, p->s[0], p->s[1],
                                             p->s[2], p->s[3]);
