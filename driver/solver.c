@@ -67,10 +67,9 @@ static int element_forces(ctd_solver *s)
     return 0;
 }
 
-static double stable_dt_bodies(ctd_solver *s);
-
-/* The interfaces: contact forces into w->fc.., added to w->f... */
-static int contact_forces(ctd_solver *s, int want_fields)
+/* The interfaces: contact forces into w->fc.., added to w->f...; dt_bodies
+ * is stable_dt_bodies at x(n). */
+static int contact_forces(ctd_solver *s, int want_fields, double dt_bodies)
 {
     cti_solver_work *w = s->w;
     ct_idx nn = s->nnode;
@@ -89,7 +88,7 @@ static int contact_forces(ctd_solver *s, int want_fields)
     /* The largest step that can follow (stable_dt's other limits, the
      * output interval): the interfaces' open pairs count in their step
      * when they can close their clearance in two such steps. */
-    double dt_max = s->dt_scale * stable_dt_bodies(s);
+    double dt_max = s->dt_scale * dt_bodies;
     if (s->every > 0 && s->every < dt_max)
         dt_max = s->every;
     ctd_state st = {s->time, w->dt_prev, s->cycle, nn, s->x, s->y, s->z, s->vx, s->vy, s->vz,
@@ -183,10 +182,11 @@ static void fail_node(ctd_solver *s, ct_idx i, const char *what)
              (long long)s->model->node_id[i], s->model->node_part[i], what, s->dt);
 }
 
-/* The stable step at x(n), before the safety factor. */
-static double stable_dt(ctd_solver *s)
+/* The stable step at x(n), before the safety factor, from its part
+ * stable_dt_bodies (dt_bodies) and the interfaces' reports. */
+static double stable_dt(const ctd_solver *s, double dt_bodies)
 {
-    double dt = stable_dt_bodies(s);
+    double dt = dt_bodies;
     for (int i = 0; i < s->nhook; i++)
         if (s->rep[i].dt_limit > 0 && s->rep[i].dt_limit < dt)
             dt = s->rep[i].dt_limit;
@@ -399,7 +399,10 @@ int ctd_solver_run(ctd_solver *s)
             break;
         double t1 = ctd_wtime();
         s->timers.elements += t1 - t0;
-        if (contact_forces(s, out_step))
+        /* The elements' and bodies' step at x(n), once: the interfaces
+         * take the largest step that can follow from it, then stable_dt. */
+        const double dt_bodies = stable_dt_bodies(s);
+        if (contact_forces(s, out_step, dt_bodies))
             break;
         if (s->cycle == 0 && s->nhook) /* an output cycle: the fields hold them */
             ctd_solver_penetration(s, &s->pen0_count, &s->pen0_max, &s->pen0_node);
@@ -420,7 +423,7 @@ int ctd_solver_run(ctd_solver *s)
             break;
         }
         /* Step, kick, energies. */
-        double dt_new = s->dt_scale * stable_dt(s);
+        double dt_new = s->dt_scale * stable_dt(s, dt_bodies);
         const int by_output = dt_new > s->every;
         if (by_output)
             dt_new = s->every;
