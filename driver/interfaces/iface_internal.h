@@ -203,6 +203,16 @@ static inline void ctdi_report_pass(ctd_iface_report *rep, const double t[6], ct
     rep->nactive += (ct_idx)nactive;
 }
 
+/* Set the band of ctdi_dt_counts at the first step: 0.2 times the mean
+ * main edge length h (fallback when h is 0), and the margin to it when the
+ * card gave none (the default margin). */
+static inline void ctdi_choose_band(ctd_iface *it, double h, ct_real fallback)
+{
+    it->band = (ct_real)(h > 0 ? 0.2 * h : fallback);
+    if (!(it->margin > 0))
+        it->margin = it->band;
+}
+
 /* Whether a pair enters the interface's stable step (its nodal spring and
  * the tunnelling limit): in contact (pen > 0), or open by no more than
  * band + 2 |v| dtmax (clearance |dist| - gap; band = it->band, 0.2 times

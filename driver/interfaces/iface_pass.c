@@ -427,9 +427,7 @@ int ctdi_pass_step(ctd_iface *it, ctdi_pass *p, ct_real dt, const ct_real *x,
         return CT_OK;
     if (!(it->band > 0)) {
         double h = ctdi_mean_seg_edge(p->nseg, p->n1, p->n2, p->n3, p->n4, x, y, z);
-        it->band = (ct_real)(h > 0 ? 0.2 * h : (p->sgap > 0 ? p->sgap : 1e-3));
-        if (!(it->margin > 0))
-            it->margin = it->band;
+        ctdi_choose_band(it, h, p->sgap > 0 ? p->sgap : (ct_real)1e-3);
     }
     double t0 = ctd_wtime();
     int did;

@@ -368,9 +368,7 @@ int ctdi_type11_step(ctd_iface *it, ct_real dt, const ct_real *x, const ct_real 
             s += sqrt(dx * dx + dy * dy + dz * dz);
         }
         double h = e->ne > 0 ? s / (double)e->ne : 0;
-        it->band = (ct_real)(h > 0 ? 0.2 * h : e->sgap);
-        if (!(it->margin > 0))
-            it->margin = it->band;
+        ctdi_choose_band(it, h, e->sgap);
     }
     double t0 = ctd_wtime();
     int did;
