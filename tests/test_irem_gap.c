@@ -104,11 +104,17 @@ Test(irem_gap, stretched_fine_sheet_type24)
 
 /* A three-layer accordion (the folding-sheet scene one cell wide; at
  * refine 3, cells of 1.67 mm under a 2 mm gap), the bottom layer clamped,
- * the top one (16 mm up) thrown down at 20 m/s onto the middle one. */
+ * the top one (16 mm up) thrown down at 20 m/s onto the middle one. The
+ * step is a quarter of the stable one, so that the scheme's own energy
+ * error (second order: -0.78 %, -0.26 %, -0.05 % at dt_scale 0.5, 0.25,
+ * 0.125, most of it the edge contact's stiffening law) stays well under
+ * the bound the exclusion is held to. (At 0.5 the bound held only while
+ * TYPE11 booked 10 % more damping than its forces did, which hid that
+ * error: -0.11 %.) */
 static const char *fine_fold =
     "title: fine fold\n"
     "end_time: 1.0e-3\n"
-    "solver: {dt_scale: 0.5}\n"
+    "solver: {dt_scale: 0.25}\n"
     "mesh:\n"
     "  - generate: {kind: folded, part: 1, cells: [8, 1], size: [0.005], layers: 3, "
     "spacing: 0.008}\n"

@@ -158,6 +158,32 @@ static inline double ctdi_damped_dt_factor(double viss)
     return sqrt(1.0 + zeta * zeta) - zeta;
 }
 
+/* The damper's work over the last step by the trapezoidal rule, the way
+ * the solver books every other force's work (its kinetic energy is the
+ * product m v- . v+ / 2 of the central difference: a force of step n works
+ * over the half steps before and after x(n)): the relative normal
+ * displacement of the step, vn dt (vn, the velocity the force was computed
+ * with, is the one that led to the present positions), times the mean of
+ * the damping force then and now. Per pair k: the damping part of the
+ * normal force fd = fn - fel (0 out of contact) into fprev[k], and the
+ * dissipation -(fprev_old + fd) vn dt / 2 into dd[k]. fprev is a per-pair
+ * state that follows its pair across re-sorts (0 for a new pair: out of
+ * contact at the last step). The kernel's own -fd vn dt
+ * (ct_normal_finish) takes the present force alone; near the damped
+ * stability limit (omega dt of order 1) vn swings within a step, and that
+ * rule, which TYPE11 used, booked 13 % more dissipation than its damping
+ * forces did on the wide folding sheet (bench/scenes/folding-sheet-wide.yaml:
+ * 4.6 J, 3.7 % of the run's energy). The trapezoid takes the last force's
+ * second half step with this step's contact point and normal; the
+ * forces' own nodal work differed from it by 0.05 % there, and by 0.3 %
+ * under a fast sliding motion (tests/test_iface_damping.c). A pair that
+ * leaves the candidates within one step (moving beyond the margin in a
+ * step) takes its last force's second half step with it. A step's value
+ * may be negative near the stability limit: that is what the scheme
+ * does. */
+void ctdi_damper_work(ct_idx n, const ct_real *pen, const ct_real *fn, const ct_real *fel,
+                      const ct_real *vn, ct_real dt, ct_real *fprev, ct_real *dd);
+
 /* Whether the pairs' gaps come from the per-node gaps (7, 11, and 24 with
  * Igap0 = 1) or are the constant cfg.gap (3, 5, 6, 24 with Igap0 = 0). */
 static inline int ctdi_var_gap(const ctd_iface_cfg *c)

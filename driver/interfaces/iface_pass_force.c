@@ -183,24 +183,22 @@ int ctdi_pass_normal_force(ctd_iface *it, ctdi_pass *p, ct_idx n, ct_real dt)
                           r[CTDI_R_FX], r[CTDI_R_FY], r[CTDI_R_FZ], r[CTDI_R_DD]);
     if (rc != CT_OK || !(it->cfg.VisS > 0))
         return rc;
-    /* The damper's work over the last step by the trapezoidal rule, the
-     * way the solver books every other force's work: the relative normal
-     * displacement of the step, vn dt (vn is the velocity that led to the
-     * present positions), times the mean of the damping force then and
-     * now. The kernel's -fd vn dt takes the present force alone; near the
-     * damped stability limit (omega dt of order 1) that misses the force's
-     * swing within the step and books dissipation the scheme does not do.
-     * The trapezoid may be negative there: that is what the scheme does. */
-    const ct_real *restrict fn = r[CTDI_R_FN], *restrict fel = r[CTDI_R_FEL],
-                            *restrict vn = r[CTDI_R_VN], *restrict pen = g->pen;
-    ct_real *restrict dd = r[CTDI_R_DD], *restrict fprev = st[CTDI_ST_FDAMP];
+    /* The damper's work by the trapezoidal rule (ctdi_damper_work). */
+    ctdi_damper_work(n, g->pen, r[CTDI_R_FN], r[CTDI_R_FEL], r[CTDI_R_VN], dt,
+                     st[CTDI_ST_FDAMP], r[CTDI_R_DD]);
+    return CT_OK;
+}
+
+void ctdi_damper_work(ct_idx n, const ct_real *restrict pen, const ct_real *restrict fn,
+                      const ct_real *restrict fel, const ct_real *restrict vn, ct_real dt,
+                      ct_real *restrict fprev, ct_real *restrict dd)
+{
     CTI_PAR_FOR_SIMD(n > CTDI_PAR_MIN, (schedule(static)),
     for (ct_idx k = 0; k < n; k++) {
         ct_real fd = pen[k] > 0 ? fn[k] - fel[k] : 0;
         dd[k] = -(ct_real)0.5 * (fprev[k] + fd) * vn[k] * dt;
         fprev[k] = fd;
     });
-    return CT_OK;
 }
 
 /* Time-step limits over the pairs that enter the step (ctdi_dt_counts:

@@ -95,6 +95,11 @@ void ctdi_type11_free(ctdi_epass *e)
     ct_free(e->cell_off);
     ct_free(e->cell_edge);
     ct_free(e->tmp_a);
+    ct_free(e->fd[0]);
+    ct_free(e->fd[1]);
+    ct_free(e->kpa);
+    ct_free(e->kpb);
+    ct_free(e->o2n);
     if (e->ws_ok)
         ct_assemble_ws_destroy(&e->ws);
     free(e);
@@ -107,6 +112,7 @@ size_t ctdi_type11_memory(const ctdi_epass *e, ct_idx nnode)
     b += (size_t)CTDI_FCHUNK * (CTDI_FGEO_N * sizeof(ct_real) + 1);
     b += (size_t)e->ne * (2 * sizeof(ct_idx) + 7 * sizeof(ct_real));
     b += (e->cap_cell + e->cap_ce + e->cap_tmp) * sizeof(ct_idx);
+    b += (e->cap_fd[0] + e->cap_fd[1]) * sizeof(ct_real) + 3 * e->cap_key * sizeof(ct_idx);
     /* The unique nodes of each side, the pair counts per A edge, the
      * positions at the last sort (nnode + 1 each). */
     b += ((size_t)e->nan + (size_t)e->nbn + (size_t)e->na + 2) * sizeof(ct_idx);
@@ -117,6 +123,57 @@ size_t ctdi_type11_memory(const ctdi_epass *e, ct_idx nnode)
 }
 
 void ctdi_type11_force_resort(ctdi_epass *e) { e->need_sort = 1; }
+
+/* *a with room for n items (contents not kept), capacity in *cap. */
+static int grow_fresh(void **a, size_t *cap, size_t n, size_t size)
+{
+    if (n <= *cap && *a)
+        return CT_OK;
+    ct_free(*a);
+    size_t c = n + n / 2 + 64;
+    *a = ct_calloc(c, size);
+    *cap = *a ? c : 0;
+    return *a ? CT_OK : CT_ERR_NOMEM;
+}
+
+int ctdi_type11_carry_damping(ctdi_epass *e)
+{
+    const size_t n = (size_t)e->n;
+    const int old = e->fcur, now = 1 - e->fcur;
+    int rc;
+    /* The keys and o2n grow together (one capacity); the old keys are
+     * read before they are replaced, so a growth that loses them comes
+     * after the match. */
+    size_t ck = e->cap_key;
+    if ((rc = grow_fresh((void **)&e->fd[now], &e->cap_fd[now], n, sizeof(ct_real))) != CT_OK ||
+        (rc = grow_fresh((void **)&e->o2n, &ck, n, sizeof(ct_idx))) != CT_OK)
+        return rc;
+    if (e->nkey > 0) {
+        rc = ct_pair_match(e->nkey, e->kpa, e->kpb, e->n, e->pa, e->pb, e->o2n, NULL);
+        if (rc == CT_OK)
+            rc = ct_pair_remap(e->n, e->o2n, e->fd[old], 0, e->fd[now]);
+        if (rc != CT_OK)
+            return rc;
+    } else { /* the first list: no force yet */
+        memset(e->fd[now], 0, n * sizeof(ct_real));
+    }
+    if (ck != e->cap_key || !e->kpa) {
+        ct_free(e->kpa);
+        ct_free(e->kpb);
+        e->kpa = ct_calloc(ck, sizeof(ct_idx));
+        e->kpb = ct_calloc(ck, sizeof(ct_idx));
+        if (!e->kpa || !e->kpb) {
+            e->nkey = 0;
+            return CT_ERR_NOMEM;
+        }
+        e->cap_key = ck;
+    }
+    memcpy(e->kpa, e->pa, n * sizeof(ct_idx));
+    memcpy(e->kpb, e->pb, n * sizeof(ct_idx));
+    e->nkey = e->n;
+    e->fcur = now;
+    return CT_OK;
+}
 
 ct_idx ctd_iface_nsec(const ctd_iface *it)
 {
@@ -420,9 +477,11 @@ int ctdi_type11_step(ctd_iface *it, ct_real dt, const ct_real *x, const ct_real 
     if (rc == CT_OK)
         rc = ct_normal_finish(n, r[E_PEN], r[E_FEL], r[E_KTAN], r[E_VN], r[E_MS], r[E_MM],
                               it->cfg.VisS, dt, r[E_NX], r[E_NY], r[E_NZ], r[E_FN], r[E_FX],
-                              r[E_FY], r[E_FZ], r[E_DD]);
+                              r[E_FY], r[E_FZ], it->cfg.VisS > 0 ? NULL : r[E_DD]);
     if (rc != CT_OK)
         return rc;
+    if (it->cfg.VisS > 0) /* the damper's work by the trapezoidal rule */
+        ctdi_damper_work(n, r[E_PEN], r[E_FN], r[E_FEL], r[E_VN], dt, e->fd[e->fcur], r[E_DD]);
     rep->e_contact += ct_sum_ordered(n, r[E_EN]);
     rep->e_damp += ct_sum_ordered(n, r[E_DD]);
     rep->force[0] += ct_sum_ordered(n, r[E_FX]);

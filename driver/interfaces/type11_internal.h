@@ -46,6 +46,16 @@ struct ctdi_epass {
     uint8_t *flag;
     int32_t *iflag;
     ct_edge_geo geo;
+    /* With damping: each pair's damping force at its last step
+     * (ctdi_damper_work) in fd[fcur], carried across re-sorts by the pair
+     * key (pa, pb): kpa, kpb hold the nkey keys of the list fd[fcur] is
+     * for; o2n matches the next list against them. */
+    ct_real *fd[2];
+    size_t cap_fd[2];
+    int fcur;
+    ct_idx nkey;
+    ct_idx *kpa, *kpb, *o2n;
+    size_t cap_key;
     /* Search scratch. */
     ct_real *box;          /* 6 per edge: lo xyz, hi xyz */
     ct_idx *cnt;           /* per A edge: pair counts, then offsets (na + 1) */
@@ -78,5 +88,10 @@ int ctdi_type11_search(ctd_iface *it, ctdi_epass *e, const ct_real *x, const ct_
  * edge excludes. The order stays canonical. */
 int ctdi_type11_filter(ctd_iface *it, ctdi_epass *e, const ct_real *x, const ct_real *y,
                        const ct_real *z);
+
+/* After a search, with damping: the damping force of each pair of the new
+ * list (pa, pb, n) taken from the old list's, 0 for a new pair; the new
+ * keys kept (type11.c). */
+int ctdi_type11_carry_damping(ctdi_epass *e);
 
 #endif /* CTD_TYPE11_INTERNAL_H */

@@ -254,6 +254,8 @@ int ctdi_type11_search(ctd_iface *it, ctdi_epass *e, const ct_real *x, const ct_
     if (rc == CT_OK &&
         (rc = ctdi_pair_budget(it, e->n, e->na, CTDI_EPAIR_BYTES, e->sgap)) == CT_OK)
         rc = ctdi_epass_grow(e, (size_t)e->n);
+    if (rc == CT_OK && it->cfg.VisS > 0)
+        rc = ctdi_type11_carry_damping(e);
     if (rc != CT_OK)
         return rc;
     const ct_idx n = e->n;
