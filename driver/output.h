@@ -140,6 +140,7 @@ typedef struct ctd_run_summary {
     int64_t cycles, nodes, elements, segments, output_steps;
     double end_time, time_reached, wall_time;
     double energy_error, energy_error_max;
+    double energy_error_contact; /* its contact part (ctd_energies.contact_error) */
     /* Timer split, seconds. */
     double t_search, t_narrow, t_force, t_assembly, t_elements, t_other;
     int ninterface;

@@ -186,6 +186,7 @@ int ctd_output_summary(ctd_output *o, const ctd_run_summary *s)
     jnum(f, "wall_time", s->wall_time, 1);
     jnum(f, "energy_error", s->energy_error, 1);
     jnum(f, "energy_error_max", s->energy_error_max, 1);
+    jnum(f, "energy_error_contact", s->energy_error_contact, 1);
     fputs("  \"timers\": {\n", f);
     const char *tn[6] = {"search", "narrow", "force", "assembly", "elements", "other"};
     const double tv[6] = {s->t_search, s->t_narrow, s->t_force, s->t_assembly, s->t_elements,

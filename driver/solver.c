@@ -233,6 +233,51 @@ static double stable_dt_bodies(ctd_solver *s)
 
 /* Kick of the free nodes, then the imposed components with their reaction
  * work (backward and forward halves, solver.h). keep_old: save v- first. */
+/*
+ * The work of this step's contact forces on the free nodes (rigid bodies:
+ * rigid_kick), in the two halves the kinetic energy m v- . v+ / 2 counts:
+ * the velocity increment of the step, dtk f / m, makes that product grow by
+ * dtk f . v- / 2 now and dtk f . v+ / 2 at the next cycle, so a force's work
+ * is dtk f . (v- + v+) / 2. v+ of a constrained direction is its imposed
+ * velocity. Called by kick before it updates the velocities; sums in fixed
+ * chunks (the same bits for any thread count).
+ */
+static void contact_work(ctd_solver *s, double dtk)
+{
+    cti_solver_work *w = s->w;
+    const ctd_model *m = s->model;
+    const ct_real *mass = m->mesh.nodes.m;
+    const ct_idx nn = s->nnode;
+    double *back = w->part_sum, *fwd = w->part_sum + w->nchunk + 1;
+    CTI_PAR_FOR(w->nchunk > 1, (schedule(static)),
+    for (int c = 0; c < w->nchunk; c++) {
+        ct_idx lo = (ct_idx)c * CTI_CHUNK, hi = lo + CTI_CHUNK < nn ? lo + CTI_CHUNK : nn;
+        double b = 0, f = 0;
+        for (ct_idx i = lo; i < hi; i++) {
+            if (!w->free_node[i])
+                continue;
+            const double fc[3] = {w->fcx[i], w->fcy[i], w->fcz[i]};
+            const double ft[3] = {w->fx[i], w->fy[i], w->fz[i]};
+            const double vm[3] = {s->vx[i], s->vy[i], s->vz[i]};
+            const double im = dtk / mass[i];
+            for (int d = 0; d < 3; d++) {
+                double vp = m->bc_mask[i] >> d & 1 ? m->bc_v[d][i] : vm[d] + im * ft[d];
+                b += fc[d] * vm[d];
+                f += fc[d] * vp;
+            }
+        }
+        back[c] = b;
+        fwd[c] = f;
+    });
+    double b = 0, f = 0;
+    for (int c = 0; c < w->nchunk; c++) {
+        b += back[c];
+        f += fwd[c];
+    }
+    w->w_c_back = 0.5 * dtk * b;
+    w->w_c_fwd = 0.5 * dtk * f;
+}
+
 static void kick(ctd_solver *s, double dtk, double dt_new, int keep_old)
 {
     ctd_model *m = s->model;
@@ -240,6 +285,8 @@ static void kick(ctd_solver *s, double dtk, double dt_new, int keep_old)
     const ct_real *mass = m->mesh.nodes.m;
     ct_idx nn = s->nnode;
     const ct_real dk = (ct_real)dtk;
+    if (s->nhook)
+        contact_work(s, dtk);
     CTI_PAR_FOR(nn > CTD_PAR_MIN, (schedule(static)),
     for (ct_idx i = 0; i < nn; i++) {
         if (keep_old) {
@@ -278,6 +325,18 @@ static void kick(ctd_solver *s, double dtk, double dt_new, int keep_old)
 
 /* Rigid bodies: force and moment of their nodes' forces, kick (imposed
  * components of driven bodies, with their reaction work). */
+/* The world angular velocity R diag(Iinv) R^T L of body r for the angular
+ * momentum L, at its present orientation. */
+static void body_omega(const ctd_rigid *r, const double L[3], double om[3])
+{
+    double R[9], a[3];
+    ctd_rigid_rotation(r, R);
+    for (int i = 0; i < 3; i++)
+        a[i] = (R[i] * L[0] + R[3 + i] * L[1] + R[6 + i] * L[2]) * r->Iinv[i];
+    for (int i = 0; i < 3; i++)
+        om[i] = R[3 * i] * a[0] + R[3 * i + 1] * a[1] + R[3 * i + 2] * a[2];
+}
+
 static void rigid_kick(ctd_solver *s, double dtk, double dt_new)
 {
     ctd_model *m = s->model;
@@ -285,6 +344,21 @@ static void rigid_kick(ctd_solver *s, double dtk, double dt_new)
     for (int b = 0; b < m->nbody; b++) {
         ctd_model_body *bd = &m->body[b];
         ctd_rigid *r = &bd->rigid;
+        /* The contact forces' resultant and moment on the body, for their
+         * work (contact_work): with the centre's velocity before and after
+         * the kick, and the angular velocity of the angular momentum before
+         * and after it at the present orientation (the kinetic energy's
+         * product form is taken in that frame too; exact for the
+         * translation, for the rotation to second order in the step). */
+        double Fc[3] = {0, 0, 0}, Tc[3] = {0, 0, 0};
+        if (s->nhook) {
+            ctd_rigid_clear(r);
+            ctd_rigid_accumulate(r, s->x, s->y, s->z, w->fcx, w->fcy, w->fcz);
+            for (int d = 0; d < 3; d++) {
+                Fc[d] = r->F[d];
+                Tc[d] = r->tau[d];
+            }
+        }
         ctd_rigid_clear(r);
         ctd_rigid_accumulate(r, s->x, s->y, s->z, w->fx, w->fy, w->fz);
         for (int d = 0; d < 3; d++) {
@@ -302,6 +376,15 @@ static void rigid_kick(ctd_solver *s, double dtk, double dt_new)
                 w->w_bc_back += 0.5 * R * w->dt_prev * w->vc_old[b][d];
                 w->w_bc_fwd += 0.5 * R * dt_new * bd->v[d];
                 r->vc[d] = bd->v[d];
+            }
+        }
+        if (s->nhook) {
+            double om0[3], om1[3];
+            body_omega(r, w->L_old[b], om0);
+            body_omega(r, r->L, om1);
+            for (int d = 0; d < 3; d++) {
+                w->w_c_back += 0.5 * dtk * (Fc[d] * w->vc_old[b][d] + Tc[d] * om0[d]);
+                w->w_c_fwd += 0.5 * dtk * (Fc[d] * r->vc[d] + Tc[d] * om1[d]);
             }
         }
         ctd_rigid_clear(r);
@@ -505,6 +588,7 @@ int ctd_solver_run(ctd_solver *s)
                 next_out += s->every;
         }
         w->w_bc += w->w_bc_back + w->w_bc_fwd;
+        w->w_c += w->w_c_back + w->w_c_fwd;
         if (s->opts.dry) {
             s->dt = dt_new; /* the step the run would start with */
             s->dt_max = dt_cap;

@@ -190,6 +190,12 @@ typedef struct ctd_energies {
     double kinetic, internal, contact, damping, friction, external;
     double total;  /* kinetic + internal + contact + damping + friction */
     double error;  /* (total - E_0 - external) / max(E) */
+    /* The contact's part of error: (contact + damping + friction + W_c) /
+     * max(E), W_c the work the contact forces have done on the nodes (and
+     * rigid bodies), as the kinetic energy m v- . v+ / 2 counts it. 0 when
+     * the interfaces' books are the work their forces do; the rest of
+     * error is the elements', loads' and constraints'. */
+    double contact_error;
 } ctd_energies;
 
 typedef struct ctd_timers {

@@ -36,6 +36,9 @@ typedef struct cti_solver_work {
     double w_bc;                  /* imposed-velocity work up to the last step (both halves) */
     double w_bc_back;             /* this step's backward half */
     double w_bc_fwd;              /* this step's forward half */
+    double w_c;                   /* contact forces' work up to the last step (both halves) */
+    double w_c_back, w_c_fwd;     /* this step's halves (contact_work in solver.c) */
+    double books0, work0;         /* the interfaces' books and w_c at cycle 0 */
     ctd_loads loads;              /* nodal forces and pressures, and their work */
     double damping, friction;     /* dissipation so far */
     double internal;              /* elements' energy at x(n) */

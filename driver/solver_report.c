@@ -161,6 +161,14 @@ void cti_solver_energies(ctd_solver *s)
     e->error = s->e_max > 0 ? (e->total - s->e0.total - e->external) / s->e_max : 0;
     if (fabs(e->error) > s->error_max)
         s->error_max = fabs(e->error);
+    /* The contact's part, from cycle 0 on as the error (an initial
+     * penetration's stored energy is E_0's). */
+    const double books = e->contact + e->damping + e->friction, work = w->w_c + w->w_c_back;
+    if (s->cycle == 0) {
+        w->books0 = books;
+        w->work0 = work;
+    }
+    e->contact_error = s->e_max > 0 ? (books - w->books0 + work - w->work0) / s->e_max : 0;
 }
 
 static void out_mesh(const ctd_solver *s, ctd_out_mesh *om, const ct_real *x, const ct_real *y,
@@ -300,6 +308,9 @@ static void print_report(ctd_solver *s, FILE *f)
             s->e0.total);
     fprintf(f, "  energy error (E - E0 - W_ext) / max(E): final %+.3e, largest %.3e\n", e->error,
             s->error_max);
+    if (s->nhook)
+        fprintf(f, "  of which contact: %+.3e (the interfaces' stored energy, damping and friction "
+                   "against the work their forces did on the nodes)\n", e->contact_error);
     for (int i = 0; i < s->nhook; i++) {
         fprintf(f, "  interface %s (type %d, %s search): max force %.4g, max active pairs %lld, "
                    "re-sorts %lld", s->w->if_names[i], s->hooks[i].type,
@@ -393,7 +404,7 @@ int cti_solver_finish(ctd_solver *s)
                                s->status, s->exit_code, s->message[0] ? s->message : NULL,
                                s->threads, s->cycle, s->nnode, m->nelem, m->mesh.nseg,
                                s->output_steps, s->end_time, s->time, s->wall, s->e.error,
-                               s->error_max, t->search, t->narrow, t->force, t->assembly,
+                               s->error_max, s->e.contact_error, t->search, t->narrow, t->force, t->assembly,
                                t->elements, t->other, s->nhook, ifs};
         rc = ctd_output_summary(w->out, &sum);
         w->wrote_summary = rc == CT_OK;
