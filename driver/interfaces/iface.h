@@ -225,15 +225,21 @@ enum { CTD_IT_SEARCH = 0, CTD_IT_NARROW, CTD_IT_FORCE, CTD_IT_ASSEMBLE, CTD_IT_N
  * interface sets no limit. */
 typedef struct ctd_iface_report {
     int on;                /* 1 when Tstart <= time <= Tstop */
-    double e_contact;      /* elastic energy stored in the contact springs now
-                              (TYPE6: the integral of the curve from 0 to
-                              p_max) */
+    double e_contact;      /* elastic energy stored in the contact springs now,
+                              normal and (friction's elastic predictor)
+                              tangential (TYPE6: the integral of the curve
+                              from 0 to p_max) */
     double e_damp;         /* normal damping dissipation of this step: the
                               damping force's work over the step by the
                               trapezoidal rule (node-segment types; may be
                               negative near the damped stability limit,
                               where the scheme itself feeds energy in) */
-    double e_fric;         /* friction dissipation of this step (>= 0) */
+    double e_fric;         /* friction dissipation of this step: minus the
+                              friction force's work over the step by the
+                              trapezoidal rule, less the change of its
+                              tangential springs' energy (which e_contact
+                              holds); may be negative in a step where a
+                              spring gives back what it stored */
     double force[3];       /* total force on the secondary side (sum over
                               pairs of the force on the secondary node or
                               edge A; TYPE3's second pass counts minus the
