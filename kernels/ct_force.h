@@ -268,7 +268,11 @@ ct_real ct_damping_coef(ct_real viss, ct_real K, ct_real ms, ct_real mm);
  * The total normal force is clamped to be compressive (as Radioss does): the
  * damper may reduce the spring force to zero while the node separates but
  * never pulls. dissip[k] = -(fn - fel) vn dt >= 0 is the work the clamped
- * damper removes over the step. (fx, fy, fz) = fn n. Pairs out of contact
+ * damper removes over the step, if the force and vn held through it: a
+ * one-step estimate, which near the damped stability limit (omega dt of
+ * order 1, vn swings within a step) books dissipation the central
+ * difference does not do; an energy balance takes ct_damping_work's books
+ * instead. (fx, fy, fz) = fn n. Pairs out of contact
  * get zeros. mm may be NULL (secondary mass only); fn and dissip may be NULL.
  * CT_ERR_ARG for a negative count, NULL required arrays, or dt or viss
  * NaN, infinite or (dt) negative; CT_ERR_NONFINITE (see the conventions)
@@ -288,6 +292,27 @@ int ct_normal_finish(ct_idx npair, const ct_real *p, const ct_real *fel, const c
  * be NULL. K may be NULL to use the scalar K0 for every pair. Errors as for
  * ct_normal_finish, with K (or K0) in place of fel and kd.
  */
+/*
+ * The damper's books for an energy balance of the central difference: its
+ * work over the last step by the trapezoidal rule, as the scheme's kinetic
+ * energy m v- . v+ / 2 counts every force's work (a force of step n works
+ * over the half steps before and after x(n)). Per pair k, after
+ * ct_normal_finish (fn, fel, vn its inputs and output; p the penetration):
+ * the damping part of the normal force fd = fn - fel (0 when p <= 0) goes
+ * to fprev[k], and dissip[k] = -(fprev_old[k] + fd) vn dt / 2, vn the
+ * velocity that led to x(n), dt that step. fprev is the caller's per-pair
+ * state, 0 for a new pair, carried with its pair across re-sorts (e.g.
+ * ct_pair_match, ct_pair_remap) and to the pair a contact moves to. A
+ * step's value may be negative near the stability limit: the scheme does
+ * that. On a damped edge contact of the driver the one-step figure booked
+ * 13 % more than the damping forces did, this within 0.3 % of their nodal
+ * work (the force's second half step taken at this step's contact point).
+ * CT_ERR_ARG for a negative count, NULL arrays or dt NaN, infinite or
+ * negative.
+ */
+int ct_damping_work(ct_idx npair, const ct_real *p, const ct_real *fn, const ct_real *fel,
+                    const ct_real *vn, ct_real dt, ct_real *fprev, ct_real *dissip);
+
 int ct_normal_force(ct_idx npair, const ct_real *p, const ct_real *nx, const ct_real *ny,
                     const ct_real *nz, const ct_real *vn, const ct_real *K, ct_real K0,
                     const ct_real *ms, const ct_real *mm, ct_real viss, ct_real dt,

@@ -231,6 +231,32 @@ int ct_friction_step(ct_idx npair, const ct_real *nx, const ct_real *ny, const c
     return bad ? CT_ERR_NONFINITE : CT_OK;
 }
 
+int ct_friction_work(ct_idx npair, const ct_real *vx, const ct_real *vy, const ct_real *vz,
+                     const ct_real *ftx, const ct_real *fty, const ct_real *ftz,
+                     const ct_real *kt, ct_real kt0, ct_real dt, int after, ct_real *dissip,
+                     ct_real *energy)
+{
+    if (npair < 0 || !vx || !vy || !vz || !ftx || !fty || !ftz || !dissip ||
+        !cti_step_ok(dt))
+        return CT_ERR_ARG;
+    const ct_real *restrict ux = vx, *restrict uy = vy, *restrict uz = vz, *restrict gx = ftx,
+                            *restrict gy = fty, *restrict gz = ftz, *restrict kk = kt;
+    ct_real *restrict d = dissip, *restrict en = energy;
+    const ct_real sgn = after ? -1 : 1;
+    const int has_k = kt != NULL, has_e = after && energy != NULL;
+    CTI_PAR_FOR_SIMD(npair > CTI_PAR_MIN, (schedule(static)),
+    for (ct_idx k = 0; k < npair; k++) {
+        const ct_real w = (ct_real)-0.5 * (gx[k] * ux[k] + gy[k] * uy[k] + gz[k] * uz[k]) * dt;
+        const ct_real g2 = gx[k] * gx[k] + gy[k] * gy[k] + gz[k] * gz[k];
+        const ct_real s = has_k ? kk[k] : kt0;
+        const ct_real es = s > 0 ? g2 / (2 * s) : 0;
+        d[k] = (after ? d[k] : 0) + w + sgn * es;
+        if (has_e)
+            en[k] += es;
+    });
+    return CT_OK;
+}
+
 double ct_friction_dissipation(ct_idx npair, const ct_real *dissip)
 {
     return ct_sum_ordered(npair, dissip);

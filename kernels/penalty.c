@@ -467,6 +467,22 @@ CTI_SIMD_SQRT_BAD
 /* Pairs per block of the damping loop. */
 #define CTI_FINISH_BLOCK 2048
 
+int ct_damping_work(ct_idx npair, const ct_real *p, const ct_real *fn, const ct_real *fel,
+                    const ct_real *vn, ct_real dt, ct_real *fprev, ct_real *dissip)
+{
+    if (npair < 0 || !p || !fn || !fel || !vn || !fprev || !dissip || !cti_step_ok(dt))
+        return CT_ERR_ARG;
+    const ct_real *restrict pp = p, *restrict f = fn, *restrict fe = fel, *restrict v = vn;
+    ct_real *restrict fo = fprev, *restrict d = dissip;
+    CTI_PAR_FOR_SIMD(npair > CTI_PAR_MIN, (schedule(static)),
+    for (ct_idx k = 0; k < npair; k++) {
+        ct_real fd = pp[k] > 0 ? f[k] - fe[k] : 0;
+        d[k] = -(ct_real)0.5 * (fo[k] + fd) * v[k] * dt;
+        fo[k] = fd;
+    });
+    return CT_OK;
+}
+
 int ct_normal_finish(ct_idx npair, const ct_real *p, const ct_real *fel, const ct_real *kd,
                      const ct_real *vn, const ct_real *ms, const ct_real *mm, ct_real viss,
                      ct_real dt, const ct_real *nx, const ct_real *ny, const ct_real *nz,

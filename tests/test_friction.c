@@ -524,3 +524,42 @@ Test(friction, pair_force_fused_bit_identical_to_composition)
     for (int i = 0; i < NA; i++)
         free(a[i]);
 }
+
+/* ct_friction_work's books against hand values: pair 0 sticks on a spring
+ * of 10 (its force -3 -> -2 along x while it moves at 1), pair 1 has no
+ * spring (kt 0) and slides at 2 along y with a force -1. Before the step:
+ * pair 0 books -(-3)(1)(0.1)/2 = 0.15 plus the spring's 9/20 given back;
+ * after: -(-2)(1)(0.1)/2 = 0.1 less the spring's 4/20 now held, 0.5 in all,
+ * which is minus the trapezoid of the force's work, 0.25, plus what the
+ * spring gave back, 0.45 - 0.2. kt NULL with kt0 10 books pair 0 the same. */
+Test(friction, work_books_hand_values)
+{
+    ct_real vx[2] = {1, 0}, vy[2] = {0, 2}, vz[2] = {0, 0};
+    ct_real gx[2] = {-3, 0}, gy[2] = {0, 0}, gz[2] = {0, 0};
+    ct_real kt[2] = {10, 0}, d[2] = {-7, -7}, en[2] = {0.7, 0};
+    cr_assert_eq(ct_friction_work(2, vx, vy, vz, gx, gy, gz, kt, 0, 0.1, 0, d, en), CT_OK);
+    cr_assert_leq(ctt_rel(d[0], 0.6), TOL, "%.17g", (double)d[0]);
+    cr_assert_eq(d[1], 0);
+    cr_assert(en[0] == (ct_real)0.7 && en[1] == 0, "energy untouched before the step");
+    gx[0] = -2;
+    gy[1] = -1;
+    cr_assert_eq(ct_friction_work(2, vx, vy, vz, gx, gy, gz, kt, 0, 0.1, 1, d, en), CT_OK);
+    cr_assert_leq(ctt_rel(d[0], 0.5), TOL, "%.17g", (double)d[0]);
+    cr_assert_leq(ctt_rel(d[1], 0.1), TOL, "%.17g", (double)d[1]);
+    cr_assert_leq(ctt_rel(en[0], 0.9), TOL, "%.17g", (double)en[0]);
+    cr_assert_eq(en[1], 0);
+    ct_real d1[1] = {0};
+    cr_assert_eq(ct_friction_work(1, vx, vy, vz, gx, gy, gz, NULL, 10, 0.1, 1, d1, NULL), CT_OK);
+    cr_assert_leq(ctt_rel(d1[0], 0.1 - 0.2), TOL, "%.17g", (double)d1[0]);
+    /* Bad arguments. */
+    cr_assert_eq(ct_friction_work(-1, vx, vy, vz, gx, gy, gz, kt, 0, 0.1, 0, d, NULL),
+                 CT_ERR_ARG);
+    cr_assert_eq(ct_friction_work(2, vx, vy, vz, NULL, gy, gz, kt, 0, 0.1, 0, d, NULL),
+                 CT_ERR_ARG);
+    cr_assert_eq(ct_friction_work(2, vx, vy, vz, gx, gy, gz, kt, 0, 0.1, 0, NULL, NULL),
+                 CT_ERR_ARG);
+    cr_assert_eq(ct_friction_work(2, vx, vy, vz, gx, gy, gz, kt, 0, -0.1, 0, d, NULL),
+                 CT_ERR_ARG);
+    cr_assert_eq(ct_friction_work(2, vx, vy, vz, gx, gy, gz, kt, 0, (ct_real)NAN, 0, d, NULL),
+                 CT_ERR_ARG);
+}

@@ -578,3 +578,26 @@ Test(penalty, type7_energy_array_equals_one_pair)
         }
     }
 }
+
+/* ct_damping_work's books against hand values (dt 0.1): pair 0 in contact,
+ * damping part 5 - 4 = 1 after 1, approaching at 2: -(1 + 1)(-2)(0.1)/2 =
+ * 0.2; pair 1, damping part 2 - 3 = -1 (the damper eases the spring while
+ * the node leaves) after 0.5, leaving at 1: -(0.5 - 1)(1)(0.1)/2 = 0.025;
+ * pair 2 out of contact, its last damping force 2 still books its second
+ * half step: -(2 + 0)(3)(0.1)/2 = -0.3 (negative: the force did work on a
+ * node it pushed away), and its state falls to 0. */
+Test(penalty, damping_work_hand_values)
+{
+    ct_real p[3] = {0.1, 0.2, -0.1}, fn[3] = {5, 2, 0}, fel[3] = {4, 3, 1};
+    ct_real vn[3] = {-2, 1, 3}, fo[3] = {1, 0.5, 2}, d[3] = {9, 9, 9};
+    cr_assert_eq(ct_damping_work(3, p, fn, fel, vn, 0.1, fo, d), CT_OK);
+    const double want[3] = {0.2, 0.025, -0.3}, wf[3] = {1, -1, 0};
+    for (int k = 0; k < 3; k++) {
+        cr_assert_leq(ctt_rel(d[k], want[k]), TOL, "%d: %.17g", k, (double)d[k]);
+        cr_assert_eq(fo[k], (ct_real)wf[k], "%d: state %g", k, (double)fo[k]);
+    }
+    cr_assert_eq(ct_damping_work(-1, p, fn, fel, vn, 0.1, fo, d), CT_ERR_ARG);
+    cr_assert_eq(ct_damping_work(3, p, fn, fel, NULL, 0.1, fo, d), CT_ERR_ARG);
+    cr_assert_eq(ct_damping_work(3, p, fn, fel, vn, 0.1, NULL, d), CT_ERR_ARG);
+    cr_assert_eq(ct_damping_work(3, p, fn, fel, vn, (ct_real)INFINITY, fo, d), CT_ERR_ARG);
+}

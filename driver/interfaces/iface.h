@@ -231,7 +231,7 @@ typedef struct ctd_iface_report {
                               from 0 to p_max) */
     double e_damp;         /* normal damping dissipation of this step: the
                               damping force's work over the step by the
-                              trapezoidal rule (ctdi_damper_work; may be
+                              trapezoidal rule (ct_damping_work; may be
                               negative near the damped stability limit,
                               where the scheme itself feeds energy in) */
     double e_fric;         /* friction dissipation of this step: minus the

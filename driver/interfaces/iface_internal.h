@@ -158,52 +158,6 @@ static inline double ctdi_damped_dt_factor(double viss)
     return sqrt(1.0 + zeta * zeta) - zeta;
 }
 
-/* The damper's work over the last step by the trapezoidal rule, the way
- * the solver books every other force's work (its kinetic energy is the
- * product m v- . v+ / 2 of the central difference: a force of step n works
- * over the half steps before and after x(n)): the relative normal
- * displacement of the step, vn dt (vn, the velocity the force was computed
- * with, is the one that led to the present positions), times the mean of
- * the damping force then and now. Per pair k: the damping part of the
- * normal force fd = fn - fel (0 out of contact) into fprev[k], and the
- * dissipation -(fprev_old + fd) vn dt / 2 into dd[k]. fprev is a per-pair
- * state that follows its pair across re-sorts (0 for a new pair: out of
- * contact at the last step). The kernel's own -fd vn dt
- * (ct_normal_finish) takes the present force alone; near the damped
- * stability limit (omega dt of order 1) vn swings within a step, and that
- * rule, which TYPE11 used, booked 13 % more dissipation than its damping
- * forces did on the wide folding sheet (bench/scenes/folding-sheet-wide.yaml:
- * 4.6 J, 3.7 % of the run's energy). The trapezoid takes the last force's
- * second half step with this step's contact point and normal; the
- * forces' own nodal work differed from it by 0.05 % there, and by 0.3 %
- * under a fast sliding motion (tests/test_iface_damping.c). A pair that
- * leaves the candidates within one step (moving beyond the margin in a
- * step) takes its last force's second half step with it. A step's value
- * may be negative near the stability limit: that is what the scheme
- * does. */
-void ctdi_damper_work(ct_idx n, const ct_real *pen, const ct_real *fn, const ct_real *fel,
-                      const ct_real *vn, ct_real dt, ct_real *fprev, ct_real *dd);
-
-/* Friction's books, the way the solver books a force's work (as
- * ctdi_damper_work): the dissipation of a step is minus the friction
- * force's work over it by the trapezoidal rule, -(g(n-1) + g(n)) . v dt / 2
- * (g the pair's friction force on its secondary side, its history, v the
- * relative velocity that led to x(n)), less what the tangential spring of
- * the elastic predictor (stiffness kt) stores meanwhile: its energy
- * |g|^2 / (2 kt) counts as the contact's stored energy (en). Called before
- * the step (after 0: g the history it starts from; fd gets its half and
- * its spring energy) and after it (after 1: g the new force; fd gets the
- * rest, en the spring energy). The kernel's own figure, |g| times the
- * return to the cone's slip (ct_friction_step), took the slip of the
- * predictor from v alone: on the sliding block (Coulomb 0.2 with TYPE24's
- * damping VisS 1) the contact's part of the energy error was -2.19e-3,
- * -1.48e-3 at dt_scale 0.9, 0.45 (first order); with these books -0.36e-3,
- * -0.09e-3, -0.03e-3 at 0.9, 0.45, 0.225 (second order). A step's value may
- * be negative (a spring giving back what it stored). */
-void ctdi_friction_books(ct_idx n, const ct_real *vx, const ct_real *vy, const ct_real *vz,
-                         const ct_real *gx, const ct_real *gy, const ct_real *gz,
-                         const ct_real *kt, ct_real dt, int after, ct_real *fd, ct_real *en);
-
 /* Whether the pairs' gaps come from the per-node gaps (7, 11, and 24 with
  * Igap0 = 1) or are the constant cfg.gap (3, 5, 6, 24 with Igap0 = 0). */
 static inline int ctdi_var_gap(const ctd_iface_cfg *c)

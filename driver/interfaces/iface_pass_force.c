@@ -88,19 +88,22 @@ int ctdi_pass_friction(ctd_iface *it, ctdi_pass *p, ct_idx n, ct_real dt)
         );
     }
     ct_real alpha = ct_filter_alpha(it->cfg.Ifiltr, it->cfg.Xfreq, dt);
-    /* The books (ctdi_friction_books): the last step's force's half first. */
-    ctdi_friction_books(n, r[CTDI_R_VRX], r[CTDI_R_VRY], r[CTDI_R_VRZ], ft[CTDI_ST_FTX],
-                        ft[CTDI_ST_FTY], ft[CTDI_ST_FTZ], r[CTDI_R_KT], dt, 0, r[CTDI_R_FD],
-                        NULL);
-    int rc = ct_friction_step(n, g->nx, g->ny, g->nz, r[CTDI_R_VRX], r[CTDI_R_VRY],
-                              r[CTDI_R_VRZ], r[CTDI_R_FN], mu, it->coef[0], r[CTDI_R_KT], 0,
-                              dt, alpha, ft[CTDI_ST_FTX], ft[CTDI_ST_FTY], ft[CTDI_ST_FTZ],
-                              NULL);
+    /* The books (ct_friction_work): the last step's force's half first. */
+    int rc = ct_friction_work(n, r[CTDI_R_VRX], r[CTDI_R_VRY], r[CTDI_R_VRZ], ft[CTDI_ST_FTX],
+                              ft[CTDI_ST_FTY], ft[CTDI_ST_FTZ], r[CTDI_R_KT], 0, dt, 0,
+                              r[CTDI_R_FD], NULL);
     if (rc != CT_OK)
         return rc;
-    ctdi_friction_books(n, r[CTDI_R_VRX], r[CTDI_R_VRY], r[CTDI_R_VRZ], ft[CTDI_ST_FTX],
-                        ft[CTDI_ST_FTY], ft[CTDI_ST_FTZ], r[CTDI_R_KT], dt, 1, r[CTDI_R_FD],
-                        r[CTDI_R_EN]);
+    rc = ct_friction_step(n, g->nx, g->ny, g->nz, r[CTDI_R_VRX], r[CTDI_R_VRY], r[CTDI_R_VRZ],
+                          r[CTDI_R_FN], mu, it->coef[0], r[CTDI_R_KT], 0, dt, alpha,
+                          ft[CTDI_ST_FTX], ft[CTDI_ST_FTY], ft[CTDI_ST_FTZ], NULL);
+    if (rc != CT_OK)
+        return rc;
+    rc = ct_friction_work(n, r[CTDI_R_VRX], r[CTDI_R_VRY], r[CTDI_R_VRZ], ft[CTDI_ST_FTX],
+                          ft[CTDI_ST_FTY], ft[CTDI_ST_FTZ], r[CTDI_R_KT], 0, dt, 1,
+                          r[CTDI_R_FD], r[CTDI_R_EN]);
+    if (rc != CT_OK)
+        return rc;
     ct_real *restrict fx = r[CTDI_R_FX], *restrict fy = r[CTDI_R_FY], *restrict fz = r[CTDI_R_FZ];
     const ct_real *restrict tx = ft[CTDI_ST_FTX], *restrict ty = ft[CTDI_ST_FTY],
                             *restrict tz = ft[CTDI_ST_FTZ];
@@ -111,26 +114,6 @@ int ctdi_pass_friction(ctd_iface *it, ctdi_pass *p, ct_idx n, ct_real dt)
         fz[k] += tz[k];
     });
     return CT_OK;
-}
-
-void ctdi_friction_books(ct_idx n, const ct_real *restrict vx, const ct_real *restrict vy,
-                         const ct_real *restrict vz, const ct_real *restrict gx,
-                         const ct_real *restrict gy, const ct_real *restrict gz,
-                         const ct_real *restrict kt, ct_real dt, int after,
-                         ct_real *restrict fd, ct_real *restrict en)
-{
-    /* The spring's energy |g|^2 / (2 kt) (none without a spring); after the
-     * step it is stored (en), before it the dissipation gives it back. */
-    const ct_real sgn = after ? -1 : 1;
-    CTI_PAR_FOR_SIMD(n > CTDI_PAR_MIN, (schedule(static)),
-    for (ct_idx k = 0; k < n; k++) {
-        const ct_real w = (ct_real)-0.5 * (gx[k] * vx[k] + gy[k] * vy[k] + gz[k] * vz[k]) * dt;
-        const ct_real g2 = gx[k] * gx[k] + gy[k] * gy[k] + gz[k] * gz[k];
-        const ct_real es = kt[k] > 0 ? g2 / (2 * kt[k]) : 0;
-        fd[k] = (after ? fd[k] : 0) + w + sgn * es;
-        if (after)
-            en[k] += es;
-    });
 }
 
 /* Initial penetration at the first active cycle (TYPE24). */
@@ -210,22 +193,9 @@ int ctdi_pass_normal_force(ctd_iface *it, ctdi_pass *p, ct_idx n, ct_real dt)
                           r[CTDI_R_FX], r[CTDI_R_FY], r[CTDI_R_FZ], r[CTDI_R_DD]);
     if (rc != CT_OK || !(it->cfg.VisS > 0))
         return rc;
-    /* The damper's work by the trapezoidal rule (ctdi_damper_work). */
-    ctdi_damper_work(n, g->pen, r[CTDI_R_FN], r[CTDI_R_FEL], r[CTDI_R_VN], dt,
-                     st[CTDI_ST_FDAMP], r[CTDI_R_DD]);
-    return CT_OK;
-}
-
-void ctdi_damper_work(ct_idx n, const ct_real *restrict pen, const ct_real *restrict fn,
-                      const ct_real *restrict fel, const ct_real *restrict vn, ct_real dt,
-                      ct_real *restrict fprev, ct_real *restrict dd)
-{
-    CTI_PAR_FOR_SIMD(n > CTDI_PAR_MIN, (schedule(static)),
-    for (ct_idx k = 0; k < n; k++) {
-        ct_real fd = pen[k] > 0 ? fn[k] - fel[k] : 0;
-        dd[k] = -(ct_real)0.5 * (fprev[k] + fd) * vn[k] * dt;
-        fprev[k] = fd;
-    });
+    /* The damper's books: its work by the trapezoidal rule. */
+    return ct_damping_work(n, g->pen, r[CTDI_R_FN], r[CTDI_R_FEL], r[CTDI_R_VN], dt,
+                           st[CTDI_ST_FDAMP], r[CTDI_R_DD]);
 }
 
 /* Time-step limits over the pairs that enter the step (ctdi_dt_counts:

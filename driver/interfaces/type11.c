@@ -480,8 +480,10 @@ int ctdi_type11_step(ctd_iface *it, ct_real dt, const ct_real *x, const ct_real 
                               r[E_FY], r[E_FZ], it->cfg.VisS > 0 ? NULL : r[E_DD]);
     if (rc != CT_OK)
         return rc;
-    if (it->cfg.VisS > 0) /* the damper's work by the trapezoidal rule */
-        ctdi_damper_work(n, r[E_PEN], r[E_FN], r[E_FEL], r[E_VN], dt, e->fd[e->fcur], r[E_DD]);
+    if (it->cfg.VisS > 0 && /* the damper's books: its work by the trapezoidal rule */
+        (rc = ct_damping_work(n, r[E_PEN], r[E_FN], r[E_FEL], r[E_VN], dt, e->fd[e->fcur],
+                              r[E_DD])) != CT_OK)
+        return rc;
     rep->e_contact += ct_sum_ordered(n, r[E_EN]);
     rep->e_damp += ct_sum_ordered(n, r[E_DD]);
     rep->force[0] += ct_sum_ordered(n, r[E_FX]);

@@ -47,7 +47,7 @@ struct ctdi_epass {
     int32_t *iflag;
     ct_edge_geo geo;
     /* With damping: each pair's damping force at its last step
-     * (ctdi_damper_work) in fd[fcur], carried across re-sorts by the pair
+     * (ct_damping_work) in fd[fcur], carried across re-sorts by the pair
      * key (pa, pb): kpa, kpb hold the nkey keys of the list fd[fcur] is
      * for; o2n matches the next list against them. */
     ct_real *fd[2];
