@@ -231,6 +231,37 @@ int ct_friction_step(ct_idx npair, const ct_real *nx, const ct_real *ny, const c
     return bad ? CT_ERR_NONFINITE : CT_OK;
 }
 
+/* Block [i0, i1) of ct_friction_work, inlined with constant flags (the kt
+ * array or kt0, adding to dissip or not, the energy or not): a load or a
+ * store under a condition does not vectorise under clang, nor an outlined
+ * parallel loop over pointers it cannot bound. */
+static inline __attribute__((always_inline)) void
+cti_friction_work_block(int64_t i0, int64_t i1, const ct_real *restrict ux,
+                        const ct_real *restrict uy, const ct_real *restrict uz,
+                        const ct_real *restrict gx, const ct_real *restrict gy,
+                        const ct_real *restrict gz, const ct_real *restrict kk, ct_real kt0,
+                        ct_real dt, ct_real *restrict d, ct_real *restrict en, const int has_k,
+                        const int after, const int has_e)
+{
+    const ct_real sgn = after ? -1 : 1;
+#pragma omp simd
+    for (int64_t k = i0; k < i1; k++) {
+        const ct_real g2 = gx[k] * gx[k] + gy[k] * gy[k] + gz[k] * gz[k];
+        const ct_real s = has_k ? kk[k] : kt0;
+        const ct_real e = s > 0 ? g2 / (2 * s) : 0;
+        const ct_real w = (ct_real)-0.5 * (gx[k] * ux[k] + gy[k] * uy[k] + gz[k] * uz[k]) * dt;
+        if (after)
+            d[k] += w + sgn * e;
+        else
+            d[k] = w + sgn * e;
+        if (has_e)
+            en[k] += e;
+    }
+}
+
+/* Pairs per block of ct_friction_work. */
+#define CTI_FWORK_BLOCK 2048
+
 int ct_friction_work(ct_idx npair, const ct_real *vx, const ct_real *vy, const ct_real *vz,
                      const ct_real *ftx, const ct_real *fty, const ct_real *ftz,
                      const ct_real *kt, ct_real kt0, ct_real dt, int after, ct_real *dissip,
@@ -239,21 +270,23 @@ int ct_friction_work(ct_idx npair, const ct_real *vx, const ct_real *vy, const c
     if (npair < 0 || !vx || !vy || !vz || !ftx || !fty || !ftz || !dissip ||
         !cti_step_ok(dt))
         return CT_ERR_ARG;
-    const ct_real *restrict ux = vx, *restrict uy = vy, *restrict uz = vz, *restrict gx = ftx,
-                            *restrict gy = fty, *restrict gz = ftz, *restrict kk = kt;
-    ct_real *restrict d = dissip, *restrict en = energy;
-    const ct_real sgn = after ? -1 : 1;
-    const int has_k = kt != NULL, has_e = after && energy != NULL;
-    CTI_PAR_FOR_SIMD(npair > CTI_PAR_MIN, (schedule(static)),
-    for (ct_idx k = 0; k < npair; k++) {
-        const ct_real w = (ct_real)-0.5 * (gx[k] * ux[k] + gy[k] * uy[k] + gz[k] * uz[k]) * dt;
-        const ct_real g2 = gx[k] * gx[k] + gy[k] * gy[k] + gz[k] * gz[k];
-        const ct_real s = has_k ? kk[k] : kt0;
-        const ct_real es = s > 0 ? g2 / (2 * s) : 0;
-        d[k] = (after ? d[k] : 0) + w + sgn * es;
-        if (has_e)
-            en[k] += es;
+#define CTI_FW(K, A, E)                                                                       \
+    cti_friction_work_block(i0, i1, vx, vy, vz, ftx, fty, ftz, kt, kt0, dt, dissip, energy, K,  \
+                            A, E)
+    const int kk = kt != NULL, e = after && energy != NULL;
+    const int64_t nblk = ((int64_t)npair + CTI_FWORK_BLOCK - 1) / CTI_FWORK_BLOCK;
+    CTI_PAR_FOR(npair > CTI_PAR_MIN, (schedule(static)),
+    for (int64_t b = 0; b < nblk; b++) {
+        int64_t i0, i1;
+        cti_block_range(b, CTI_FWORK_BLOCK, npair, &i0, &i1);
+        if (!after)
+            kk ? CTI_FW(1, 0, 0) : CTI_FW(0, 0, 0);
+        else if (e)
+            kk ? CTI_FW(1, 1, 1) : CTI_FW(0, 1, 1);
+        else
+            kk ? CTI_FW(1, 1, 0) : CTI_FW(0, 1, 0);
     });
+#undef CTI_FW
     return CT_OK;
 }
 
