@@ -194,6 +194,32 @@ static void node_motion(double t, tnodes *tn)
     tn_set(tn, 6, -0.3 + 0.6 * sin(2 * t), 0.1, 0.11 - 0.05 * sin(60 * t));
 }
 
+/* TYPE5 (K 1e3, gap 0.1, margin 0.05, no damping, direct search) of the
+ * secondary node 6 against the two quads of node_motion's strip (nodes
+ * 0..5): the data, the configuration in *c. */
+static ctd_iface_data strip_type5(ctd_iface_cfg *c)
+{
+    static const ct_idx q1[2] = {0, 1}, q2[2] = {1, 2}, q3[2] = {4, 5}, q4[2] = {3, 4},
+                        sec[1] = {6};
+    ctd_iface_data d;
+    memset(&d, 0, sizeof d);
+    d.nnode = 7;
+    d.nseg = 2;
+    d.n1 = q1;
+    d.n2 = q2;
+    d.n3 = q3;
+    d.n4 = q4;
+    d.nsec = 1;
+    d.sec = sec;
+    d.K = 1e3;
+    *c = ctd_iface_default_cfg(5);
+    c->gap = (ct_real)0.1;
+    c->VisS = 0;
+    c->margin = (ct_real)0.05;
+    c->algo = CT_SEARCH_DIRECT;
+    return d;
+}
+
 /* The damping dissipation each interface books is the work its damping
  * forces do on the nodes, through about a hundred re-sorts (margin 0.05;
  * a step moves the nodes by up to 0.03) and the contact moving from pair
@@ -241,24 +267,9 @@ Test(iface_damping, booked_dissipation_is_the_damping_forces_work)
               D, -W, D / -W);
 
     /* TYPE5: the node 6 against the two quads. */
-    static const ct_idx q1[2] = {0, 1}, q2[2] = {1, 2}, q3[2] = {4, 5}, q4[2] = {3, 4},
-                        sec[1] = {6};
-    ctd_iface_data dn;
-    memset(&dn, 0, sizeof dn);
-    dn.nnode = 7;
-    dn.nseg = 2;
-    dn.n1 = q1;
-    dn.n2 = q2;
-    dn.n3 = q3;
-    dn.n4 = q4;
-    dn.nsec = 1;
-    dn.sec = sec;
-    dn.K = 1e3;
-    ctd_iface_cfg cn = ctd_iface_default_cfg(5);
-    cn.gap = (ct_real)0.1;
+    ctd_iface_cfg cn;
+    ctd_iface_data dn = strip_type5(&cn);
     cn.VisS = 0.5;
-    cn.margin = (ct_real)0.05;
-    cn.algo = CT_SEARCH_DIRECT;
     D = damper_booked(&cn, &dn, node_motion, 406, dt, &W, &rs, &act);
     cr_assert(act > 100 && rs > 50, "in contact %d steps, %lld re-sorts", act, (long long)rs);
     cr_assert(-W > 1e-3, "the damper dissipates: %g", -W);
@@ -286,25 +297,9 @@ static void node_drag(double t, tnodes *tn)
  * it, with nothing for the springs. */
 Test(iface_damping, friction_books_are_the_friction_forces_work)
 {
-    static const ct_idx q1[2] = {0, 1}, q2[2] = {1, 2}, q3[2] = {4, 5}, q4[2] = {3, 4},
-                        sec[1] = {6};
-    ctd_iface_data dn;
-    memset(&dn, 0, sizeof dn);
-    dn.nnode = 7;
-    dn.nseg = 2;
-    dn.n1 = q1;
-    dn.n2 = q2;
-    dn.n3 = q3;
-    dn.n4 = q4;
-    dn.nsec = 1;
-    dn.sec = sec;
-    dn.K = 1e3;
-    ctd_iface_cfg cn = ctd_iface_default_cfg(5);
-    cn.gap = (ct_real)0.1;
-    cn.VisS = 0;
+    ctd_iface_cfg cn;
+    ctd_iface_data dn = strip_type5(&cn);
     cn.Fric = (ct_real)0.3;
-    cn.margin = (ct_real)0.05;
-    cn.algo = CT_SEARCH_DIRECT;
     ctd_iface_cfg c0 = cn;
     c0.Fric = 0;
     double W;
