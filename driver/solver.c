@@ -231,8 +231,6 @@ static double stable_dt_bodies(ctd_solver *s)
     return dt;
 }
 
-/* Kick of the free nodes, then the imposed components with their reaction
- * work (backward and forward halves, solver.h). keep_old: save v- first. */
 /*
  * The work of this step's contact forces on the free nodes (rigid bodies:
  * rigid_kick), in the two halves the kinetic energy m v- . v+ / 2 counts:
@@ -278,6 +276,8 @@ static void contact_work(ctd_solver *s, double dtk)
     w->w_c_fwd = 0.5 * dtk * f;
 }
 
+/* Kick of the free nodes, then the imposed components with their reaction
+ * work (backward and forward halves, solver.h). keep_old: save v- first. */
 static void kick(ctd_solver *s, double dtk, double dt_new, int keep_old)
 {
     ctd_model *m = s->model;
@@ -323,8 +323,6 @@ static void kick(ctd_solver *s, double dtk, double dt_new, int keep_old)
     w->w_bc_fwd = wf;
 }
 
-/* Rigid bodies: force and moment of their nodes' forces, kick (imposed
- * components of driven bodies, with their reaction work). */
 /* The world angular velocity R diag(Iinv) R^T L of body r for the angular
  * momentum L, at its present orientation. */
 static void body_omega(const ctd_rigid *r, const double L[3], double om[3])
@@ -337,6 +335,8 @@ static void body_omega(const ctd_rigid *r, const double L[3], double om[3])
         om[i] = R[3 * i] * a[0] + R[3 * i + 1] * a[1] + R[3 * i + 2] * a[2];
 }
 
+/* Rigid bodies: force and moment of their nodes' forces, kick (imposed
+ * components of driven bodies, with their reaction work). */
 static void rigid_kick(ctd_solver *s, double dtk, double dt_new)
 {
     ctd_model *m = s->model;
