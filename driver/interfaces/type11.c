@@ -112,7 +112,8 @@ size_t ctdi_type11_memory(const ctdi_epass *e, ct_idx nnode)
     b += (size_t)CTDI_FCHUNK * (CTDI_FGEO_N * sizeof(ct_real) + 1);
     b += (size_t)e->ne * (2 * sizeof(ct_idx) + 7 * sizeof(ct_real));
     b += (e->cap_cell + e->cap_ce + e->cap_tmp) * sizeof(ct_idx);
-    b += (e->cap_fd[0] + e->cap_fd[1]) * sizeof(ct_real) + 3 * e->cap_key * sizeof(ct_idx);
+    b += (e->cap_fd[0] + e->cap_fd[1]) * sizeof(ct_real) +
+         (e->cap_kpa + e->cap_kpb + e->cap_o2n) * sizeof(ct_idx);
     /* The unique nodes of each side, the pair counts per A edge, the
      * positions at the last sort (nnode + 1 each). */
     b += ((size_t)e->nan + (size_t)e->nbn + (size_t)e->na + 2) * sizeof(ct_idx);
@@ -124,16 +125,15 @@ size_t ctdi_type11_memory(const ctdi_epass *e, ct_idx nnode)
 
 void ctdi_type11_force_resort(ctdi_epass *e) { e->need_sort = 1; }
 
-/* *a with room for n items (contents not kept), capacity in *cap. */
-static int grow_fresh(void **a, size_t *cap, size_t n, size_t size)
+void *ctdi_grow_fresh(void *a, size_t *cap, size_t n, size_t size)
 {
-    if (n <= *cap && *a)
-        return CT_OK;
-    ct_free(*a);
+    if (n <= *cap && a)
+        return a;
+    ct_free(a);
     size_t c = n + n / 2 + 64;
-    *a = ct_calloc(c, size);
-    *cap = *a ? c : 0;
-    return *a ? CT_OK : CT_ERR_NOMEM;
+    a = ct_calloc(c, size);
+    *cap = a ? c : 0;
+    return a;
 }
 
 int ctdi_type11_carry_damping(ctdi_epass *e)
@@ -141,37 +141,28 @@ int ctdi_type11_carry_damping(ctdi_epass *e)
     const size_t n = (size_t)e->n;
     const int old = e->fcur, now = 1 - e->fcur;
     int rc;
-    /* The keys and o2n grow together (one capacity); the old keys are
-     * read before they are replaced, so a growth that loses them comes
-     * after the match. */
-    size_t ck = e->cap_key;
-    if ((rc = grow_fresh((void **)&e->fd[now], &e->cap_fd[now], n, sizeof(ct_real))) != CT_OK ||
-        (rc = grow_fresh((void **)&e->o2n, &ck, n, sizeof(ct_idx))) != CT_OK)
+    e->fd[now] = ctdi_grow_fresh(e->fd[now], &e->cap_fd[now], n, sizeof(ct_real));
+    e->o2n = ctdi_grow_fresh(e->o2n, &e->cap_o2n, n, sizeof(ct_idx));
+    if (!e->fd[now] || !e->o2n)
+        return CT_ERR_NOMEM;
+    /* The new list's forces from the old one's (the first list: none). */
+    if (e->nkey > 0 &&
+        ((rc = ct_pair_match(e->nkey, e->kpa, e->kpb, e->n, e->pa, e->pb, e->o2n, NULL)) !=
+             CT_OK ||
+         (rc = ct_pair_remap(e->n, e->o2n, e->fd[old], 0, e->fd[now])) != CT_OK))
         return rc;
-    if (e->nkey > 0) {
-        rc = ct_pair_match(e->nkey, e->kpa, e->kpb, e->n, e->pa, e->pb, e->o2n, NULL);
-        if (rc == CT_OK)
-            rc = ct_pair_remap(e->n, e->o2n, e->fd[old], 0, e->fd[now]);
-        if (rc != CT_OK)
-            return rc;
-    } else { /* the first list: no force yet */
+    if (e->nkey == 0)
         memset(e->fd[now], 0, n * sizeof(ct_real));
-    }
-    if (ck != e->cap_key || !e->kpa) {
-        ct_free(e->kpa);
-        ct_free(e->kpb);
-        e->kpa = ct_calloc(ck, sizeof(ct_idx));
-        e->kpb = ct_calloc(ck, sizeof(ct_idx));
-        if (!e->kpa || !e->kpb) {
-            e->nkey = 0;
-            return CT_ERR_NOMEM;
-        }
-        e->cap_key = ck;
-    }
+    /* Then its keys, for the next search (the old ones are no longer read). */
+    e->fcur = now;
+    e->nkey = 0;
+    e->kpa = ctdi_grow_fresh(e->kpa, &e->cap_kpa, n, sizeof(ct_idx));
+    e->kpb = ctdi_grow_fresh(e->kpb, &e->cap_kpb, n, sizeof(ct_idx));
+    if (!e->kpa || !e->kpb)
+        return CT_ERR_NOMEM;
     memcpy(e->kpa, e->pa, n * sizeof(ct_idx));
     memcpy(e->kpb, e->pb, n * sizeof(ct_idx));
     e->nkey = e->n;
-    e->fcur = now;
     return CT_OK;
 }
 

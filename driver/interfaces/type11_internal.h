@@ -55,7 +55,7 @@ struct ctdi_epass {
     int fcur;
     ct_idx nkey;
     ct_idx *kpa, *kpb, *o2n;
-    size_t cap_key;
+    size_t cap_kpa, cap_kpb, cap_o2n;
     /* Search scratch. */
     ct_real *box;          /* 6 per edge: lo xyz, hi xyz */
     ct_idx *cnt;           /* per A edge: pair counts, then offsets (na + 1) */
@@ -70,6 +70,11 @@ struct ctdi_epass {
     int excl_state;
     ct_exclusion excl;
 };
+
+/* An array with room for n items of size bytes: a itself when its
+ * capacity *cap holds them, else a new zeroed one (a freed, the contents
+ * not kept; NULL and *cap 0 when out of memory). type11.c. */
+void *ctdi_grow_fresh(void *a, size_t *cap, size_t n, size_t size);
 
 /* Per-pair arrays for n pairs, and the pair ids for n pairs (contents not
  * kept; type11.c). */

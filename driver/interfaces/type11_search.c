@@ -107,12 +107,7 @@ static ct_idx query(const ctdi_epass *e, const grid *g, ct_idx a, ct_idx b0, ct_
 
 static int grow_idx(ct_idx **p, size_t *cap, size_t n)
 {
-    if (n <= *cap && *p)
-        return CT_OK;
-    ct_free(*p);
-    size_t c = n + n / 2 + 64;
-    *p = ct_calloc(c, sizeof(ct_idx));
-    *cap = *p ? c : 0;
+    *p = ctdi_grow_fresh(*p, cap, n, sizeof(ct_idx));
     return *p ? CT_OK : CT_ERR_NOMEM;
 }
 
