@@ -24,7 +24,9 @@
  *                               machine's own 2-thread efficiency on a loop
  *                               that only streams memory and on one that
  *                               only computes (bench_eff.c): the ceilings of
- *                               the kernels' efficiency rows.
+ *                               the kernels' efficiency rows;
+ *   floor/sync/region|barrier/t<T>/<R>  what one parallel region and one
+ *                               barrier cost (bench_sync.c).
  * The arrays are allocated and first touched by the team that runs the
  * kernel (static schedule, the same as the kernel's), and kept while the
  * thread count stays the same. The bandwidth used for the floor is the best
@@ -42,6 +44,7 @@
 #include <unistd.h>
 
 #include "bench_eff.h"
+#include "bench_sync.h"
 #include "bench_topology.h"
 #include "contact.h"
 #include "floor.h"
@@ -476,6 +479,10 @@ int ctb_floor_register(const ctb_search_config *c)
             return -1;
         count += 2;
     }
+    int ns = ctb_sync_register(cfg.bind, cfg.max_threads);
+    if (ns < 0)
+        return -1;
+    count += ns;
     int64_t nmax = cfg.full ? 10000000 : 1000000;
     for (int64_t n = 1000000; n <= nmax; n *= 10)
         for (int t = 0; t < nt; t++) {
@@ -488,6 +495,7 @@ int ctb_floor_register(const ctb_search_config *c)
 
 void ctb_floor_cleanup(void)
 {
+    ctb_sync_cleanup();
     triad_free();
     plates_clear();
     while (descs) {

@@ -30,7 +30,7 @@ from report_search import ns_per_node
 KERNEL_RE = re.compile(
     r"^kernels/(?P<group>[^/]+)/(?P<kernel>[^/]+)/t(?P<threads>\d+)/(?P<n>\d+)" + NAME_TAIL)
 FLOOR_RE = re.compile(
-    r"^floor/(?P<what>triad/dram|triad/ws|bucket/plates)/t(?P<threads>\d+)/(?P<n>\d+)"
+    r"^floor/(?P<what>triad/dram|triad/ws|bucket/plates|sync/region|sync/barrier)/t(?P<threads>\d+)/(?P<n>\d+)"
     + NAME_TAIL)
 KERNEL_GROUPS = ["narrow", "force", "prepare", "assemble"]
 # The 2-thread efficiency target measured in interleaved rounds
@@ -209,6 +209,34 @@ def print_kernel_floor(kern, flo, out):
     out.append("")
 
 
+def print_sync(sync, out):
+    """What a parallel region and a barrier cost (bench_sync.c), one row
+    per precision and thread count."""
+    if not sync:
+        return
+    out.append("What the OpenMP runtime the programs link (provenance: \"OpenMP runtime\") "
+               "costs per parallel region (a static loop of one store per thread) and per "
+               "barrier (inside one region): the fixed cost of each of the fifty or so loops "
+               "of a driver cycle, whatever the model's size.\n")
+    out.append("| precision | threads | µs per region | µs per barrier |")
+    out.append("|---|---:|---:|---:|")
+    rows = {}
+    for r in sync:
+        rows.setdefault((r["prec"], r["threads"]), {})[r["what"]] = r
+    for (prec, t) in sorted(rows):
+        cells = []
+        for what, ctr in (("sync/region", "us_per_region"), ("sync/barrier", "us_per_barrier")):
+            r = rows[(prec, t)].get(what)
+            if r is None:
+                cells.append("-")
+            elif r["error"] or ctr not in r["counters"]:
+                cells.append(r["error"] or "-")
+            else:
+                cells.append("%.2f" % r["counters"][ctr])
+        out.append("| %s | %d | %s | %s |" % (prec, t, cells[0], cells[1]))
+    out.append("")
+
+
 def print_floor(flo, searches, out):
     """searches: {precision: search records of that file}."""
     bucket = [r for r in flo if r["what"] == "bucket/plates"]
@@ -228,6 +256,7 @@ def print_floor(flo, searches, out):
                 r["prec"], r["what"][6:], r["threads"], fmt_num(c.get("array_MiB"), 0),
                 "%.2f" % c["GBps"] if "GBps" in c else (r["error"] or "-")))
         out.append("")
+    print_sync([r for r in flo if r["what"].startswith("sync/")], out)
     if not bucket:
         return
     out.append("Bucket search on plates against its floor: bytes/node is the minimum any "

@@ -423,6 +423,20 @@ Test(bench_report, efficiency_table_from_sample)
     free(out);
 }
 
+Test(bench_report, sync_table_from_sample)
+{
+    char *out = sample_report("");
+    expect_line(out, "## Hardware floor");
+    expect_line(out, "| precision | threads | µs per region | µs per barrier |");
+    /* The sample's medians: regions 0.0977 and 1.0643 µs, barriers 0.0227
+     * and 0.4714 µs, one row per thread count. */
+    expect_line(out, "| double | 1 | 0.10 | 0.02 |");
+    expect_line(out, "| double | 2 | 1.06 | 0.47 |");
+    cr_expect(strstr(out, "| floor/sync/") == NULL,
+              "sync rows left in the \"other\" table:\n%s", out);
+    free(out);
+}
+
 /* The speed targets gathered from the sample and the interleaved sample, by
  * hand: the paired rows' ratios (graded 0.7658 < 1 met; plates bsp 1.8025
  * <= 2 met; shuffled 1.9596 > 1.5 not met); the single-precision rows at
