@@ -79,9 +79,40 @@ endif
 NARROW_MIXED := $(if $(filter-out $(CC),$(or $(NARROW_CC),$(CC))),1)
 NARROW_VEC_CFLAGS = $(filter-out -fopenmp,$(CFLAGS_ALL)) -fopenmp-simd
 NARROW_CC_ID := $(if $(NARROW_MIXED),$(NARROW_CC) $(shell $(NARROW_CC) -dumpversion 2>/dev/null))
+# The OpenMP runtime the programs link: OMPRT=llvm (LLVM's libomp, the
+# default) or OMPRT=gnu (gcc's libgomp). gcc compiles OpenMP against
+# libgomp's interface, which libomp implements as well (Debian's libomp5-14,
+# from libomp-dev, which `make deps` installs for clang anyway); clang links
+# libomp whatever OMPRT says. Why libomp: libgomp ends every barrier with a
+# futex system call, waiters or not, and system calls are slow on this
+# project's virtual machines. Measured with the two builds alternating
+# (BENCHMARKS.md, floor/sync rows): a parallel region 1.24 us on one thread
+# and 2.9 on two with libgomp, 0.12 and 1.6 with libomp; a barrier 1.20 and
+# 1.48 against 0.01 and 0.88. A driver cycle runs about fifty of them, so
+# the small and middle sizes gain: the showcase scene 1.13-1.16x, the
+# searches on the Radioss decks 1.1-1.3x, kernels at 10^4 pairs up to
+# 1.3x; at 10^5-10^6 nodes the two are within the host's noise. The
+# results are the same bits: no kernel depends on the runtime's schedule
+# (the tests check 1 against 2 threads; the clang builds always used
+# libomp).
+ifneq ($(findstring clang,$(CCNAME)),)
+override OMPRT := llvm
+endif
+OMPRT ?= llvm
+ifeq ($(OMPRT),llvm)
+OMP_LIBS = $(if $(findstring clang,$(CCNAME)),,-l:libomp.so.5)
+else ifneq ($(OMPRT),gnu)
+$(error OMPRT must be llvm or gnu, not '$(OMPRT)')
+endif
+# A link: the compile flags, without -fopenmp (with which gcc links libgomp)
+# when OMP_LIBS names the runtime; OMP_LIBS goes after the libraries.
+OMP_LDFLAGS = $(if $(OMP_LIBS),,-fopenmp)
+LINK_CFLAGS = $(filter-out -fopenmp,$(CFLAGS_ALL)) $(OMP_LDFLAGS)
+
 GIT_COMMIT := $(shell git rev-parse --short=12 HEAD 2>/dev/null || echo none)$(shell git diff --quiet HEAD 2>/dev/null || echo -dirty)
 PROV_FLAGS = $(strip $(CFLAGS_ALL))$(if $(NARROW_CFLAGS), (narrow phase: $(NARROW_CFLAGS)))$(if \
-             $(NARROW_MIXED), (narrow-phase block kernels: $(NARROW_CC_ID) -fopenmp-simd))
+             $(NARROW_MIXED), (narrow-phase block kernels: $(NARROW_CC_ID) -fopenmp-simd)) (OpenMP \
+             runtime: $(if $(filter llvm,$(OMPRT)),libomp,libgomp))
 PROV = -DCT_BUILD_CFLAGS='"$(PROV_FLAGS)"' -DCT_BUILD_COMMIT='"$(GIT_COMMIT)"'
 INC = -Ikernels -Idriver -Ibench
 
@@ -201,11 +232,11 @@ $(LIBDRIVER): $(DRIVER_OBJ)
 	@rm -f $@
 	ar rcs $@ $^
 
-LDLIBS_ALL = $(LIBS_CYAML) $(LIBS_HWLOC) -lm
+LDLIBS_ALL = $(LIBS_CYAML) $(LIBS_HWLOC) -lm $(OMP_LIBS)
 
 $(CONTACT): $(BUILD)/driver/main.o $(LIBDRIVER) $(LIBCONTACT)
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS_ALL) $^ -o $@ $(LDLIBS_ALL)
+	$(CC) $(LINK_CFLAGS) $^ -o $@ $(LDLIBS_ALL)
 
 # The test program sees the project's allocations (tests/alloc_fail.h):
 # the linker sends the project's calls of these functions to wrappers that
@@ -214,7 +245,7 @@ WRAP_ALLOC = -Wl,--wrap=malloc,--wrap=calloc,--wrap=realloc,--wrap=aligned_alloc
   -Wl,--wrap=strdup,--wrap=strndup,--wrap=free
 $(TESTS): $(TEST_OBJ) $(LIBDRIVER) $(LIBCONTACT)
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS_ALL) $(WRAP_ALLOC) $^ -o $@ $(LIBS_CRIT) $(LDLIBS_ALL)
+	$(CC) $(LINK_CFLAGS) $(WRAP_ALLOC) $^ -o $@ $(LIBS_CRIT) $(LDLIBS_ALL)
 
 # The examples use the public header alone (kernels/contact.h and the
 # ct_*.h it includes); tests/test_examples.c runs them.
@@ -224,13 +255,13 @@ $(BUILD)/examples/%.o: examples/%.c
 
 $(BUILD)/bin/example_%: $(BUILD)/examples/%.o $(LIBCONTACT)
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS_ALL) $^ -o $@ -lm
+	$(CC) $(LINK_CFLAGS) $^ -o $@ -lm $(OMP_LIBS)
 
 examples: $(EXAMPLES)
 
 $(BENCHBIN): $(BENCH_OBJ) $(LIBDRIVER) $(LIBCONTACT)
 	@mkdir -p $(dir $@)
-	$(CXX) $(OPT) $(ARCH) -fopenmp $(SAN_FLAGS) $^ -o $@ $(LIBS_BENCH) $(LIBS_PEERS) $(LDLIBS_ALL)
+	$(CXX) $(OPT) $(ARCH) $(OMP_LDFLAGS) $(SAN_FLAGS) $^ -o $@ $(LIBS_BENCH) $(LIBS_PEERS) $(LDLIBS_ALL)
 
 # ---- User commands ----------------------------------------------------------
 
@@ -330,7 +361,7 @@ check: deps
 NARROW_BITS = bin/narrow_bits
 $(BUILD)/$(NARROW_BITS): $(BUILD)/tests/bits/narrow_bits.o $(LIBCONTACT)
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS_ALL) $^ -o $@ -lm
+	$(CC) $(LINK_CFLAGS) $^ -o $@ -lm $(OMP_LIBS)
 
 .PHONY: check-narrow-cc
 check-narrow-cc:
@@ -367,7 +398,7 @@ RACE_SRC := $(wildcard tests/race/*.c)
 RACE_BIN := $(BUILD)/bin/race_check
 $(RACE_BIN): $(RACE_SRC:%.c=$(BUILD)/%.o) $(LIBDRIVER) $(LIBCONTACT)
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS_ALL) $^ -o $@ $(LDLIBS_ALL)
+	$(CC) $(LINK_CFLAGS) $^ -o $@ $(LDLIBS_ALL)
 
 check-tsan:
 	@test -n "$(ARCHER)" || { echo "check-tsan: libarcher.so not found (package libomp-14-dev)"; exit 1; }
