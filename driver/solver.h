@@ -154,8 +154,12 @@ int ctd_interfaces_build(const ctd_model *m, const ctd_scene *sc, ctd_contact_ho
 struct ctd_solver;
 
 /* With no thread count given (opts.threads, solver.threads, nor
- * OMP_NUM_THREADS), a run takes at most one thread per this many nodes. */
-#define CTD_NODES_PER_THREAD 2000
+ * OMP_NUM_THREADS), a run takes at most one thread per this many nodes.
+ * Measured with LLVM's OpenMP runtime (docs/DESIGN-CHANGES.md §9), medians
+ * of three runs, 1 against 2 threads: the folding sheet at refine 2 (531
+ * nodes) 0.48 s and 0.48, at refine 3 (1144 nodes) 1.60 and 1.40; the
+ * showcase (730 nodes) 0.78 and 0.92. */
+#define CTD_NODES_PER_THREAD 1000
 
 typedef struct ctd_solver_opts {
     double end_time;     /* > 0: overrides the scene's */

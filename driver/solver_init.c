@@ -87,8 +87,9 @@ int ctd_solver_init(ctd_solver *s, ctd_model *m, const ctd_solver_opts *opts,
     if (s->threads == 0 && !getenv("OMP_NUM_THREADS")) {
         /* Nobody chose: at most one thread per CTD_NODES_PER_THREAD nodes.
          * A smaller model's loops are too short to share (the showcase's
-         * 730 nodes: 0.87 s on 1 thread, 0.99 on 2, and 3.3 times slower
-         * on 2 than on 1 while another process holds a core). */
+         * 730 nodes: 0.78 s on 1 thread, 0.92 on 2, and, measured with
+         * libgomp, 3.3 times slower on 2 than on 1 while another process
+         * held a core; solver.h has the figures of the threshold). */
         const ct_idx cap = 1 + m->mesh.nodes.n / CTD_NODES_PER_THREAD;
         if (cap < omp_get_max_threads())
             s->threads = (int)cap;
