@@ -38,15 +38,14 @@ typedef struct sync_desc {
 
 static sync_desc *descs;
 
-/* One slot per thread, a cache line apart, for the regions' stores. */
-static double sink[64 * 8];
-
-static void regions(int64_t r, int threads)
+/* r regions; sink holds one slot per thread, a cache line (8 doubles)
+ * apart, for the regions' stores. */
+static void regions(int64_t r, int threads, double *sink)
 {
     for (int64_t k = 0; k < r; k++) {
 #pragma omp parallel for schedule(static)
         for (int t = 0; t < threads; t++)
-            sink[8 * (t & 63)] += 1.0;
+            sink[8 * t] += 1.0;
     }
 }
 
@@ -66,18 +65,24 @@ static void bm_sync(gb_state *st, void *arg)
     char where[256], msg[400];
     ctb_bind_threads(d->bind, d->threads, where, sizeof where);
     const int64_t r = gb_range(st, 0);
+    double *sink = calloc(8 * (size_t)d->threads, sizeof *sink);
+    if (!sink) {
+        gb_skip_with_error(st, "sync: out of memory");
+        return;
+    }
     if (d->barrier) /* warm-up: the team is made */
         barriers(16);
     else
-        regions(16, d->threads);
+        regions(16, d->threads, sink);
     double t0 = ctb_now_s();
     while (gb_keep_running(st)) {
         if (d->barrier)
             barriers(r);
         else
-            regions(r, d->threads);
+            regions(r, d->threads, sink);
     }
     double dt = ctb_now_s() - t0;
+    free(sink);
     int64_t it = gb_iterations(st);
     if (it <= 0)
         return;
