@@ -28,6 +28,7 @@
 #include "bench_cycle.h"
 #include "bench_elements.h"
 #include "bench_scene.h"
+#include "bench_host.h"
 #include "bench_paired.h"
 #include "bench_floor.h"
 #include "bench_kernels.h"
@@ -188,6 +189,7 @@ int main(int argc, char **argv)
         fprintf(stderr, "bench: out of memory registering benchmarks\n");
         rc = 1;
     } else {
+        gb_set_host_probe(ctb_host_probe);
         rc = gb_run(&nargs, args);
         if (rc == 1)
             usage(stderr);
@@ -205,6 +207,7 @@ int main(int argc, char **argv)
     ctb_paired_cleanup();
     ctb_elements_cleanup();
     ctb_scene_cleanup();
+    ctb_host_cleanup();
     ctb_topology_close();
     free(args);
     return rc;

@@ -71,6 +71,19 @@ void gb_resume_timing(gb_state *st);
 
 void gb_set_items_processed(gb_state *st, int64_t n);
 
+/* A probe of the host's speed (bench_host.c) that the shim runs after
+ * every call of a benchmark function that did not fail, untimed: it fills
+ * out[0..GB_HOST_N-1] and returns 0, and the shim sets them as the
+ * counters GB_HOST_THREADS, GB_HOST_CHAIN, GB_HOST_BARRIER (when above 0)
+ * and GB_HOST_READ of the run. NULL (the default): no probe. Call before
+ * gb_run. */
+#define GB_HOST_N 4
+typedef int (*gb_probe_fn)(double out[GB_HOST_N]);
+#define GB_HOST_THREADS "host_threads"
+#define GB_HOST_CHAIN "host_chain_us"
+#define GB_HOST_BARRIER "host_barrier_us"
+#define GB_HOST_READ "host_read_GBps"
+void gb_set_host_probe(gb_probe_fn fn);
 /* A key/value pair for the context block of every report (console and
  * JSON "context"). Call before gb_run. */
 void gb_add_context(const char *key, const char *value);

@@ -13,6 +13,9 @@ namespace {
 
 benchmark::State &S(gb_state *st) { return *reinterpret_cast<benchmark::State *>(st); }
 
+// The host probe run after every call of a benchmark (gb_set_host_probe).
+gb_probe_fn host_probe = nullptr;
+
 benchmark::Counter::Flags counter_flags(int f)
 {
     int g = benchmark::Counter::kDefaults;
@@ -38,8 +41,17 @@ int gb_register(const char *name, gb_fn fn, void *arg, int64_t range0, int use_r
 {
     if (!name || !fn)
         return -1;
-    auto *b = benchmark::RegisterBenchmark(
-        name, [fn, arg](benchmark::State &st) { fn(reinterpret_cast<gb_state *>(&st), arg); });
+    auto *b = benchmark::RegisterBenchmark(name, [fn, arg](benchmark::State &st) {
+        fn(reinterpret_cast<gb_state *>(&st), arg);
+        double v[GB_HOST_N];
+        if (host_probe && !st.error_occurred() && host_probe(v) == 0) {
+            st.counters[GB_HOST_THREADS] = benchmark::Counter(v[0]);
+            st.counters[GB_HOST_CHAIN] = benchmark::Counter(v[1]);
+            if (v[2] > 0) // no barrier with one processor (and no 0/0 in its cv)
+                st.counters[GB_HOST_BARRIER] = benchmark::Counter(v[2]);
+            st.counters[GB_HOST_READ] = benchmark::Counter(v[3]);
+        }
+    });
     if (range0 >= 0)
         b->Arg(range0);
     if (use_real_time)
@@ -71,6 +83,8 @@ void gb_pause_timing(gb_state *st) { S(st).PauseTiming(); }
 void gb_resume_timing(gb_state *st) { S(st).ResumeTiming(); }
 
 void gb_set_items_processed(gb_state *st, int64_t n) { S(st).SetItemsProcessed(n); }
+
+void gb_set_host_probe(gb_probe_fn fn) { host_probe = fn; }
 
 void gb_add_context(const char *key, const char *value)
 {
