@@ -38,7 +38,7 @@ from benchjson import SEARCH_RE, collect, precision_of, split_named
 from report_driver import (ELEM_RE, SCENE_RE, parse_cycle, print_cycle, print_elements,
                            print_scenes)
 from report_fmt import fmt_time, prec_rank
-from report_noise import print_noise
+from report_noise import annotate_host, print_noise
 from report_kernels import (EFF_RE, print_eff, print_floor, print_interleaved,
                             print_kernel_floor, print_kernels, split_records)
 from report_search import PAIRED_RE, parse_peers, print_paired, print_peers, report_search
@@ -94,6 +94,7 @@ def report(datas, names=None, compare=None, inter=None):
             tag = "%s#%d" % (prec, k)
             k += 1
         recs = collect(data.get("benchmarks", []))
+        annotate_host(recs)
         search, rest = split_named(list(recs), SEARCH_RE)
         kern, flo, other = split_records(rest, tag)
         peers, other = parse_peers(other)

@@ -14,6 +14,7 @@ Standard library only.
 from report_driver import CYCLE_TARGET_NS
 from report_fmt import fmt_ns
 from report_kernels import EFF_TARGET, SINGLE_TARGET, moved_gbps
+from report_noise import host_note
 from report_search import PAIRED_TARGETS, ns_per_node, our_best
 
 NMAX = 1000000
@@ -60,7 +61,7 @@ def search_rows(search, flo, paired):
                and r["threads"] == 2 and not r["error"]), None)
     fd = fl["counters"].get("floor_ns_dram") if fl else None
     rows.append((2, "bucket search ≤ %g ns/node (plates 10^6, 2 threads)" %
-                 BUCKET_TARGET_NS, fmt_ns(v) if v else "-",
+                 BUCKET_TARGET_NS, fmt_ns(v) + host_note(rec) if v else "-",
                  "%s (floor, bench/floor.h)" % fmt_ns(fd) if fd else "-",
                  verdict(None if v is None else v <= BUCKET_TARGET_NS)))
     for r in sorted(paired, key=lambda r: (r["family"], r["what"], r["threads"])):
@@ -118,7 +119,8 @@ def kernel_rows(kern, flo):
         bound = "-"
         if b is not None:
             bound = "%.2f%s" % (b, ": out of reach" if b > tgt else "")
-        rows.append((3, text + " (10^6 pairs, 1 thread)", fmt_ns(v) if v else "-", bound,
+        rows.append((3, text + " (10^6 pairs, 1 thread)", fmt_ns(v) + host_note(rec) if v else "-",
+                     bound,
                      verdict(None if v is None else v <= tgt)))
     # The coloured assembly against the fastest variant, per thread count.
     for t in sorted(set(r[2] for r in at)):
@@ -176,7 +178,8 @@ def cycle_row(cyc):
         return None
     lo = min(rows, key=lambda r: r["counters"]["ns_total_x_threads"])
     hi = max(rows, key=lambda r: r["counters"]["ns_total_x_threads"])
-    name = lambda r: "%s %d, %s" % (r["family"], r["n"], threads(r["threads"]))
+    name = lambda r: "%s %d, %s%s" % (r["family"], r["n"], threads(r["threads"]),
+                                       host_note(r, inside=True))
     return (5, "full contact cycle ≤ %g ns/node/cycle per thread" % CYCLE_TARGET_NS,
             "%s (%s) to %s (%s)" % (fmt_ns(lo["counters"]["ns_total_x_threads"]), name(lo),
                                     fmt_ns(hi["counters"]["ns_total_x_threads"]), name(hi)),
@@ -201,7 +204,9 @@ def print_targets(search, flo, paired, peers, kern, eff, cyc, inter, out):
                "\"out of reach\": the bound is above the target, so no call with the same "
                "arrays meets it here. For the efficiency, the machine's own 2-thread "
                "efficiency on a loop that only streams memory and on one that only "
-               "computes.\n")
+               "computes. \"host: barrier ×4.00\": the host differed from the rest of the run "
+               "under the row a figure comes from (the probe's figure against the run's "
+               "median; the section \"How steady the host was\").\n")
     out.append("| issue | target | measured | bound on this machine | met? |")
     out.append("|---:|---|---|---|---|")
     for r in sorted(rows, key=lambda r: r[0]):
