@@ -120,8 +120,7 @@ def kernel_rows(kern, flo):
         if b is not None:
             bound = "%.2f%s" % (b, ": out of reach" if b > tgt else "")
         rows.append((3, text + " (10^6 pairs, 1 thread)", fmt_ns(v) + host_note(rec) if v else "-",
-                     bound,
-                     verdict(None if v is None else v <= tgt)))
+                     bound, verdict(None if v is None else v <= tgt)))
     # The coloured assembly against the fastest variant, per thread count.
     for t in sorted(set(r[2] for r in at)):
         col = at.get(("assemble", "colour", t))
