@@ -20,7 +20,10 @@ down, they hardly ever speed one up; in stop 47 the fastest of 3 per round read 
 contact cycle's total 0.97 (0.87-1.07) where single repetitions read 0.89
 (0.65-1.12)).
 Reported per name: the median of A's and B's counter over the rounds, the
-median of the rounds' ratios and their range. With --json, writes
+median of the rounds' ratios and their range, and the range of the host
+probe's barrier (host_barrier_us, bench/bench_host.c) over both programs'
+runs: when it spans more than HOST_MOVED, the host moved its CPUs between
+rounds and the ratio's range holds both placements. With --json, writes
 {"interleaved": {...}} for bench/report.py (pass it with the benchmark
 files). Standard library only.
 """
@@ -32,6 +35,12 @@ import sys
 import tempfile
 
 from benchjson import base_name
+
+# The host probe's barrier counter, and the spread of it (largest / smallest
+# over the rounds) above which the rounds ran under two placements of the
+# host's CPUs (bench/report_noise.py's HOST_OFF).
+HOST_BARRIER = "host_barrier_us"
+HOST_MOVED = 1.25
 
 
 def run_once(binary, flt, out_path, reps=1, counter=None):
@@ -75,22 +84,33 @@ def interleave(a_bin, b_bin, flt, rounds, counter, reps=1):
                 va, vb = float(ra[name][counter]), float(rb[name][counter])
                 if not (va > 0 and vb > 0):
                     continue
-                e = per.setdefault(name, {"a": [], "b": [], "r": [], "label": ""})
+                e = per.setdefault(name, {"a": [], "b": [], "r": [], "bar": [], "label": ""})
                 e["a"].append(va)
                 e["b"].append(vb)
                 e["r"].append(va / vb)
+                e["bar"] += [float(x[name][HOST_BARRIER]) for x in (ra, rb)
+                             if float(x[name].get(HOST_BARRIER, 0)) > 0]
                 e["label"] = rb[name].get("label", "")
     rows = []
     for name in sorted(per):
         e = per[name]
-        rows.append({"name": name, "a": statistics.median(e["a"]),
-                     "b": statistics.median(e["b"]), "ratio": statistics.median(e["r"]),
-                     "ratio_min": min(e["r"]), "ratio_max": max(e["r"]),
-                     "rounds": len(e["r"]), "label": e["label"]})
+        row = {"name": name, "a": statistics.median(e["a"]), "b": statistics.median(e["b"]),
+               "ratio": statistics.median(e["r"]), "ratio_min": min(e["r"]),
+               "ratio_max": max(e["r"]), "rounds": len(e["r"]), "label": e["label"]}
+        if e["bar"]:
+            row["barrier_min"], row["barrier_max"] = min(e["bar"]), max(e["bar"])
+        rows.append(row)
     return {"counter": counter, "filter": flt, "rounds": rounds, "repetitions": reps,
             "a_build": ctx.get("a", {}).get("ct_build", os.path.basename(a_bin)),
             "b_build": ctx.get("b", {}).get("ct_build", os.path.basename(b_bin)),
             "rows": rows}
+
+
+def moved_cpus(row):
+    """Whether a row's rounds ran under two placements of the host's CPUs:
+    the probe's barrier spans more than HOST_MOVED."""
+    lo, hi = row.get("barrier_min", 0), row.get("barrier_max", 0)
+    return lo > 0 and hi > HOST_MOVED * lo
 
 
 def positive(text):
@@ -129,9 +149,13 @@ def main(argv):
         sys.stderr.write("interleave.py: no benchmark ran in both programs\n")
         return 1
     for r in res["rows"]:
-        print("%-50s a %8.2f  b %8.2f  a/b %.2f (%.2f-%.2f, %d rounds)" % (
+        moved = ""
+        if moved_cpus(r):
+            moved = "  barrier %.2f-%.2f us: the host moved its CPUs between rounds" % (
+                r["barrier_min"], r["barrier_max"])
+        print("%-50s a %8.2f  b %8.2f  a/b %.2f (%.2f-%.2f, %d rounds)%s" % (
             r["name"], r["a"], r["b"], r["ratio"], r["ratio_min"], r["ratio_max"],
-            r["rounds"]))
+            r["rounds"], moved))
     if opts["--json"]:
         with open(opts["--json"], "w") as f:
             json.dump({"interleaved": res}, f, indent=2)

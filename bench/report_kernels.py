@@ -24,6 +24,7 @@ Standard library only.
 import re
 
 from benchjson import NAME_TAIL, label_precision, split_named
+from interleave import moved_cpus
 from report_fmt import fmt_ns, fmt_num, prec_rank
 from report_search import ns_per_node
 
@@ -318,6 +319,13 @@ def print_interleaved(inter, out):
             r["name"], fmt_ns(r["a"]), fmt_ns(r["b"]), r["ratio"], r["ratio_min"],
             r["ratio_max"], met))
     out.append("")
+    moved = [r for r in inter["rows"] if moved_cpus(r)]
+    if moved:
+        out.append("The host moved its CPUs between the rounds of %s (the probe's barrier of "
+                   "both CPUs, bench/bench_host.c, from %.2f to %.2f µs): their range holds "
+                   "rounds under both placements.\n"
+                   % (", ".join(r["name"] for r in moved), min(r["barrier_min"] for r in moved),
+                      max(r["barrier_max"] for r in moved)))
 
 
 def print_eff(rows, out):

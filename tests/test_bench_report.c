@@ -237,6 +237,11 @@ Test(bench_report, interleaved_table_from_sample)
      * 1.6184-1.9544. */
     expect_line(out, "| kernels/narrow/newton/t1/1000000 | 37.2 | 19.7 | 1.89 | 1.62-1.95 "
                      "| yes |");
+    /* The probe's barrier over the rounds: tri 0.19-0.81 µs (4.3x: the host
+     * moved its CPUs), Newton 0.78-0.82 (within 1.25x: not named). */
+    expect_line(out, "The host moved its CPUs between the rounds of kernels/narrow/tri/t1/1000000 "
+                     "(the probe's barrier of both CPUs, bench/bench_host.c, from 0.19 to 0.81 "
+                     "µs): their range holds rounds under both placements.");
     /* Without the file, no such table. */
     free(out);
     out = sample_report("");
@@ -248,7 +253,7 @@ Test(bench_report, interleaved_table_from_sample)
 /* A fake benchmark program (a shell script) for bench/interleave.py: it
  * appends its tag to LOG, counts its calls in CNT, and writes a Google
  * Benchmark JSON with one run whose ns_per_pair is `first` on odd calls
- * and `second` on even ones. */
+ * and `second` on even ones, and whose host probe's barrier is `bar`. */
 /* Write the shell script text to path, executable. */
 static void write_script(const char *path, const char *text)
 {
@@ -260,7 +265,7 @@ static void write_script(const char *path, const char *text)
 }
 
 static void write_fake(const char *path, const char *tag, const char *log, const char *cnt,
-                       const char *first, const char *second)
+                       const char *first, const char *second, const char *bar)
 {
     char text[2048];
     snprintf(text, sizeof text,
@@ -272,8 +277,9 @@ static void write_fake(const char *path, const char *tag, const char *log, const
             "esac; done\n"
             "printf '{\"context\": {\"ct_build\": \"%s\"}, \"benchmarks\": [{\"name\": "
             "\"kernels/x/t1/10/real_time\", \"run_name\": \"kernels/x/t1/10/real_time\", "
-            "\"run_type\": \"iteration\", \"ns_per_pair\": %%s}]}' $v > $out\n",
-            tag, log, cnt, cnt, first, second, tag);
+            "\"run_type\": \"iteration\", \"host_barrier_us\": %s, \"ns_per_pair\": %%s}]}' "
+            "$v > $out\n",
+            tag, log, cnt, cnt, first, second, tag, bar);
     write_script(path, text);
 }
 
@@ -290,14 +296,17 @@ Test(bench_report, interleave_alternates_and_takes_medians)
     snprintf(js, sizeof js, "%s/out.json", dir);
     /* a: always 10; b: 4 on its odd calls, 5 on its even ones. Three
      * rounds: ratios 10/4, 10/5, 10/4 = 2.5, 2, 2.5: median 2.5, range 2 to
-     * 2.5; b's median 4. */
-    write_fake(a, "A", log, ca, "10", "10");
-    write_fake(b, "B", log, cb, "4", "5");
+     * 2.5; b's median 4. The probe's barrier: 0.2 us in a's runs, 0.8 in
+     * b's: the row's range 0.2-0.8, the host moved its CPUs. */
+    write_fake(a, "A", log, ca, "10", "10", "0.2");
+    write_fake(b, "B", log, cb, "4", "5", "0.8");
     snprintf(cmd, sizeof cmd,
              "python3 bench/interleave.py %s %s --filter x --rounds 3 --json %s 2>&1", a, b, js);
     int status = -1;
     char *out = ctt_run_cmd(cmd, &status);
     cr_assert_eq(status, 0, "interleave.py failed:\n%s", out);
+    cr_expect(strstr(out, "barrier 0.20-0.80 us: the host moved its CPUs between rounds") != NULL,
+              "the moved CPUs not said:\n%s", out);
     free(out);
     /* The order of the calls: A B, then B A, then A B. */
     snprintf(cmd, sizeof cmd, "tr -d '\\n' < %s", log);
@@ -306,10 +315,11 @@ Test(bench_report, interleave_alternates_and_takes_medians)
     free(out);
     snprintf(cmd, sizeof cmd,
              "python3 -c \"import json; r = json.load(open('%s'))['interleaved']['rows'][0]; "
-             "print('%%s %%g %%g %%g %%g %%g %%d' %% (r['name'], r['a'], r['b'], r['ratio'], "
-             "r['ratio_min'], r['ratio_max'], r['rounds']))\"", js);
+             "print('%%s %%g %%g %%g %%g %%g %%d %%g %%g' %% (r['name'], r['a'], r['b'], "
+             "r['ratio'], r['ratio_min'], r['ratio_max'], r['rounds'], r['barrier_min'], "
+             "r['barrier_max']))\"", js);
     out = ctt_run_cmd(cmd, &status);
-    cr_expect_str_eq(out, "kernels/x/t1/10 10 4 2.5 2 2.5 3\n", "rows: %s", out);
+    cr_expect_str_eq(out, "kernels/x/t1/10 10 4 2.5 2 2.5 3 0.2 0.8\n", "rows: %s", out);
     free(out);
     /* A program that fails is reported, not averaged away. */
     snprintf(cmd, sizeof cmd, "python3 bench/interleave.py /bin/false %s --filter x 2>&1", b);
