@@ -12,6 +12,9 @@
  *   --direct-budget=X            direct search only while nsec*nseg <= X
  *                                (default 2e8, 4e9 with --full;
  *                                CT_BENCH_DIRECT_BUDGET)
+ *   --no-host-probe              no probe of the host after the
+ *                                benchmarks (bench_host.c; no host_*
+ *                                counters)
  * Defaults added unless given: --benchmark_repetitions=3
  * --benchmark_report_aggregates_only=true --benchmark_min_time=0.05
  * --benchmark_out=build/bench.json --benchmark_out_format=json.
@@ -57,6 +60,7 @@ static int has_flag(int argc, char **argv, const char *prefix)
 static void usage(FILE *f)
 {
     fprintf(f, "usage: bench [--bind=compact|spread|none] [--full] [--direct-budget=X]\n"
+               "             [--no-host-probe]\n"
                "             [--benchmark_* flags of Google Benchmark, e.g.\n"
                "              --benchmark_filter=REGEX --benchmark_min_time=S]\n"
                "names: search/<family>/<algo>/<numbering>/t<threads>/<nodes>/real_time\n"
@@ -95,6 +99,7 @@ int main(int argc, char **argv)
      * beyond; the full set runs it to 4e9. */
     cfg.direct_budget = e && *e ? strtod(e, NULL) : -1;
     cfg.seed = 12345;
+    int probe = 1;
 
     /* Our own options out, defaults in, Google Benchmark's flags kept. */
     char **args = calloc((size_t)argc + 8, sizeof *args);
@@ -113,6 +118,8 @@ int main(int argc, char **argv)
             }
         } else if (strcmp(argv[i], "--full") == 0) {
             cfg.full = 1;
+        } else if (strcmp(argv[i], "--no-host-probe") == 0) {
+            probe = 0;
         } else if (strncmp(argv[i], "--direct-budget=", 16) == 0) {
             cfg.direct_budget = strtod(argv[i] + 16, NULL);
         } else if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
@@ -189,7 +196,8 @@ int main(int argc, char **argv)
         fprintf(stderr, "bench: out of memory registering benchmarks\n");
         rc = 1;
     } else {
-        gb_set_host_probe(ctb_host_probe);
+        if (probe)
+            gb_set_host_probe(ctb_host_probe);
         rc = gb_run(&nargs, args);
         if (rc == 1)
             usage(stderr);
