@@ -25,6 +25,18 @@ STD_KEYS = {"name", "family_index", "per_family_instance_index", "run_name", "ru
 # What may follow the fields of a run name once base_name() has taken the
 # timing suffix away: a fixed iteration count, and the suffix itself.
 NAME_TAIL = r"(?:/iterations:\d+)?(?:/(?:real_time|manual_time))?$"
+# The host probe's counters (bench/bench_host.c, set by the shim after the
+# calls of a benchmark): the benchmark's team size, a fixed chain's time on
+# its slowest thread, one barrier of a team on every processor, and one
+# read's bandwidth shared among the benchmark's team; and how far (either
+# way) a figure may stray from the run's usual one before the host counts as
+# different (the report's rows "measured while the host differed",
+# interleave.py's rounds under two placements of the CPUs).
+HOST_THREADS = "host_threads"
+HOST_CHAIN = "host_chain_us"
+HOST_BARRIER = "host_barrier_us"
+HOST_READ = "host_read_GBps"
+HOST_OFF = 1.25
 # The search benchmarks (bench_search.c) and their algorithms, in the order
 # the tables and the plots show them.
 ALGOS = ["direct", "topological", "bucket", "bsp"]

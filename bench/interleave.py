@@ -22,7 +22,7 @@ contact cycle's total 0.97 (0.87-1.07) where single repetitions read 0.89
 Reported per name: the median of A's and B's counter over the rounds, the
 median of the rounds' ratios and their range, and the range of the host
 probe's barrier (host_barrier_us, bench/bench_host.c) over both programs'
-runs: when it spans more than HOST_MOVED, the host moved its CPUs between
+runs: when it spans more than HOST_OFF (benchjson.py), the host moved its CPUs between
 rounds and the ratio's range holds both placements. With --json, writes
 {"interleaved": {...}} for bench/report.py (pass it with the benchmark
 files). Standard library only.
@@ -34,13 +34,7 @@ import subprocess
 import sys
 import tempfile
 
-from benchjson import base_name
-
-# The host probe's barrier counter, and the spread of it (largest / smallest
-# over the rounds) above which the rounds ran under two placements of the
-# host's CPUs (bench/report_noise.py's HOST_OFF).
-HOST_BARRIER = "host_barrier_us"
-HOST_MOVED = 1.25
+from benchjson import HOST_BARRIER, HOST_OFF, base_name
 
 
 def run_once(binary, flt, out_path, reps=1, counter=None):
@@ -108,9 +102,9 @@ def interleave(a_bin, b_bin, flt, rounds, counter, reps=1):
 
 def moved_cpus(row):
     """Whether a row's rounds ran under two placements of the host's CPUs:
-    the probe's barrier spans more than HOST_MOVED."""
+    the probe's barrier spans more than HOST_OFF."""
     lo, hi = row.get("barrier_min", 0), row.get("barrier_max", 0)
-    return lo > 0 and hi > HOST_MOVED * lo
+    return lo > 0 and hi > HOST_OFF * lo
 
 
 def positive(text):

@@ -19,6 +19,7 @@ print_host gives each file's spread of the probe and names the rows measured
 while the host differed from the rest of the run.
 Standard library only.
 """
+from benchjson import HOST_BARRIER, HOST_CHAIN, HOST_OFF, HOST_READ, HOST_THREADS
 
 # A row whose repetitions spread by more than this (cv, a fraction) is
 # named as noisy.
@@ -84,22 +85,11 @@ def print_noise(files, out):
     print_host(files, out)
 
 
-# The host probe's counters (bench/bench_host.c, set by the shim after the
-# calls of a benchmark): the benchmark's team size, a fixed chain's time on
-# its slowest thread, one barrier of a team on every processor, and one
-# read's bandwidth shared among the benchmark's team.
-HOST_THREADS = "host_threads"
-HOST_CHAIN = "host_chain_us"
-HOST_BARRIER = "host_barrier_us"
-HOST_READ = "host_read_GBps"
 # (counter, per team size, its name in the report, its format). The barrier
 # is always on every processor: one reference for the whole file.
-HOST_KEYS = ((HOST_CHAIN, True, "chain µs", "%.1f"), (HOST_BARRIER, False, "barrier µs", "%.2f"),
+HOST_KEYS = ((HOST_CHAIN, True, "chain µs", "%.1f"),
+             (HOST_BARRIER, False, "barrier µs", "%.2f"),
              (HOST_READ, True, "read GB/s", "%.1f"))
-# A row whose probe figure is this many times above or below the file's
-# median (for as many threads) was measured while the host differed from
-# the rest of the run.
-HOST_OFF = 1.25
 
 
 def host_group(rec, per_team):
