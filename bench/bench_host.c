@@ -14,7 +14,7 @@
  * two threads ran 1.4 to 2 times faster and the one-thread searches 1.4
  * times faster: two virtual CPUs on one core's two hardware threads, then
  * on two cores, by every sign). So the probe, right after a benchmark:
- *  - chain: dependent integer multiply-adds on each thread the benchmark
+ *  - chain: dependent integer shift-xor-multiplies on each thread the benchmark
  *    used (no memory: the cores' clock and the share of it the host gives
  *    each virtual CPU), the slowest thread's time;
  *  - barrier: one barrier of a team on every processor (how far apart the
@@ -41,8 +41,10 @@
 #include <omp.h>
 #endif
 
-/* Multiply-adds in the chain: at 4 cycles each (a 64-bit multiply's
- * latency plus an add), about 80 us at 3.4 GHz. */
+/* Steps of the chain: each a shift, an exclusive or and a 64-bit multiply
+ * on the result of the one before (about 5 cycles: some 95 us at 3.4 GHz).
+ * A plain multiply-add chain would not do: clang folds eight of its steps
+ * into one (the composition of affine maps is affine) and ran it in 9 us. */
 #define HOST_CHAIN 65536
 /* Barriers per timing. */
 #define HOST_BARRIERS 256
@@ -65,19 +67,19 @@
 /* Threads the probe's slots can hold. */
 #define HOST_MAX_THREADS 256
 
-static double *rbuf;
+static uint64_t *rbuf;
 static double last_at = -HUGE_VAL, last[GB_HOST_N];
 static volatile uint64_t host_seed = 0x9e3779b97f4a7c15ull;
-static volatile double host_sink;
+static volatile uint64_t host_sink;
 
 static uint64_t chain(uint64_t a)
 {
     for (int k = 0; k < HOST_CHAIN; k++)
-        a = a * 6364136223846793005ull + 1442695040888963407ull;
+        a = (a ^ (a >> 29)) * 0xbf58476d1ce4e5b9ull;
     return a;
 }
 
-/* The read buffer, once, filled with ones. */
+/* The read buffer, once, filled (first touch by the team that reads it). */
 static int buffer_ready(void)
 {
     if (rbuf)
@@ -88,14 +90,8 @@ static int buffer_ready(void)
     const int64_t n = (int64_t)(HOST_READ_BYTES / sizeof *rbuf);
 #pragma omp parallel for schedule(static)
     for (int64_t i = 0; i < n; i++)
-        rbuf[i] = 1.0;
+        rbuf[i] = (uint64_t)i;
     return 0;
-}
-
-/* Whether timing b agrees with the one before it, a, within HOST_AGREE. */
-static int settled(double a, double b)
-{
-    return b <= HOST_AGREE * a && a <= HOST_AGREE * b;
 }
 
 static int thread_id(void)
@@ -116,50 +112,65 @@ static int team_size(void)
 #endif
 }
 
-/* The settled time of one barrier of a team of np threads (s; 0 for one
- * thread). */
-static double barrier_time(int np)
+/* One barrier of a team of np threads, timed by thread 0 over
+ * HOST_BARRIERS of them (s; 0 for one thread). */
+static double barrier_once(int np)
 {
     double bar = 0;
-    int stop = 0; /* written by thread 0 between barriers */
 #pragma omp parallel num_threads(np)
     {
-        /* Thread 0 times the barriers and decides, for all, when to stop
-         * (each thread reads the flag after a barrier that follows its
-         * write, and it is written again only after the next barrier). */
-        const int t = thread_id();
-        int done = team_size() == 1;
-        double prev = HUGE_VAL;
-        for (int k = 0; !done; k++) {
+        const int team = team_size();
 #pragma omp barrier
-            const double t0 = ctb_now_s();
-            for (int b = 0; b < HOST_BARRIERS; b++) {
+        const double t0 = ctb_now_s();
+        for (int b = 0; b < HOST_BARRIERS && team > 1; b++) {
 #pragma omp barrier
-            }
-            if (t == 0) {
-                bar = (ctb_now_s() - t0) / HOST_BARRIERS;
-                stop = k + 1 >= HOST_TRIES || settled(prev, bar);
-                prev = bar;
-            }
-#pragma omp barrier
-            done = stop;
         }
+        if (thread_id() == 0 && team > 1)
+            bar = (ctb_now_s() - t0) / HOST_BARRIERS;
     }
     return bar;
 }
 
-/* On a team of nt: out[1] the slowest thread's fastest chain (s), out[3]
- * the settled read's time (s); out[0] the team's size. */
-static void probe_team(int nt, double out[GB_HOST_N])
+/* One read of the buffer shared among a team of nt threads (s). */
+static double read_once(int nt)
+{
+    const int64_t n = (int64_t)(HOST_READ_BYTES / sizeof *rbuf);
+    uint64_t s = 0; /* an exclusive or: exact in any order, so the compilers vectorise it */
+    const double t0 = ctb_now_s();
+#pragma omp parallel for schedule(static) num_threads(nt) reduction(^ : s)
+    for (int64_t i = 0; i < n; i++)
+        s ^= rbuf[i];
+    const double dt = ctb_now_s() - t0;
+    host_sink = s; /* keeps the read */
+    return dt;
+}
+
+/* f(n) timed until two timings in a row agree within HOST_AGREE (at most
+ * HOST_TRIES times): the last. */
+static double settled(double (*f)(int), int n)
+{
+    double prev = HUGE_VAL, dt = HUGE_VAL;
+    for (int k = 0; k < HOST_TRIES; k++) {
+        dt = f(n);
+        if (dt <= HOST_AGREE * prev && prev <= HOST_AGREE * dt)
+            break;
+        prev = dt;
+    }
+    return dt;
+}
+
+/* The slowest thread's fastest of three chains on a team of nt (s); *size
+ * the team's size. */
+static double chain_time(int nt, int *size)
 {
     double chain_s[HOST_MAX_THREADS * 8]; /* a cache line apart */
     const uint64_t seed = host_seed;
-    const int64_t n = (int64_t)(HOST_READ_BYTES / sizeof *rbuf);
-    double rd = HUGE_VAL;
-    int size = 1, stop = 0; /* written by thread 0 between barriers */
+    int team = 1;
 #pragma omp parallel num_threads(nt)
     {
-        const int t = thread_id(), team = team_size();
+        const int t = thread_id();
+        if (t == 0)
+            team = team_size();
         double best = HUGE_VAL;
         for (int k = 0; k < 3; k++) {
             const double t0 = ctb_now_s();
@@ -167,41 +178,15 @@ static void probe_team(int nt, double out[GB_HOST_N])
             const double dt = ctb_now_s() - t0;
             best = dt < best ? dt : best;
             if (a == 0) /* almost never: keeps the chain */
-                host_sink = (double)t;
+                host_sink = (uint64_t)t;
         }
         chain_s[8 * t] = best;
-        if (t == 0)
-            size = team;
-        /* The read, each thread its static share, timed by thread 0
-         * between barriers. */
-        const int64_t lo = n * t / team, hi = n * (t + 1) / team;
-        double prev = HUGE_VAL;
-        int done = 0;
-        for (int k = 0; !done; k++) {
-#pragma omp barrier
-            const double t0 = ctb_now_s();
-            double s = 0;
-#pragma omp simd reduction(+ : s)
-            for (int64_t i = lo; i < hi; i++)
-                s += rbuf[i];
-            if (s < 0) /* never: keeps the sum */
-                host_sink = s;
-#pragma omp barrier
-            if (t == 0) {
-                rd = ctb_now_s() - t0;
-                stop = k + 1 >= HOST_TRIES || settled(prev, rd);
-                prev = rd;
-            }
-#pragma omp barrier
-            done = stop;
-        }
     }
     double c = 0;
-    for (int t = 0; t < size; t++)
+    for (int t = 0; t < team; t++)
         c = chain_s[8 * t] > c ? chain_s[8 * t] : c;
-    out[0] = size;
-    out[1] = c;
-    out[3] = rd;
+    *size = team;
+    return c;
 }
 
 int ctb_host_probe(double out[GB_HOST_N])
@@ -215,17 +200,15 @@ int ctb_host_probe(double out[GB_HOST_N])
     if (!(ctb_now_s() - last_at < HOST_EVERY_S && (int)last[0] == nt)) {
         if (buffer_ready())
             return -1;
-        double v[GB_HOST_N];
-        probe_team(nt, v);
-        int np = 1;
+        int size = 1, np = 1;
 #ifdef _OPENMP
         np = omp_get_num_procs();
 #endif
-        v[2] = barrier_time(np < HOST_MAX_THREADS ? np : HOST_MAX_THREADS);
-        last[0] = v[0];
-        last[1] = 1e6 * v[1];
-        last[2] = 1e6 * v[2];
-        last[3] = (double)HOST_READ_BYTES / v[3] * 1e-9;
+        const double c = chain_time(nt, &size);
+        last[0] = size;
+        last[1] = 1e6 * c;
+        last[2] = 1e6 * settled(barrier_once, np < HOST_MAX_THREADS ? np : HOST_MAX_THREADS);
+        last[3] = (double)HOST_READ_BYTES / settled(read_once, nt) * 1e-9;
         last_at = ctb_now_s();
     }
     for (int k = 0; k < GB_HOST_N; k++)
