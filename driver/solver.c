@@ -67,24 +67,14 @@ static int element_forces(ctd_solver *s)
     return 0;
 }
 
-/* The interfaces: contact forces into w->fc.., added to w->f...; dt_bodies
- * is stable_dt_bodies at x(n). */
+/* The interfaces: contact forces into w->fc.. (zeroed by forces_begin,
+ * added to w->f.. by forces_end); dt_bodies is stable_dt_bodies at x(n). */
 static int contact_forces(ctd_solver *s, int want_fields, double dt_bodies)
 {
     cti_solver_work *w = s->w;
     ct_idx nn = s->nnode;
     if (!s->nhook)
         return 0;
-    CTI_PAR_FOR(nn > CTD_PAR_MIN, (schedule(static)),
-    for (ct_idx i = 0; i < nn; i++) {
-        w->fcx[i] = 0;
-        w->fcy[i] = 0;
-        w->fcz[i] = 0;
-        if (want_fields) {
-            w->pen[i] = 0;
-            w->nact[i] = 0;
-        }
-    });
     /* The largest step that can follow (stable_dt's other limits, the
      * output interval): the interfaces' open pairs count in their step
      * when they can close their clearance in two such steps. */
@@ -140,29 +130,108 @@ static int contact_forces(ctd_solver *s, int want_fields, double dt_bodies)
             s->if_active_max[i] = r->active;
     }
     w->contact = ec;
-    CTI_PAR_FOR(nn > CTD_PAR_MIN, (schedule(static)),
-    for (ct_idx i = 0; i < nn; i++) {
-        w->fx[i] += w->fcx[i];
-        w->fy[i] += w->fcy[i];
-        w->fz[i] += w->fcz[i];
-    });
     return 0;
 }
 
-/* The first node (in index order) with a non-finite value in a, b or c, or -1. */
+/* The first node (in index order) with a non-finite value in a, b or c, or
+ * -1: the serial scan after a fused pass (forces_end, drift) found one. */
 static ct_idx first_nonfinite(ct_idx n, const ct_real *a, const ct_real *b, const ct_real *c)
 {
-    int bad = 0;
-    CTI_PAR_FOR(n > CTD_PAR_MIN, (schedule(static) reduction(| : bad)),
-    for (ct_idx i = 0; i < n; i++)
-        bad |= !isfinite(a[i]) || !isfinite(b[i]) || !isfinite(c[i]);
-    );
-    if (!bad)
-        return -1;
     for (ct_idx i = 0; i < n; i++)
         if (!isfinite(a[i]) || !isfinite(b[i]) || !isfinite(c[i]))
             return i;
     return -1;
+}
+
+/*
+ * The node passes of a cycle are few and fused: each costs a parallel
+ * region (1.6 us on two threads of this project's hosts, more on more
+ * threads), and on a model of 10^4 nodes the eight that were here took a
+ * sixth of a cycle on two threads (BENCHMARKS.md, whole runs). Each pass
+ * below is one region; a node's arithmetic is unchanged.
+ */
+
+/* The start of a cycle's forces: the total force, and with interfaces their
+ * force (and, on an output cycle, the fields they fill), zeroed. */
+static void forces_begin(ctd_solver *s, int want_fields)
+{
+    cti_solver_work *w = s->w;
+    const ct_idx nn = s->nnode;
+    const int hooks = s->nhook > 0, fields = hooks && want_fields;
+    ct_real *restrict fx = w->fx, *restrict fy = w->fy, *restrict fz = w->fz;
+    ct_real *restrict cx = w->fcx, *restrict cy = w->fcy, *restrict cz = w->fcz;
+    ct_real *restrict pen = w->pen;
+    int32_t *restrict nact = w->nact;
+    CTI_PAR_FOR(nn > CTD_PAR_MIN, (schedule(static)),
+    for (ct_idx i = 0; i < nn; i++) {
+        fx[i] = 0;
+        fy[i] = 0;
+        fz[i] = 0;
+        if (hooks) {
+            cx[i] = 0;
+            cy[i] = 0;
+            cz[i] = 0;
+        }
+        if (fields) {
+            pen[i] = 0;
+            nact[i] = 0;
+        }
+    });
+}
+
+/* The nodes [lo, hi) of a chunk: lo = c CTI_CHUNK. */
+static inline void chunk_range(int c, ct_idx nn, ct_idx *lo, ct_idx *hi)
+{
+    *lo = (ct_idx)c * CTI_CHUNK;
+    *hi = nn - *lo > CTI_CHUNK ? *lo + CTI_CHUNK : nn;
+}
+
+/* forces_end on the nodes of chunk c; returns whether a total is not finite. */
+static int forces_end_chunk(ctd_solver *s, int c)
+{
+    cti_solver_work *w = s->w;
+    const ctd_model *m = s->model;
+    const ct_real *restrict mass = m->mesh.nodes.m;
+    const int hooks = s->nhook > 0, grav = m->has_gravity;
+    const ct_real gx = (ct_real)m->gravity[0], gy = (ct_real)m->gravity[1],
+                  gz = (ct_real)m->gravity[2];
+    ct_real *restrict fx = w->fx, *restrict fy = w->fy, *restrict fz = w->fz;
+    const ct_real *restrict cx = w->fcx, *restrict cy = w->fcy, *restrict cz = w->fcz;
+    ct_idx lo, hi;
+    chunk_range(c, s->nnode, &lo, &hi);
+    int bad = 0;
+#pragma omp simd reduction(| : bad)
+    for (ct_idx i = lo; i < hi; i++) {
+        ct_real ux = fx[i], uy = fy[i], uz = fz[i];
+        if (hooks) {
+            ux += cx[i];
+            uy += cy[i];
+            uz += cz[i];
+        }
+        if (grav) {
+            ux += mass[i] * gx;
+            uy += mass[i] * gy;
+            uz += mass[i] * gz;
+        }
+        fx[i] = ux;
+        fy[i] = uy;
+        fz[i] = uz;
+        bad |= CTI_NONFINITE(ux) | CTI_NONFINITE(uy) | CTI_NONFINITE(uz);
+    }
+    return bad;
+}
+
+/* The end of a cycle's forces: the contact force and gravity added to the
+ * elements' forces and the loads; returns the first node whose total force
+ * is not finite, or -1. */
+static ct_idx forces_end(ctd_solver *s)
+{
+    cti_solver_work *w = s->w;
+    int bad = 0;
+    CTI_PAR_FOR(s->nnode > CTD_PAR_MIN, (schedule(static) reduction(| : bad)),
+    for (int c = 0; c < w->nchunk; c++)
+        bad |= forces_end_chunk(s, c););
+    return bad ? first_nonfinite(s->nnode, w->fx, w->fy, w->fz) : -1;
 }
 
 static void fail_node(ctd_solver *s, ct_idx i, const char *what)
@@ -237,87 +306,139 @@ static double stable_dt_bodies(ctd_solver *s)
  * the velocity increment of the step, dtk f / m, makes that product grow by
  * dtk f . v- / 2 now and dtk f . v+ / 2 at the next cycle, so a force's work
  * is dtk f . (v- + v+) / 2. v+ of a constrained direction is its imposed
- * velocity. Called by kick before it updates the velocities; sums in fixed
- * chunks (the same bits for any thread count).
+ * velocity. The nodes of chunk c, before their kick; *back and *fwd get the
+ * chunk's sums of fc . v- and fc . v+.
  */
-static void contact_work(ctd_solver *s, double dtk)
+static void contact_work_chunk(const ctd_solver *s, double dtk, int c, double *back,
+                               double *fwd)
 {
-    cti_solver_work *w = s->w;
+    const cti_solver_work *w = s->w;
     const ctd_model *m = s->model;
-    const ct_real *mass = m->mesh.nodes.m;
-    const ct_idx nn = s->nnode;
-    double *back = w->part_sum, *fwd = w->part_sum + w->nchunk + 1;
-    CTI_PAR_FOR(w->nchunk > 1, (schedule(static)),
-    for (int c = 0; c < w->nchunk; c++) {
-        ct_idx lo = (ct_idx)c * CTI_CHUNK, hi = lo + CTI_CHUNK < nn ? lo + CTI_CHUNK : nn;
-        double b = 0, f = 0;
-        for (ct_idx i = lo; i < hi; i++) {
-            if (!w->free_node[i])
-                continue;
-            const double fc[3] = {w->fcx[i], w->fcy[i], w->fcz[i]};
-            const double ft[3] = {w->fx[i], w->fy[i], w->fz[i]};
-            const double vm[3] = {s->vx[i], s->vy[i], s->vz[i]};
-            const double im = dtk / mass[i];
-            for (int d = 0; d < 3; d++) {
-                double vp = m->bc_mask[i] >> d & 1 ? m->bc_v[d][i] : vm[d] + im * ft[d];
-                b += fc[d] * vm[d];
-                f += fc[d] * vp;
-            }
-        }
-        back[c] = b;
-        fwd[c] = f;
-    });
+    const ct_real *restrict mass = m->mesh.nodes.m;
+    const uint8_t *restrict fr = w->free_node, *restrict mask = m->bc_mask;
+    const ct_real *restrict cx = w->fcx, *restrict cy = w->fcy, *restrict cz = w->fcz;
+    const ct_real *restrict fx = w->fx, *restrict fy = w->fy, *restrict fz = w->fz;
+    const ct_real *restrict vx = s->vx, *restrict vy = s->vy, *restrict vz = s->vz;
+    const ct_real *restrict bx = m->bc_v[0], *restrict by = m->bc_v[1], *restrict bz = m->bc_v[2];
+    ct_idx lo, hi;
+    chunk_range(c, s->nnode, &lo, &hi);
     double b = 0, f = 0;
-    for (int c = 0; c < w->nchunk; c++) {
-        b += back[c];
-        f += fwd[c];
+    /* Selects, not branches, so that the loop vectorises (a node that is
+     * not free adds nothing; its mass may be 0, the quotient's lane is not
+     * used). The sums are in a fixed order within the chunk. */
+#pragma omp simd reduction(+ : b, f)
+    for (ct_idx i = lo; i < hi; i++) {
+        const int free_ = fr[i] != 0;
+        const unsigned mk = mask[i];
+        const double im = dtk / (free_ ? (double)mass[i] : 1.0);
+        const double vmx = vx[i], vmy = vy[i], vmz = vz[i];
+        const double px = mk & 1u ? (double)bx[i] : vmx + im * (double)fx[i];
+        const double py = mk & 2u ? (double)by[i] : vmy + im * (double)fy[i];
+        const double pz = mk & 4u ? (double)bz[i] : vmz + im * (double)fz[i];
+        const double ux = cx[i], uy = cy[i], uz = cz[i];
+        const double tb = (ux * vmx + uy * vmy) + uz * vmz;
+        const double tf = (ux * px + uy * py) + uz * pz;
+        b += free_ ? tb : 0;
+        f += free_ ? tf : 0;
     }
-    w->w_c_back = 0.5 * dtk * b;
-    w->w_c_fwd = 0.5 * dtk * f;
+    *back = b;
+    *fwd = f;
 }
 
-/* Kick of the free nodes, then the imposed components with their reaction
- * work (backward and forward halves, solver.h). keep_old: save v- first. */
+/* One imposed component of a node after its kick (vk): the imposed
+ * velocity vimp replaces it, and the reaction R = m (vimp - vk) / dtk does
+ * the work R dt_prev v- / 2 (backward half; v- = vk - dtk f / m for a node
+ * with mass) and R dt_new vimp / 2 (forward half), added to *wb and *wf
+ * when on. Returns the component's velocity. */
+static inline __attribute__((always_inline)) ct_real
+imposed(int on, double m, double vimp, double vk, double f, double dtk, double dtp,
+        double dt_new, double *wb, double *wf)
+{
+    const double R = m * (vimp - vk) / dtk;
+    const double vold = m > 0 ? vk - dtk * f / m : vimp;
+    *wb += on ? 0.5 * R * dtp * vold : 0;
+    *wf += on ? 0.5 * R * dt_new * vimp : 0;
+    return on ? (ct_real)vimp : (ct_real)vk;
+}
+
+/* The kick of chunk c (see kick); its reaction work into *wb, *wf. */
+static void kick_chunk(ctd_solver *s, int c, ct_real dk, double dtk, double dt_new,
+                       int keep_old, double *wb_out, double *wf_out)
+{
+    const ctd_model *m = s->model;
+    cti_solver_work *w = s->w;
+    const double dtp = w->dt_prev;
+    ct_idx lo, hi;
+    chunk_range(c, s->nnode, &lo, &hi);
+    const uint8_t *restrict fr = w->free_node, *restrict mask = m->bc_mask;
+    const int32_t *restrict body = m->node_body;
+    const ct_real *restrict ms = m->mesh.nodes.m, *restrict fx = w->fx, *restrict fy = w->fy,
+                            *restrict fz = w->fz;
+    const ct_real *restrict bx = m->bc_v[0], *restrict by = m->bc_v[1], *restrict bz = m->bc_v[2];
+    ct_real *restrict vx = s->vx, *restrict vy = s->vy, *restrict vz = s->vz;
+    if (keep_old) {
+        ct_real *restrict ox = w->vox, *restrict oy = w->voy, *restrict oz = w->voz;
+#pragma omp simd
+        for (ct_idx i = lo; i < hi; i++) {
+            ox[i] = vx[i];
+            oy[i] = vy[i];
+            oz[i] = vz[i];
+        }
+    }
+    /* Selects, not branches, so that the loop vectorises: a node not free
+     * keeps its velocity (its mass may be 0: the quotient's lane is not
+     * used); a rigid body's nodes have no imposed component here
+     * (rigid_kick). */
+    double wb = 0, wf = 0;
+#pragma omp simd reduction(+ : wb, wf)
+    for (ct_idx i = lo; i < hi; i++) {
+        const int f = fr[i] != 0;
+        const ct_real im = dk / (f ? ms[i] : 1);
+        const ct_real kx = vx[i] + im * fx[i], ky = vy[i] + im * fy[i],
+                      kz = vz[i] + im * fz[i];
+        const ct_real ux = f ? kx : vx[i], uy = f ? ky : vy[i], uz = f ? kz : vz[i];
+        const unsigned mk = body[i] < 0 ? mask[i] : 0u;
+        const double mi = ms[i];
+        vx[i] = imposed(mk & 1u, mi, bx[i], ux, fx[i], dtk, dtp, dt_new, &wb, &wf);
+        vy[i] = imposed(mk & 2u, mi, by[i], uy, fy[i], dtk, dtp, dt_new, &wb, &wf);
+        vz[i] = imposed(mk & 4u, mi, bz[i], uz, fz[i], dtk, dtp, dt_new, &wb, &wf);
+    }
+    *wb_out = wb;
+    *wf_out = wf;
+}
+
+/*
+ * The kick, chunk by chunk in one pass: per chunk, the contact forces' work
+ * (contact_work_chunk, before the kick), v- kept when keep_old, the kick of
+ * the free nodes, then the imposed components with their reaction work
+ * (backward and forward halves, solver.h). Every sum is per chunk and the
+ * chunks' sums are added in chunk order: the same bits for any thread
+ * count. (The imposed components were a serial loop after the kick; on the
+ * wide folding sheet a third of the nodes are held, and that loop was a
+ * thirtieth of a cycle on one thread, which a second thread did not share.)
+ */
 static void kick(ctd_solver *s, double dtk, double dt_new, int keep_old)
 {
-    ctd_model *m = s->model;
     cti_solver_work *w = s->w;
-    const ct_real *mass = m->mesh.nodes.m;
-    ct_idx nn = s->nnode;
     const ct_real dk = (ct_real)dtk;
-    if (s->nhook)
-        contact_work(s, dtk);
-    CTI_PAR_FOR(nn > CTD_PAR_MIN, (schedule(static)),
-    for (ct_idx i = 0; i < nn; i++) {
-        if (keep_old) {
-            w->vox[i] = s->vx[i];
-            w->voy[i] = s->vy[i];
-            w->voz[i] = s->vz[i];
-        }
-        if (w->free_node[i]) {
-            ct_real im = dk / mass[i];
-            s->vx[i] += im * w->fx[i];
-            s->vy[i] += im * w->fy[i];
-            s->vz[i] += im * w->fz[i];
-        }
+    const int hooks = s->nhook > 0, nc = w->nchunk;
+    double *back = w->part_sum, *fwd = back + nc + 1, *rb = fwd + nc + 1, *rf = rb + nc + 1;
+    CTI_PAR_FOR(s->nnode > CTD_PAR_MIN, (schedule(static)),
+    for (int c = 0; c < nc; c++) {
+        if (hooks)
+            contact_work_chunk(s, dtk, c, &back[c], &fwd[c]);
+        kick_chunk(s, c, dk, dtk, dt_new, keep_old, &rb[c], &rf[c]);
     });
-    double wb = 0, wf = 0;
-    ct_real *v[3] = {s->vx, s->vy, s->vz};
-    for (ct_idx k = 0; k < w->nbc; k++) {
-        ct_idx i = w->bc_node[k];
-        for (int d = 0; d < 3; d++) {
-            if (!(m->bc_mask[i] >> d & 1))
-                continue;
-            double vimp = m->bc_v[d][i];
-            double vk = v[d][i];
-            double R = mass[i] * (vimp - vk) / dtk;
-            /* v- = v_kicked - dtk f / m for a node with mass. */
-            double vold = mass[i] > 0 ? vk - dtk * (d == 0 ? w->fx[i] : d == 1 ? w->fy[i] : w->fz[i]) / mass[i]
-                                      : vimp;
-            wb += 0.5 * R * w->dt_prev * vold;
-            wf += 0.5 * R * dt_new * vimp;
-            v[d][i] = (ct_real)vimp;
-        }
+    double b = 0, f = 0, wb = 0, wf = 0;
+    for (int c = 0; c < nc; c++) {
+        b += back[c];
+        f += fwd[c];
+        wb += rb[c];
+        wf += rf[c];
+    }
+    if (hooks) {
+        w->w_c_back = 0.5 * dtk * b;
+        w->w_c_fwd = 0.5 * dtk * f;
     }
     w->w_bc_back = wb;
     w->w_bc_fwd = wf;
@@ -391,20 +512,39 @@ static void rigid_kick(ctd_solver *s, double dtk, double dt_new)
     }
 }
 
-/* Drift: free nodes, then rigid bodies (advance and place their nodes). */
-static int drift(ctd_solver *s, double dt)
+/* The drift of the nodes of chunk c not in a rigid body (see drift);
+ * returns whether a position of the chunk is not finite. */
+static int drift_chunk(ctd_solver *s, int c, ct_real d)
+{
+    const int32_t *restrict body = s->model->node_body;
+    ct_real *restrict x = s->x, *restrict y = s->y, *restrict z = s->z;
+    const ct_real *restrict vx = s->vx, *restrict vy = s->vy, *restrict vz = s->vz;
+    ct_idx lo, hi;
+    chunk_range(c, s->nnode, &lo, &hi);
+    int bad = 0;
+#pragma omp simd reduction(| : bad)
+    for (ct_idx i = lo; i < hi; i++) {
+        /* Every load unconditional, so that both compilers vectorise. */
+        const int free_ = body[i] < 0;
+        const ct_real dx = d * vx[i], dy = d * vy[i], dz = d * vz[i];
+        const ct_real xi = free_ ? x[i] + dx : x[i];
+        const ct_real yi = free_ ? y[i] + dy : y[i];
+        const ct_real zi = free_ ? z[i] + dz : z[i];
+        x[i] = xi;
+        y[i] = yi;
+        z[i] = zi;
+        bad |= CTI_NONFINITE(xi) | CTI_NONFINITE(yi) | CTI_NONFINITE(zi);
+    }
+    return bad;
+}
+
+/* Drift: the rigid bodies (advance and place their nodes), then the other
+ * nodes, in one pass that also finds whether a position is not finite
+ * (*bad: the first such node, or -1). Returns -1 when a body failed. */
+static int drift(ctd_solver *s, double dt, ct_idx *bad)
 {
     ctd_model *m = s->model;
-    ct_idx nn = s->nnode;
-    const ct_real d = (ct_real)dt;
-    CTI_PAR_FOR(nn > CTD_PAR_MIN, (schedule(static)),
-    for (ct_idx i = 0; i < nn; i++)
-        if (m->node_body[i] < 0) {
-            s->x[i] += d * s->vx[i];
-            s->y[i] += d * s->vy[i];
-            s->z[i] += d * s->vz[i];
-        }
-    );
+    *bad = -1;
     for (int b = 0; b < m->nbody; b++) {
         ctd_rigid *r = &m->body[b].rigid;
         int rc = ctd_rigid_advance(r, dt);
@@ -418,6 +558,14 @@ static int drift(ctd_solver *s, double dt)
         }
         ctd_rigid_set_nodes(r, s->x, s->y, s->z, s->vx, s->vy, s->vz);
     }
+    /* Body nodes are placed above and only read here. */
+    const ct_real d = (ct_real)dt;
+    int nonfin = 0;
+    CTI_PAR_FOR(s->nnode > CTD_PAR_MIN, (schedule(static) reduction(| : nonfin)),
+    for (int c = 0; c < s->w->nchunk; c++)
+        nonfin |= drift_chunk(s, c, d););
+    if (nonfin)
+        *bad = first_nonfinite(s->nnode, s->x, s->y, s->z);
     return 0;
 }
 
@@ -458,8 +606,6 @@ int ctd_solver_run(ctd_solver *s)
 {
     ctd_model *m = s->model;
     cti_solver_work *w = s->w;
-    ct_idx nn = s->nnode;
-    const ct_real *mass = m->mesh.nodes.m;
     const double end = s->end_time, tol = 1e-12 * end;
     double next_out = 0;
     w->t_start = ctd_wtime();
@@ -472,12 +618,7 @@ int ctd_solver_run(ctd_solver *s)
         int out_step = s->time >= next_out - tol || final;
         int check = out_step || s->cycle % 100 == 0;
         /* Forces at x(n). */
-        CTI_PAR_FOR(nn > CTD_PAR_MIN, (schedule(static)),
-        for (ct_idx i = 0; i < nn; i++) {
-            w->fx[i] = 0;
-            w->fy[i] = 0;
-            w->fz[i] = 0;
-        });
+        forces_begin(s, out_step);
         if (element_forces(s))
             break;
         double t1 = ctd_wtime();
@@ -490,17 +631,7 @@ int ctd_solver_run(ctd_solver *s)
         if (s->cycle == 0 && s->nhook) /* an output cycle: the fields hold them */
             ctd_solver_penetration(s, &s->pen0_count, &s->pen0_max, &s->pen0_node);
         ctd_loads_apply(&w->loads, s->time, s->x, s->y, s->z, w->fx, w->fy, w->fz);
-        if (m->has_gravity) {
-            const ct_real gx = (ct_real)m->gravity[0], gy = (ct_real)m->gravity[1],
-                          gz = (ct_real)m->gravity[2];
-            CTI_PAR_FOR(nn > CTD_PAR_MIN, (schedule(static)),
-            for (ct_idx i = 0; i < nn; i++) {
-                w->fx[i] += mass[i] * gx;
-                w->fy[i] += mass[i] * gy;
-                w->fz[i] += mass[i] * gz;
-            });
-        }
-        ct_idx bad = first_nonfinite(nn, w->fx, w->fy, w->fz);
+        ct_idx bad = forces_end(s);
         if (bad >= 0) {
             fail_node(s, bad, "force");
             break;
@@ -601,9 +732,8 @@ int ctd_solver_run(ctd_solver *s)
         if (check)
             keep_good(s);
         /* Drift to x(n+1). */
-        if (drift(s, dt_new))
+        if (drift(s, dt_new, &bad))
             break;
-        bad = first_nonfinite(nn, s->x, s->y, s->z);
         if (bad >= 0) {
             s->cycle++;
             s->time += dt_new;

@@ -45,7 +45,6 @@ void ctd_solver_destroy(ctd_solver *s)
             ct_free(*wa[k]);
         ct_free(w->nact);
         free(w->free_node);
-        free(w->bc_node);
         free(w->part_sum);
         free(w->vc_old);
         free(w->L_old);
@@ -116,9 +115,8 @@ int ctd_solver_init(ctd_solver *s, ctd_model *m, const ctd_solver_opts *opts,
             return ctd_errf(err, errlen, CT_ERR_NOMEM, "out of memory");
     w->nact = ct_calloc(n1, sizeof(int32_t));
     w->free_node = calloc(n1, 1);
-    w->bc_node = malloc(sizeof(ct_idx) * n1);
     w->nchunk = (int)((nn + CTI_CHUNK - 1) / CTI_CHUNK);
-    w->part_sum = calloc(2 * ((size_t)w->nchunk + 1), sizeof(double));
+    w->part_sum = calloc(4 * ((size_t)w->nchunk + 1), sizeof(double));
     w->vc_old = calloc((size_t)m->nbody + 1, sizeof *w->vc_old);
     w->L_old = calloc((size_t)m->nbody + 1, sizeof *w->L_old);
     int nh = s->nhook;
@@ -130,7 +128,7 @@ int ctd_solver_init(ctd_solver *s, ctd_model *m, const ctd_solver_opts *opts,
     w->if_resorts = calloc((size_t)nh + 1, sizeof(int64_t));
     w->if_margin = calloc((size_t)nh + 1, sizeof(double));
     w->if_names = calloc((size_t)nh + 1, sizeof(char *));
-    if (!w->nact || !w->free_node || !w->bc_node || !w->part_sum || !w->vc_old || !w->L_old ||
+    if (!w->nact || !w->free_node || !w->part_sum || !w->vc_old || !w->L_old ||
         !s->rep ||
         !s->if_force_max || !s->if_active_max || !w->if_force || !w->if_active ||
         !w->if_resorts || !w->if_margin || !w->if_names)
@@ -147,11 +145,8 @@ int ctd_solver_init(ctd_solver *s, ctd_model *m, const ctd_solver_opts *opts,
     memcpy(s->vx, nd->vx, sizeof(ct_real) * (size_t)nn);
     memcpy(s->vy, nd->vy, sizeof(ct_real) * (size_t)nn);
     memcpy(s->vz, nd->vz, sizeof(ct_real) * (size_t)nn);
-    for (ct_idx i = 0; i < nn; i++) {
+    for (ct_idx i = 0; i < nn; i++)
         w->free_node[i] = m->node_body[i] < 0 && nd->m[i] > 0;
-        if (m->node_body[i] < 0 && m->bc_mask[i])
-            w->bc_node[w->nbc++] = i;
-    }
     int lrc = ctd_loads_init(&w->loads, m, err, errlen);
     if (lrc != CT_OK) {
         /* A selection that selects nothing is the input's fault: tell the

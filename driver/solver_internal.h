@@ -10,7 +10,7 @@
 
 /* Energy sums go through fixed chunks of nodes (bit-identical for any
  * thread count). */
-#define CTI_CHUNK 4096
+#define CTI_CHUNK 1024
 
 typedef struct cti_solver_work {
     /* What the run wrote, for the report's list of files. */
@@ -26,9 +26,7 @@ typedef struct cti_solver_work {
     int64_t good_cycle;
     int have_good;
     uint8_t *free_node;           /* 1: integrated by the kick (not rigid, m > 0) */
-    ct_idx nbc;
-    ct_idx *bc_node;              /* constrained nodes not in rigid bodies */
-    double *part_sum;             /* chunk partial sums (two per chunk) */
+    double *part_sum;             /* chunk partial sums (four per chunk) */
     int nchunk;
     double (*vc_old)[3];          /* rigid bodies' centre velocity before the kick */
     double (*L_old)[3];           /* and their angular momentum before the kick */

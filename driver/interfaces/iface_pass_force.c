@@ -284,6 +284,8 @@ void ctdi_nodal_begin(ctd_iface *it)
         for (ct_idx k = 0; k < p->nsec; k++)
             kc[sec[k]] = 0;
         );
+        if (p->mainn_rs == p->sec) /* self contact: the same nodes */
+            continue;
         CTI_PAR_FOR_SIMD(p->nmain > CTDI_PAR_MIN, (schedule(static)),
         for (ct_idx k = 0; k < p->nmain; k++)
             kc[mn[k]] = 0;
@@ -306,7 +308,9 @@ void ctdi_nodal_finish(ctd_iface *it, const ct_real *m, ctd_iface_report *rep)
     double dmin = CT_DT_NONE;
     for (int i = 0; i < it->npass; i++) {
         const ctdi_pass *p = &it->pass[i];
-        for (int side = 0; side < 2; side++) {
+        /* Self contact: one side, its nodes are the other's. */
+        const int nside = p->mainn_rs == p->sec ? 1 : 2;
+        for (int side = 0; side < nside; side++) {
             const ct_idx n = side ? p->nmain : p->nsec, *restrict l = side ? p->mainn : p->sec;
             double d = CT_DT_NONE;
             CTI_PAR_FOR(n > CTDI_PAR_MIN, (schedule(static) reduction(min : d)),
