@@ -91,6 +91,9 @@ static void disp_store(cti_disp *d, ct_real m, ct_real lx, ct_real ly, ct_real l
 /* NULL when list is 0, 1, ..., n - 1, else list. */
 static const ct_idx *list_or_null(ct_idx n, const ct_idx *restrict list)
 {
+    /* Its ends decide most lists without the pass (and its team). */
+    if (n > 0 && (list[0] != 0 || list[n - 1] != n - 1))
+        return list;
     int other = 0;
     CTI_PAR_FOR(n > CTI_RESORT_PAR, (schedule(static) reduction(| : other)),
     for (ct_idx i = 0; i < n; i++)

@@ -376,12 +376,12 @@ static void edge_dt_nodal(const ctdi_epass *e, ct_idx n, const ct_real *m, const
     const ct_real *restrict kt = e->r[E_KTAN], *w[4] = {e->r[E_W1], e->r[E_W2], e->r[E_W3],
                                                         e->r[E_W4]};
     double lmax = 0;
-#pragma omp parallel for schedule(static) reduction(max : lmax) if (n > CTDI_PAR_MIN)
+    CTI_PAR_FOR(n > CTDI_PAR_MIN, (schedule(static) reduction(max : lmax)),
     for (ct_idx k = 0; k < n; k++)
         if (kt[k] > 0) {
             double l = edge_pair_lambda(e, k, m, kelem);
             lmax = l > lmax ? l : lmax;
-        }
+        });
     ct_idx kmax = -1;
     for (ct_idx k = 0; lmax > 0 && k < n && kmax < 0; k++)
         if (kt[k] > 0 && edge_pair_lambda(e, k, m, kelem) == lmax)
@@ -447,7 +447,7 @@ int ctdi_type11_step(ctd_iface *it, ct_real dt, const ct_real *x, const ct_real 
                           *restrict w1 = r[E_W1], *restrict w2 = r[E_W2],
                           *restrict w3 = r[E_W3], *restrict w4 = r[E_W4],
                           *restrict vr2 = r[E_VR2];
-#pragma omp parallel for simd schedule(static) if (n > CTDI_PAR_MIN)
+        CTI_PAR_FOR_SIMD(n > CTDI_PAR_MIN, (schedule(static)),
         for (ct_idx k = 0; k < n; k++) {
             ct_real ua = 1 - sa[k], ub = 1 - sb[k];
             ct_real ux = ua * vx[a1[k]] + sa[k] * vx[a2[k]] - ub * vx[b1[k]] - sb[k] * vx[b2[k]];
@@ -461,7 +461,7 @@ int ctdi_type11_step(ctd_iface *it, ct_real dt, const ct_real *x, const ct_real 
             w2[k] = sa[k];
             w3[k] = ub;
             w4[k] = sb[k];
-        }
+        });
     }
     rc = ct_penalty_type7(n, r[E_PEN], r[E_GAP], r[E_K0], r[E_FEL], r[E_KTAN], r[E_EN],
                           e->iflag);
@@ -506,7 +506,8 @@ int ctdi_type11_step(ctd_iface *it, ct_real dt, const ct_real *x, const ct_real 
     const ct_real *restrict gap = r[E_GAP], *restrict vr2 = r[E_VR2], *restrict kt = r[E_KTAN];
     const ct_real *restrict pen = r[E_PEN], *restrict dist = r[E_DIST];
     ct_real gmin = CT_DT_NONE, v2max = 0, kmax = 0;
-#pragma omp parallel for schedule(static) reduction(min : gmin) reduction(max : v2max, kmax) if (n > CTDI_PAR_MIN)
+    CTI_PAR_FOR(n > CTDI_PAR_MIN,
+                (schedule(static) reduction(min : gmin) reduction(max : v2max, kmax)),
     for (ct_idx k = 0; k < n; k++) {
         if (!ctdi_dt_counts(pen[k], dist[k], gap[k], vr2[k], it->dt_max, it->band))
             continue;
@@ -516,7 +517,7 @@ int ctdi_type11_step(ctd_iface *it, ct_real dt, const ct_real *x, const ct_real 
             v2max = vr2[k];
         if (kt[k] > kmax)
             kmax = kt[k];
-    }
+    });
     ctdi_report_limits(rep, kmax, gmin, v2max);
     double t5 = ctd_wtime();
     const double t[6] = {t0, t1, t2, t3, t4, t5};
