@@ -1,7 +1,8 @@
 /*
  * test_solver.c -- the explicit solver on small scenes (suite "solver"):
  * a wave in a struck bar, a free vibrating block, a tumbling rigid body, a
- * free fall, thread-count bit-identity, an unstable run and bad input.
+ * free fall, thread-count bit-identity (with contact and held nodes too), an
+ * unstable run and bad input.
  * Scenes: data/scenes/bar-wave.yaml and tests/data/scenes/solver_*.yaml.
  */
 #include <math.h>
@@ -33,7 +34,7 @@ typedef struct run_ctx {
     ctd_solver s;
 } run_ctx;
 
-/* Load, build and run a scene with no output files. */
+/* Load, build (with its interfaces) and run a scene with no output files. */
 static void run_scene(run_ctx *r, const char *name, int repo_scene, const ctd_solver_opts *o)
 {
     char p[1024], err[1024] = "";
@@ -43,10 +44,14 @@ static void run_scene(run_ctx *r, const char *name, int repo_scene, const ctd_so
     cr_assert_eq(rc, CT_OK, "%s: %s", p, se.count ? se.msg[0].text : "?");
     rc = ctd_model_build(&r->m, r->sc, err, sizeof err);
     cr_assert_eq(rc, CT_OK, "model: %s", err);
+    ctd_contact_hook *hooks = NULL;
+    int nhook = 0;
+    rc = ctd_interfaces_build(&r->m, r->sc, &hooks, &nhook, err, sizeof err);
+    cr_assert_eq(rc, CT_OK, "interfaces: %s", err);
     ctd_solver_opts opts = o ? *o : ctd_solver_default_opts();
     opts.no_output = o ? o->no_output : 1;
     opts.quiet = 1;
-    rc = ctd_solver_init(&r->s, &r->m, &opts, NULL, 0, err, sizeof err);
+    rc = ctd_solver_init(&r->s, &r->m, &opts, hooks, nhook, err, sizeof err);
     cr_assert_eq(rc, CT_OK, "solver: %s", err);
     ctd_solver_run(&r->s);
 }
@@ -305,6 +310,45 @@ Test(solver, threads_bit_identical)
     cr_assert(!memcmp(a.s.vx, b.s.vx, n) && !memcmp(a.s.vy, b.s.vy, n) &&
               !memcmp(a.s.vz, b.s.vz, n));
     cr_assert(memcmp(&a.s.e.total, &b.s.e.total, sizeof(double)) == 0);
+    run_free(&a);
+    run_free(&b);
+}
+
+/* (5b) The same with contact (self and edge to edge), held nodes and nodes
+ * driven at an imposed velocity, on more nodes than a chunk of the node
+ * passes: the state and the energy books, whose sums over the nodes go
+ * through fixed chunks, are bit-identical for 1 and 2 threads. */
+Test(solver, threads_bit_identical_contact_and_held_nodes)
+{
+    ctd_solver_opts o = ctd_solver_default_opts();
+    o.no_output = 1;
+    o.max_cycles = 230; /* contact from about cycle 170 */
+    run_ctx a, b;
+    o.threads = 1;
+    run_scene(&a, "solver_sheet_held.yaml", 0, &o);
+    o.threads = 2;
+    run_scene(&b, "solver_sheet_held.yaml", 0, &o);
+    cr_assert_eq(a.s.exit_code, CTD_EXIT_OK, "%s", a.s.message);
+    cr_assert_eq(b.s.exit_code, CTD_EXIT_OK, "%s", b.s.message);
+    cr_assert_eq(b.s.threads, 2);
+    cr_assert_eq(a.s.cycle, b.s.cycle);
+    cr_assert(a.s.nnode > 2048);
+    /* The paths this test is for ran: both interfaces in contact, and the
+     * imposed velocity did work. */
+    cr_assert(a.s.if_active_max[0] > 0 && a.s.if_active_max[1] > 0, "active %lld %lld",
+              (long long)a.s.if_active_max[0], (long long)a.s.if_active_max[1]);
+    cr_assert(a.s.e.external != 0);
+    size_t n = sizeof(ct_real) * (size_t)a.s.nnode;
+    cr_assert(!memcmp(a.s.x, b.s.x, n) && !memcmp(a.s.y, b.s.y, n) && !memcmp(a.s.z, b.s.z, n));
+    cr_assert(!memcmp(a.s.vx, b.s.vx, n) && !memcmp(a.s.vy, b.s.vy, n) &&
+              !memcmp(a.s.vz, b.s.vz, n));
+    const double ea[] = {a.s.e.total, a.s.e.external, a.s.e.contact, a.s.e.error,
+                         a.s.e.contact_error};
+    const double eb[] = {b.s.e.total, b.s.e.external, b.s.e.contact, b.s.e.error,
+                         b.s.e.contact_error};
+    cr_assert(memcmp(ea, eb, sizeof ea) == 0,
+              "energies differ: total %.17g / %.17g, external %.17g / %.17g, contact error "
+              "%.17g / %.17g", ea[0], eb[0], ea[1], eb[1], ea[4], eb[4]);
     run_free(&a);
     run_free(&b);
 }
