@@ -52,6 +52,21 @@ typedef struct cti_solver_work {
     int progress_shown;
 } cti_solver_work;
 
+/* solver_nodes.c: the passes over the nodes of a cycle (see there). */
+/* The total force (and with interfaces their force, and on an output cycle
+ * the fields they fill) zeroed. */
+void cti_solver_forces_begin(ctd_solver *s, int want_fields);
+/* Contact force and gravity added to the total force; the first node whose
+ * total is not finite, or -1. */
+ct_idx cti_solver_forces_end(ctd_solver *s);
+/* The kick by dtk (dt_new: the step that follows), with the contact forces'
+ * work and the imposed velocities and their reactions' work; keep_old:
+ * v(n-1/2) kept in vo first. */
+void cti_solver_kick(ctd_solver *s, double dtk, double dt_new, int keep_old);
+/* The drift by dt of the nodes not in a rigid body; the first node whose
+ * position is not finite, or -1. */
+ct_idx cti_solver_drift_nodes(ctd_solver *s, double dt);
+
 /* solver_report.c */
 double cti_solver_kinetic(ctd_solver *s);
 /* The gravity work sum m g . (x - x(0)), and in w->grav_res the work
