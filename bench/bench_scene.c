@@ -10,7 +10,13 @@
  *   scene/folding-sheet-wide/t<T>  the folding sheet with ten times its
  *                                  cells along and across at the same cell
  *                                  size (bench/scenes/folding-sheet-wide.yaml:
- *                                  10086 nodes, TYPE7 + TYPE11 self contact)
+ *                                  10086 nodes, TYPE7 + TYPE11 self contact;
+ *                                  its 300 cycles end before the layers meet)
+ *   scene/folding-sheet-contact/t<T>  the same sheet with its layers 1.5 mm
+ *                                  apart (bench/scenes/folding-sheet-contact.yaml):
+ *                                  9922 nodes, thousands of candidates from the
+ *                                  start, of pairs in contact from about
+ *                                  cycle 90
  * 1 thread and all threads. One iteration is a run of the scene from its
  * start for the fixed number of cycles (the solver's max_cycles); the
  * scene's load, the model, interfaces and solver set-up are outside the
@@ -164,7 +170,8 @@ int ctb_scene_register(const ctb_search_config *c)
         const char *name, *file;
         int64_t refine, cycles;
     } set[] = {{"showcase", "data/scenes/showcase.yaml", 1, 3000},
-               {"folding-sheet-wide", "bench/scenes/folding-sheet-wide.yaml", 1, 300}};
+               {"folding-sheet-wide", "bench/scenes/folding-sheet-wide.yaml", 1, 300},
+               {"folding-sheet-contact", "bench/scenes/folding-sheet-contact.yaml", 1, 300}};
     int tlist[2] = {1, cfg.max_threads};
     int nt = cfg.max_threads > 1 ? 2 : 1, count = 0;
     for (size_t i = 0; i < sizeof set / sizeof *set; i++)

@@ -254,6 +254,26 @@ Test(scene, bench_scene_starts_out_of_contact, .init = cr_redirect_stdout)
     cr_expect_eq(irem, 1, "with Irem_gap 2 the sheet refined 10 times starts in contact");
 }
 
+/* The bench's contact-heavy sheet (bench/scenes/folding-sheet-contact.yaml,
+ * layers 1.5 mm apart under a 1 mm gap) checks out and starts with no node
+ * within its gap: its rows time contact, not an initial overlap. */
+Test(scene, bench_contact_scene_checks_out, .init = cr_redirect_stdout)
+{
+    char p[1024];
+    scene_path(p, sizeof p, "../../../bench/scenes/folding-sheet-contact.yaml");
+    cr_assert_eq(ctd_check_main(p, 0, "/tmp"), CTD_EXIT_OK);
+    fflush(stdout);
+    FILE *f = cr_get_redirected_stdout();
+    char line[1400];
+    int none = 0, nodes = 0;
+    while (fgets(line, sizeof line, f)) {
+        none += strstr(line, ": initial penetration: none") != NULL;
+        nodes += strstr(line, "1 mesh (9922 nodes)") != NULL;
+    }
+    cr_expect_eq(nodes, 1, "not the 9922 nodes of the sheet (its folds closer)");
+    cr_expect_eq(none, 1, "the contact-heavy sheet starts with nodes within its gap");
+}
+
 /* A self-contact gap above half the shortest segment edge gets a note in
  * the check and in the run's report (Radioss's warning 94): the folding
  * sheet (gap 1 mm, cells of 5 mm / refine; without its Irem_gap, whose
