@@ -287,28 +287,38 @@ Test(solver, rigid_pushed_from_rest)
     run_free(&r);
 }
 
-/* (5) The final state is bit-identical for 1 and 2 threads. */
-Test(solver, threads_bit_identical)
+/* Scene name run for max_cycles cycles with 1 thread into a and with 2
+ * into b; both must end well, after the same cycles, with the same state
+ * bit for bit, on more nodes than the solver's passes run serially. */
+static void run_1_and_2_threads(run_ctx *a, run_ctx *b, const char *name, int64_t max_cycles)
 {
     ctd_solver_opts o = ctd_solver_default_opts();
     o.no_output = 1;
-    o.max_cycles = ctt_checking() ? 4 : 12; /* enough steps to tell; cheap on a busy machine */
-    run_ctx a, b;
+    o.max_cycles = max_cycles;
     o.threads = 1;
-    run_scene(&a, "solver_block_big.yaml", 0, &o);
+    run_scene(a, name, 0, &o);
     o.threads = 2;
-    run_scene(&b, "solver_block_big.yaml", 0, &o);
-    cr_assert_eq(a.s.exit_code, CTD_EXIT_OK, "%s", a.s.message);
-    cr_assert_eq(b.s.exit_code, CTD_EXIT_OK, "%s", b.s.message);
-    cr_assert_eq(a.s.threads, 1);
-    cr_assert_eq(b.s.threads, 2);
-    cr_assert_eq(a.s.cycle, b.s.cycle);
-    cr_assert_eq(a.s.cycle, o.max_cycles);
-    size_t n = sizeof(ct_real) * (size_t)a.s.nnode;
-    cr_assert(a.s.nnode > 2048);
-    cr_assert(!memcmp(a.s.x, b.s.x, n) && !memcmp(a.s.y, b.s.y, n) && !memcmp(a.s.z, b.s.z, n));
-    cr_assert(!memcmp(a.s.vx, b.s.vx, n) && !memcmp(a.s.vy, b.s.vy, n) &&
-              !memcmp(a.s.vz, b.s.vz, n));
+    run_scene(b, name, 0, &o);
+    cr_assert_eq(a->s.exit_code, CTD_EXIT_OK, "%s", a->s.message);
+    cr_assert_eq(b->s.exit_code, CTD_EXIT_OK, "%s", b->s.message);
+    cr_assert_eq(a->s.threads, 1);
+    cr_assert_eq(b->s.threads, 2);
+    cr_assert_eq(a->s.cycle, b->s.cycle);
+    cr_assert_eq(a->s.cycle, max_cycles);
+    cr_assert(a->s.nnode > 2048);
+    size_t n = sizeof(ct_real) * (size_t)a->s.nnode;
+    cr_assert(!memcmp(a->s.x, b->s.x, n) && !memcmp(a->s.y, b->s.y, n) &&
+              !memcmp(a->s.z, b->s.z, n));
+    cr_assert(!memcmp(a->s.vx, b->s.vx, n) && !memcmp(a->s.vy, b->s.vy, n) &&
+              !memcmp(a->s.vz, b->s.vz, n));
+}
+
+/* (5) The final state is bit-identical for 1 and 2 threads. */
+Test(solver, threads_bit_identical)
+{
+    run_ctx a, b;
+    /* Enough steps to tell; cheap on a busy machine. */
+    run_1_and_2_threads(&a, &b, "solver_block_big.yaml", ctt_checking() ? 4 : 12);
     cr_assert(memcmp(&a.s.e.total, &b.s.e.total, sizeof(double)) == 0);
     run_free(&a);
     run_free(&b);
@@ -320,28 +330,13 @@ Test(solver, threads_bit_identical)
  * through fixed chunks, are bit-identical for 1 and 2 threads. */
 Test(solver, threads_bit_identical_contact_and_held_nodes)
 {
-    ctd_solver_opts o = ctd_solver_default_opts();
-    o.no_output = 1;
-    o.max_cycles = 230; /* contact from about cycle 170 */
     run_ctx a, b;
-    o.threads = 1;
-    run_scene(&a, "solver_sheet_held.yaml", 0, &o);
-    o.threads = 2;
-    run_scene(&b, "solver_sheet_held.yaml", 0, &o);
-    cr_assert_eq(a.s.exit_code, CTD_EXIT_OK, "%s", a.s.message);
-    cr_assert_eq(b.s.exit_code, CTD_EXIT_OK, "%s", b.s.message);
-    cr_assert_eq(b.s.threads, 2);
-    cr_assert_eq(a.s.cycle, b.s.cycle);
-    cr_assert(a.s.nnode > 2048);
+    run_1_and_2_threads(&a, &b, "solver_sheet_held.yaml", 230); /* contact from cycle ~170 */
     /* The paths this test is for ran: both interfaces in contact, and the
      * imposed velocity did work. */
     cr_assert(a.s.if_active_max[0] > 0 && a.s.if_active_max[1] > 0, "active %lld %lld",
               (long long)a.s.if_active_max[0], (long long)a.s.if_active_max[1]);
     cr_assert(a.s.e.external != 0);
-    size_t n = sizeof(ct_real) * (size_t)a.s.nnode;
-    cr_assert(!memcmp(a.s.x, b.s.x, n) && !memcmp(a.s.y, b.s.y, n) && !memcmp(a.s.z, b.s.z, n));
-    cr_assert(!memcmp(a.s.vx, b.s.vx, n) && !memcmp(a.s.vy, b.s.vy, n) &&
-              !memcmp(a.s.vz, b.s.vz, n));
     const double ea[] = {a.s.e.total, a.s.e.external, a.s.e.contact, a.s.e.error,
                          a.s.e.contact_error};
     const double eb[] = {b.s.e.total, b.s.e.external, b.s.e.contact, b.s.e.error,
