@@ -68,8 +68,9 @@ static int element_forces(ctd_solver *s)
     return 0;
 }
 
-/* The interfaces: contact forces into w->fc.. (zeroed by forces_begin,
- * added to w->f.. by forces_end); dt_bodies is stable_dt_bodies at x(n). */
+/* The interfaces: contact forces into w->fc.. (zeroed by
+ * cti_solver_forces_begin, added to w->f.. by cti_solver_forces_end);
+ * dt_bodies is stable_dt_bodies at x(n). */
 static int contact_forces(ctd_solver *s, int want_fields, double dt_bodies)
 {
     cti_solver_work *w = s->w;

@@ -21,7 +21,7 @@
 #include "ct_internal.h"
 
 /* The first node (in index order) with a non-finite value in a, b or c, or
- * -1: the serial scan after a fused pass (forces_end, drift) found one. */
+ * -1: the serial scan after a pass (forces, drift) found one. */
 static ct_idx first_nonfinite(ct_idx n, const ct_real *a, const ct_real *b, const ct_real *c)
 {
     for (ct_idx i = 0; i < n; i++)
