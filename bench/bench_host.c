@@ -36,10 +36,7 @@
 #include <stdlib.h>
 
 #include "bench_common.h"
-
-#ifdef _OPENMP
-#include <omp.h>
-#endif
+#include "ct_internal.h"
 
 /* Steps of the chain: each a shift, an exclusive or and a 64-bit multiply
  * on the result of the one before (about 5 cycles: some 95 us at 3.4 GHz).
@@ -94,24 +91,6 @@ static int buffer_ready(void)
     return 0;
 }
 
-static int thread_id(void)
-{
-#ifdef _OPENMP
-    return omp_get_thread_num();
-#else
-    return 0;
-#endif
-}
-
-static int team_size(void)
-{
-#ifdef _OPENMP
-    return omp_get_num_threads();
-#else
-    return 1;
-#endif
-}
-
 /* One barrier of a team of np threads, timed by thread 0 over
  * HOST_BARRIERS of them (s; 0 for one thread). */
 static double barrier_once(int np)
@@ -119,13 +98,13 @@ static double barrier_once(int np)
     double bar = 0;
 #pragma omp parallel num_threads(np)
     {
-        const int team = team_size();
+        const int team = cti_team_size();
 #pragma omp barrier
         const double t0 = ctb_now_s();
         for (int b = 0; b < HOST_BARRIERS && team > 1; b++) {
 #pragma omp barrier
         }
-        if (thread_id() == 0 && team > 1)
+        if (cti_thread_id() == 0 && team > 1)
             bar = (ctb_now_s() - t0) / HOST_BARRIERS;
     }
     return bar;
@@ -168,9 +147,9 @@ static double chain_time(int nt, int *size)
     int team = 1;
 #pragma omp parallel num_threads(nt)
     {
-        const int t = thread_id();
+        const int t = cti_thread_id();
         if (t == 0)
-            team = team_size();
+            team = cti_team_size();
         double best = HUGE_VAL;
         for (int k = 0; k < 3; k++) {
             const double t0 = ctb_now_s();
@@ -191,10 +170,7 @@ static double chain_time(int nt, int *size)
 
 int ctb_host_probe(double out[GB_HOST_N])
 {
-    int nt = 1;
-#ifdef _OPENMP
-    nt = omp_get_max_threads();
-#endif
+    int nt = cti_num_threads();
     if (nt > HOST_MAX_THREADS)
         nt = HOST_MAX_THREADS;
     if (!(ctb_now_s() - last_at < HOST_EVERY_S && (int)last[0] == nt)) {
