@@ -339,6 +339,24 @@ int ct_relative_velocity(ct_idx npair, const ct_idx *node, const ct_idx *s1, con
                          const ct_real *m, ct_real *rx, ct_real *ry, ct_real *rz, ct_real *vn,
                          ct_real *mm);
 
+/*
+ * Relative velocity of each edge pair at its closest points (ct_narrow_edge_edge):
+ * u = v(Pa) - v(Pb), with Pa = (1 - sa) a1 + sa a2 on the first edge and
+ * Pb = (1 - sb) b1 + sb b2 on the second; vn = u . n (n the pair's normal,
+ * from the second edge towards the first). Optional outputs: (rx, ry, rz) = u
+ * (all three or none), u2 = u . u (NULL: not formed), and with m the masses
+ * at the two points, ma = (1 - sa) m(a1) + sa m(a2) and mb the same on the
+ * second edge (m, ma and mb all given or all NULL). The node indices are not
+ * range-checked. Returns CT_ERR_ARG for a negative count, a missing required
+ * array or a mismatched optional group.
+ */
+int ct_relative_velocity_edge(ct_idx npair, const ct_idx *a1, const ct_idx *a2,
+                              const ct_idx *b1, const ct_idx *b2, const ct_real *sa,
+                              const ct_real *sb, const ct_real *nx, const ct_real *ny,
+                              const ct_real *nz, const ct_real *vx, const ct_real *vy,
+                              const ct_real *vz, const ct_real *m, ct_real *rx, ct_real *ry,
+                              ct_real *rz, ct_real *vn, ct_real *u2, ct_real *ma, ct_real *mb);
+
 /* ---- Deterministic sum --------------------------------------------------- */
 
 /* Sum of a[0..n-1] in an order fixed by n alone (64 fixed blocks, each

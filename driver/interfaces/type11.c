@@ -438,28 +438,22 @@ int ctdi_type11_step(ctd_iface *it, ct_real dt, const ct_real *x, const ct_real 
         return rc;
     double t2 = ctd_wtime();
     ct_real **r = e->r;
+    /* The relative velocity at the closest points (vn, and |u|^2 for the
+     * tunnelling limit), the masses there, and the four nodes' weights. */
+    rc = ct_relative_velocity_edge(n, e->sl[0], e->sl[1], e->sl[2], e->sl[3], r[E_SA],
+                                   r[E_SB], r[E_NX], r[E_NY], r[E_NZ], vx, vy, vz, m, NULL,
+                                   NULL, NULL, r[E_VN], r[E_VR2], r[E_MS], r[E_MM]);
+    if (rc != CT_OK)
+        return rc;
     {
-        const ct_idx *restrict a1 = e->sl[0], *restrict a2 = e->sl[1], *restrict b1 = e->sl[2],
-                               *restrict b2 = e->sl[3];
-        const ct_real *restrict sa = r[E_SA], *restrict sb = r[E_SB], *restrict nx = r[E_NX],
-                                *restrict ny = r[E_NY], *restrict nz = r[E_NZ];
-        ct_real *restrict vn = r[E_VN], *restrict ms = r[E_MS], *restrict mm = r[E_MM],
-                          *restrict w1 = r[E_W1], *restrict w2 = r[E_W2],
-                          *restrict w3 = r[E_W3], *restrict w4 = r[E_W4],
-                          *restrict vr2 = r[E_VR2];
+        const ct_real *restrict sa = r[E_SA], *restrict sb = r[E_SB];
+        ct_real *restrict w1 = r[E_W1], *restrict w2 = r[E_W2], *restrict w3 = r[E_W3],
+                          *restrict w4 = r[E_W4];
         CTI_PAR_FOR_SIMD(n > CTDI_PAR_MIN, (schedule(static)),
         for (ct_idx k = 0; k < n; k++) {
-            ct_real ua = 1 - sa[k], ub = 1 - sb[k];
-            ct_real ux = ua * vx[a1[k]] + sa[k] * vx[a2[k]] - ub * vx[b1[k]] - sb[k] * vx[b2[k]];
-            ct_real uy = ua * vy[a1[k]] + sa[k] * vy[a2[k]] - ub * vy[b1[k]] - sb[k] * vy[b2[k]];
-            ct_real uz = ua * vz[a1[k]] + sa[k] * vz[a2[k]] - ub * vz[b1[k]] - sb[k] * vz[b2[k]];
-            vn[k] = ux * nx[k] + uy * ny[k] + uz * nz[k];
-            vr2[k] = ux * ux + uy * uy + uz * uz;
-            ms[k] = ua * m[a1[k]] + sa[k] * m[a2[k]];
-            mm[k] = ub * m[b1[k]] + sb[k] * m[b2[k]];
-            w1[k] = ua;
+            w1[k] = 1 - sa[k];
             w2[k] = sa[k];
-            w3[k] = ub;
+            w3[k] = 1 - sb[k];
             w4[k] = sb[k];
         });
     }
