@@ -384,11 +384,14 @@ int ct_assemble_coloured_prefix(const ct_assemble_ws *ws, const ct_asm_map *map,
     return CT_OK;
 }
 
-/* Pair k's scalar contributions, slot by slot. */
+/* Pair k's scalar contributions, slot by slot; none for a zero value
+ * (ct_assemble_scalar in ct_assemble.h). */
 static inline void scalar_pair(ct_idx k, int ns, const ct_idx *const slot[],
                                const ct_real *const w[], const ct_real *sign,
                                const ct_real *restrict f, ct_real *restrict fn)
 {
+    if (f[k] == 0)
+        return;
     for (int s = 0; s < ns; s++) {
         ct_real ww = cti_asm_weight(w, sign, s, k, 0);
         fn[slot[s][k]] += ww * f[k];

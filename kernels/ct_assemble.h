@@ -253,7 +253,10 @@ int ct_assemble(ct_assemble_ws *ws, ct_assemble_variant variant, const ct_asm_ma
  * onto the pair's nodes for the nodal time step. CT_ASM_COLOUR uses the
  * colouring ws was prepared with for this map (CT_ERR_ARG otherwise) and
  * runs each colour in parallel; every other variant sums serially in pair
- * order. Either way the result does not depend on the thread count.
+ * order. Either way the result does not depend on the thread count. Every
+ * variant skips a pair whose value is exactly zero (the nodal step's
+ * stiffness of a pair that does not count), with the same exception as the
+ * force assembly's skip above: fn holding -0, or a NaN or infinite weight.
  */
 int ct_assemble_scalar(const ct_assemble_ws *ws, ct_assemble_variant variant,
                        const ct_asm_map *map, const ct_real *const w[],
