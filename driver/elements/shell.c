@@ -463,8 +463,6 @@ int ctd_shell_init(ctd_shell *s, ct_idx nnode, const ct_real *x, const ct_real *
         s->il = ct_calloc(nt, sizeof(ct_real));
         err = s->nx && s->ny && s->nz && s->il ? CT_OK : CT_ERR_NOMEM;
     }
-    if (err == CT_OK)
-        err = ctd_shell_rest_angles(s, x, y, z);
     if (err != CT_OK) {
         free(r);
         ctd_shell_destroy(s);
@@ -491,6 +489,13 @@ int ctd_shell_init(ctd_shell *s, ct_idx nnode, const ct_real *x, const ct_real *
         free(r);
         ctd_shell_destroy(s);
         return CT_ERR_NOMEM;
+    }
+    /* The rest angles, by the forces' own normals (which pass the edge
+     * vectors through the slots). */
+    if ((err = ctd_shell_rest_angles(s, x, y, z)) != CT_OK) {
+        free(r);
+        ctd_shell_destroy(s);
+        return err;
     }
     for (int pass = 0; pass < 2; pass++) {
         /* Pass 0 counts, pass 1 fills (slot_off[i + 1] used as a cursor). */

@@ -190,27 +190,61 @@ static inline ct_real cti_atan2(ct_real y, ct_real x)
 
 ct_real ctd_shell_atan2(ct_real y, ct_real x) { return cti_atan2(y, x); }
 
-/* The unit normal and 1 / |normal| (1 / (2 A)) of every triangle. A
- * collapsed triangle gets NaN or infinite values, which make its forces
- * and its hinges' NaN (reported there). An orphaned work-sharing loop:
- * called inside the forces' parallel region, or serially. */
+/* The edge vectors d1 = x2 - x1 and d2 = x3 - x1 of triangles [t0, t1)
+ * into the force slots of their first two corners (sx[t], sy[t], sz[t] and
+ * sx[ntri + t], ...), where the triangle loop of ctd_shell_forces reads them
+ * before it writes its forces there. Scalar loads on purpose: vectorised,
+ * the nine indexed loads a triangle are vector gathers, and the scalar
+ * copy with unit-stride vector loops over it measured faster (as the
+ * contact kernels' copies, CTI_NOVEC in ct_internal.h). */
+CTI_NOVEC static void cti_shell_edges(const ctd_shell *s, ct_idx t0, ct_idx t1,
+                                      const ct_real *restrict x, const ct_real *restrict y,
+                                      const ct_real *restrict z)
+{
+    const ct_idx *restrict c1 = s->t1, *restrict c2 = s->t2, *restrict c3 = s->t3;
+    const size_t nt = (size_t)s->ntri;
+    ct_real *restrict sx = s->sx, *restrict sy = s->sy, *restrict sz = s->sz;
+    CTI_NOVEC_LOOP
+    for (ct_idx t = t0; t < t1; t++) {
+        const ct_idx i1 = c1[t], i2 = c2[t], i3 = c3[t];
+        const ct_real x1 = x[i1], y1 = y[i1], z1 = z[i1];
+        sx[t] = x[i2] - x1;
+        sy[t] = y[i2] - y1;
+        sz[t] = z[i2] - z1;
+        sx[nt + t] = x[i3] - x1;
+        sy[nt + t] = y[i3] - y1;
+        sz[nt + t] = z[i3] - z1;
+    }
+}
+
+/* The edge vectors (cti_shell_edges), the unit normal and 1 / |normal|
+ * (1 / (2 A)) of every triangle, by blocks of CTD_SHELL_BLOCK. A collapsed
+ * triangle gets NaN or infinite values, which make its forces and its
+ * hinges' NaN (reported there). An orphaned work-sharing loop: called
+ * inside the forces' parallel region, or serially. */
 static void cti_shell_normals(ctd_shell *s, const ct_real *restrict x, const ct_real *restrict y,
                               const ct_real *restrict z)
 {
-    const ct_idx *restrict t1 = s->t1, *restrict t2 = s->t2, *restrict t3 = s->t3;
+    const ct_idx ntri = s->ntri, nb = (ntri + CTD_SHELL_BLOCK - 1) / CTD_SHELL_BLOCK;
+    const ct_real *restrict sx = s->sx, *restrict sy = s->sy, *restrict sz = s->sz;
     ct_real *restrict nx = s->nx, *restrict ny = s->ny, *restrict nz = s->nz;
     ct_real *restrict il = s->il;
-#pragma omp for simd schedule(static)
-    for (ct_idx t = 0; t < s->ntri; t++) {
-        ct_idx i1 = t1[t], i2 = t2[t], i3 = t3[t];
-        ct_real ax = x[i2] - x[i1], ay = y[i2] - y[i1], az = z[i2] - z[i1];
-        ct_real bx = x[i3] - x[i1], by = y[i3] - y[i1], bz = z[i3] - z[i1];
-        ct_real cx = ay * bz - az * by, cy = az * bx - ax * bz, cz = ax * by - ay * bx;
-        ct_real inv = 1 / CTI_SQRT(cx * cx + cy * cy + cz * cz);
-        nx[t] = cx * inv;
-        ny[t] = cy * inv;
-        nz[t] = cz * inv;
-        il[t] = inv;
+#pragma omp for schedule(static)
+    for (ct_idx b = 0; b < nb; b++) {
+        const ct_idx k0 = b * CTD_SHELL_BLOCK,
+                     k1 = ntri - k0 < CTD_SHELL_BLOCK ? ntri : k0 + CTD_SHELL_BLOCK;
+        cti_shell_edges(s, k0, k1, x, y, z);
+#pragma omp simd
+        for (ct_idx t = k0; t < k1; t++) {
+            ct_real ax = sx[t], ay = sy[t], az = sz[t];
+            ct_real bx = sx[ntri + t], by = sy[ntri + t], bz = sz[ntri + t];
+            ct_real cx = ay * bz - az * by, cy = az * bx - ax * bz, cz = ax * by - ay * bx;
+            ct_real inv = 1 / CTI_SQRT(cx * cx + cy * cy + cz * cz);
+            nx[t] = cx * inv;
+            ny[t] = cy * inv;
+            nz[t] = cz * inv;
+            il[t] = inv;
+        }
     }
 }
 
@@ -269,7 +303,6 @@ int ctd_shell_forces(ctd_shell *s, const ct_real *x, const ct_real *y, const ct_
     const ct_real lam = E * nu / (1 - nu * nu); /* plane-stress lambda' */
     const ct_real mu = E / (2 * (1 + nu));
     const ct_idx ntri = s->ntri, nhinge = s->nhinge;
-    const ct_idx *restrict t1 = s->t1, *restrict t2 = s->t2, *restrict t3 = s->t3;
     const ct_idx *restrict te = s->te;
     const size_t nt1 = (size_t)ntri;
     const ct_real *restrict b11v = s->b11, *restrict b12v = s->b12, *restrict b22v = s->b22;
@@ -320,9 +353,9 @@ int ctd_shell_forces(ctd_shell *s, const ct_real *x, const ct_real *y, const ct_
             int bad = 0;
 #pragma omp simd reduction(+ : eb) reduction(| : bad)
             for (ct_idx t = k0; t < k1; t++) {
-                ct_idx i1 = t1[t], i2 = t2[t], i3 = t3[t];
-                ct_real d1x = x[i2] - x[i1], d1y = y[i2] - y[i1], d1z = z[i2] - z[i1];
-                ct_real d2x = x[i3] - x[i1], d2y = y[i3] - y[i1], d2z = z[i3] - z[i1];
+                /* The edge vectors cti_shell_normals left in the slots. */
+                ct_real d1x = sx[t], d1y = sy[t], d1z = sz[t];
+                ct_real d2x = sx[ntri + t], d2y = sy[ntri + t], d2z = sz[ntri + t];
                 ct_real b11 = b11v[t], b12 = b12v[t], b22 = b22v[t], V = vol[t];
                 ct_real f0x = b11 * d1x, f0y = b11 * d1y, f0z = b11 * d1z;
                 ct_real f1x = b12 * d1x + b22 * d2x, f1y = b12 * d1y + b22 * d2y,
