@@ -217,6 +217,26 @@ CTI_NOVEC static void cti_shell_edges(const ctd_shell *s, ct_idx t0, ct_idx t1,
     }
 }
 
+/* For triangles [t0, t1): the sum of the coefficients of the hinges on
+ * each edge k (hc[te[2 k ntri + t]] + hc[te[(2 k + 1) ntri + t]]) into the
+ * force slot of the third corner (sx, sy, sz[2 ntri + t] for edges 0, 1,
+ * 2), which the triangle loop reads before it writes its forces there.
+ * Scalar loads on purpose (cti_shell_edges). */
+CTI_NOVEC static void cti_shell_hinge_sums(const ctd_shell *s, ct_idx t0, ct_idx t1)
+{
+    const ct_idx *restrict te = s->te;
+    const ct_real *restrict hc = s->hc;
+    const size_t nt = (size_t)s->ntri;
+    ct_real *restrict sx = s->sx + 2 * nt, *restrict sy = s->sy + 2 * nt,
+                      *restrict sz = s->sz + 2 * nt;
+    CTI_NOVEC_LOOP
+    for (ct_idx t = t0; t < t1; t++) {
+        sx[t] = hc[te[t]] + hc[te[nt + t]];
+        sy[t] = hc[te[2 * nt + t]] + hc[te[3 * nt + t]];
+        sz[t] = hc[te[4 * nt + t]] + hc[te[5 * nt + t]];
+    }
+}
+
 /* The edge vectors (cti_shell_edges), the unit normal and 1 / |normal|
  * (1 / (2 A)) of every triangle, by blocks of CTD_SHELL_BLOCK. A collapsed
  * triangle gets NaN or infinite values, which make its forces and its
@@ -303,8 +323,6 @@ int ctd_shell_forces(ctd_shell *s, const ct_real *x, const ct_real *y, const ct_
     const ct_real lam = E * nu / (1 - nu * nu); /* plane-stress lambda' */
     const ct_real mu = E / (2 * (1 + nu));
     const ct_idx ntri = s->ntri, nhinge = s->nhinge;
-    const ct_idx *restrict te = s->te;
-    const size_t nt1 = (size_t)ntri;
     const ct_real *restrict b11v = s->b11, *restrict b12v = s->b12, *restrict b22v = s->b22;
     const ct_real *restrict vol = s->tri_vol, *restrict hk = s->hk, *restrict th0 = s->theta0;
     const ct_real *restrict il = s->il;
@@ -351,6 +369,7 @@ int ctd_shell_forces(ctd_shell *s, const ct_real *x, const ct_real *y, const ct_
             const ct_idx k0 = b * CTD_SHELL_BLOCK, k1 = cti_block_end(b, ntri);
             double eb = 0;
             int bad = 0;
+            cti_shell_hinge_sums(s, k0, k1);
 #pragma omp simd reduction(+ : eb) reduction(| : bad)
             for (ct_idx t = k0; t < k1; t++) {
                 /* The edge vectors cti_shell_normals left in the slots. */
@@ -392,9 +411,10 @@ int ctd_shell_forces(ctd_shell *s, const ct_real *x, const ct_real *y, const ct_
                 ct_real r1 = -(d1x * e1x + d1y * e1y + d1z * e1z) / q1;
                 ct_real r2 = ((d2x - d1x) * d2x + (d2y - d1y) * d2y + (d2z - d1z) * d2z) / q2;
                 ct_real inv = il[t];
-                ct_real k0 = (hc[te[t]] + hc[te[nt1 + t]]) * CTI_SQRT(q0) * inv;
-                ct_real k1 = (hc[te[2 * nt1 + t]] + hc[te[3 * nt1 + t]]) * CTI_SQRT(q1) * inv;
-                ct_real k2 = (hc[te[4 * nt1 + t]] + hc[te[5 * nt1 + t]]) * CTI_SQRT(q2) * inv;
+                /* The edges' hinge sums cti_shell_hinge_sums left. */
+                ct_real k0 = sx[2 * ntri + t] * CTI_SQRT(q0) * inv;
+                ct_real k1 = sy[2 * ntri + t] * CTI_SQRT(q1) * inv;
+                ct_real k2 = sz[2 * ntri + t] * CTI_SQRT(q2) * inv;
                 ct_real w1 = k0 * (1 - r0) + k2 * r2 - k1;
                 ct_real w2 = k1 * (1 - r1) + k0 * r0 - k2;
                 ct_real w3 = k2 * (1 - r2) + k1 * r1 - k0;
