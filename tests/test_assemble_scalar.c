@@ -10,6 +10,33 @@
 
 #include "test_util.h"
 
+/* A node-segment map of np pairs on nn nodes with heavy sharing: slot
+ * arrays sl[0..4] of random nodes and weights w[0..4] in [0, 1), from an
+ * LCG seeded with seed (ct_calloc'ed; random_map_free frees them). */
+static void random_map(ct_idx np, ct_idx nn, uint64_t seed, ct_idx *sl[5], ct_real *w[5])
+{
+    for (int a = 0; a < 5; a++) {
+        sl[a] = ct_calloc((size_t)np, sizeof(ct_idx));
+        w[a] = ct_calloc((size_t)np, sizeof(ct_real));
+        cr_assert(sl[a] && w[a]);
+    }
+    uint64_t s = seed;
+    for (ct_idx k = 0; k < np; k++)
+        for (int a = 0; a < 5; a++) {
+            s = s * 6364136223846793005ull + 1442695040888963407ull;
+            sl[a][k] = (ct_idx)((s >> 33) % (uint64_t)nn);
+            w[a][k] = (ct_real)((double)((s >> 11) & 0xFFFF) / 65536.0);
+        }
+}
+
+static void random_map_free(ct_idx *sl[5], ct_real *w[5])
+{
+    for (int a = 0; a < 5; a++) {
+        ct_free(sl[a]);
+        ct_free(w[a]);
+    }
+}
+
 Test(assemble_scalar, matches_plain_loop_and_threads)
 {
     /* Pairs of a node-segment map with heavy sharing: 20000 pairs on 3000
@@ -18,20 +45,9 @@ Test(assemble_scalar, matches_plain_loop_and_threads)
     ct_idx *sl[5];
     ct_real *w[5], *f = ct_calloc((size_t)np, sizeof(ct_real));
     cr_assert(f);
-    uint64_t s = 12345;
-    for (int a = 0; a < 5; a++) {
-        sl[a] = ct_calloc((size_t)np, sizeof(ct_idx));
-        w[a] = ct_calloc((size_t)np, sizeof(ct_real));
-        cr_assert(sl[a] && w[a]);
-    }
-    for (ct_idx k = 0; k < np; k++) {
-        for (int a = 0; a < 5; a++) {
-            s = s * 6364136223846793005ull + 1442695040888963407ull;
-            sl[a][k] = (ct_idx)((s >> 33) % (uint64_t)nn);
-            w[a][k] = (ct_real)((double)((s >> 11) & 0xFFFF) / 65536.0);
-        }
+    random_map(np, nn, 12345, sl, w);
+    for (ct_idx k = 0; k < np; k++)
         f[k] = (ct_real)(1.0 + (double)(k % 97));
-    }
     ct_asm_map map = ct_asm_map_nodeseg(np, sl[0], sl[1], sl[2], sl[3], sl[4]);
     const ct_real *const wt[5] = {NULL, w[1], w[2], w[3], w[4]};
     double *ref = calloc((size_t)nn, sizeof(double));
@@ -70,10 +86,7 @@ Test(assemble_scalar, matches_plain_loop_and_threads)
     ct_assemble_ws_destroy(&ws);
     for (int r = 0; r < 3; r++)
         ct_free(out[r]);
-    for (int a = 0; a < 5; a++) {
-        ct_free(sl[a]);
-        ct_free(w[a]);
-    }
+    random_map_free(sl, w);
     ct_free(f);
     free(ref);
 }
@@ -90,20 +103,9 @@ Test(assemble_scalar, zero_values_add_nothing)
     ct_idx *sl[5];
     ct_real *w[5], *f = ct_calloc((size_t)np, sizeof(ct_real));
     cr_assert(f);
-    uint64_t s = 777;
-    for (int a = 0; a < 5; a++) {
-        sl[a] = ct_calloc((size_t)np, sizeof(ct_idx));
-        w[a] = ct_calloc((size_t)np, sizeof(ct_real));
-        cr_assert(sl[a] && w[a]);
-    }
-    for (ct_idx k = 0; k < np; k++) {
-        for (int a = 0; a < 5; a++) {
-            s = s * 6364136223846793005ull + 1442695040888963407ull;
-            sl[a][k] = (ct_idx)((s >> 33) % (uint64_t)nn);
-            w[a][k] = (ct_real)((double)((s >> 11) & 0xFFFF) / 65536.0);
-        }
+    random_map(np, nn, 777, sl, w);
+    for (ct_idx k = 0; k < np; k++)
         f[k] = k % 3 == 0 ? (ct_real)(0.1 + (double)(k % 89)) : (k % 3 == 1 ? 0 : -(ct_real)0);
-    }
     ct_asm_map map = ct_asm_map_nodeseg(np, sl[0], sl[1], sl[2], sl[3], sl[4]);
     for (int a = 0; a < 5; a++)
         map.sign[a] = 1;
@@ -142,9 +144,6 @@ Test(assemble_scalar, zero_values_add_nothing)
     ct_assemble_ws_destroy(&ws);
     ct_free(out);
     ct_free(ref);
-    for (int a = 0; a < 5; a++) {
-        ct_free(sl[a]);
-        ct_free(w[a]);
-    }
+    random_map_free(sl, w);
     ct_free(f);
 }
