@@ -216,7 +216,9 @@ typedef struct ct_edge_geo {
     ct_real *dist, *pen;     /* |Pa - Pb|, max(0, gap - dist) */
     ct_real *nx, *ny, *nz;   /* unit normal along Pa - Pb (from edge B to edge A) */
     ct_real *sa, *sb;        /* Pa = (1-sa) A1 + sa A2, Pb = (1-sb) B1 + sb B2 */
-    ct_real *pax, *pay, *paz, *pbx, *pby, *pbz; /* the closest points */
+    /* The closest points; all six NULL: not written (a code that needs
+     * only sa and sb saves six stores a pair). */
+    ct_real *pax, *pay, *paz, *pbx, *pby, *pbz;
     ct_real *gap;            /* the gap of the pair, g_a + g_b */
     uint8_t *flag;           /* CT_NARROW_* bits */
 } ct_edge_geo;
@@ -235,8 +237,9 @@ typedef struct ct_edge_geo {
  * gap_edge is NULL; the pair gap is the sum for the two edges. Skipped
  * pairs (an edge shorter than 1e-12, single 1e-6, times the longer one,
  * or NaN/Inf): flag, pen 0, dist CT_NARROW_FAR, normal (0,0,1), sa = sb = 0,
- * points 0. Returns CT_OK, or CT_ERR_ARG for a NULL array, a negative
- * count, a scalar gap that is negative, NaN or infinite, or a NaN cap.
+ * points 0. Returns CT_OK, or CT_ERR_ARG for a NULL array (but the six
+ * closest-point arrays, which may all be NULL), a negative count, a scalar
+ * gap that is negative, NaN or infinite, or a NaN cap.
  */
 int ct_narrow_edge_edge(ct_idx npair, const ct_idx *ea, const ct_idx *eb,
                         const ct_idx *e1, const ct_idx *e2,

@@ -51,9 +51,10 @@ int ct_narrow_edge_edge(ct_idx npair, const ct_idx *restrict ea, const ct_idx *r
         memset(stats, 0, sizeof *stats);
     if (npair == 0)
         return CT_OK;
+    const int npts = !out->pax + !out->pay + !out->paz + !out->pbx + !out->pby + !out->pbz;
     if (!ea || !eb || !e1 || !e2 || !x || !y || !z || !out->dist || !out->pen || !out->nx ||
-        !out->ny || !out->nz || !out->sa || !out->sb || !out->pax || !out->pay || !out->paz ||
-        !out->pbx || !out->pby || !out->pbz || !out->gap || !out->flag)
+        !out->ny || !out->nz || !out->sa || !out->sb || (npts != 0 && npts != 6) ||
+        !out->gap || !out->flag)
         return CT_ERR_ARG;
     const ct_real *restrict open = out->pen;
     uint8_t *restrict oflag = out->flag;

@@ -32,9 +32,12 @@ static inline ct_real cti_ee_q(ct_real ux, ct_real uy, ct_real uz, ct_real vx, c
         bq = take_ ? q_ : bq;                                                             \
     } while (0)
 
-void cti_ee_block(ct_idx nb, const ct_real *restrict G,
+/* The block's loop; pts (a constant where it is inlined): whether the
+ * closest points are written (out->pax and the five others not NULL). */
+static inline __attribute__((always_inline)) void
+cti_ee_block_loop(ct_idx nb, const ct_real *restrict G,
                   const ct_real (*restrict C)[2 * CTI_EE_BLOCK], const ct_edge_geo *out,
-                  ct_idx k0, cti_nr_int *restrict F)
+                  ct_idx k0, cti_nr_int *restrict F, const int pts)
 {
     ct_real *restrict odist = out->dist, *restrict open = out->pen;
     ct_real *restrict onx = out->nx, *restrict ony = out->ny, *restrict onz = out->nz;
@@ -135,14 +138,26 @@ void cti_ee_block(ct_idx nb, const ct_real *restrict G,
         onz[k] = bad ? 1 : nz * ni;
         osa[k] = bad ? 0 : s;
         osb[k] = bad ? 0 : t;
-        opax[k] = bad ? 0 : pax + ox;
-        opay[k] = bad ? 0 : pay + oy;
-        opaz[k] = bad ? 0 : paz + oz;
-        opbx[k] = bad ? 0 : pbx + ox;
-        opby[k] = bad ? 0 : pby + oy;
-        opbz[k] = bad ? 0 : pbz + oz;
+        if (pts) {
+            opax[k] = bad ? 0 : pax + ox;
+            opay[k] = bad ? 0 : pay + oy;
+            opaz[k] = bad ? 0 : paz + oz;
+            opbx[k] = bad ? 0 : pbx + ox;
+            opby[k] = bad ? 0 : pby + oy;
+            opbz[k] = bad ? 0 : pbz + oz;
+        }
         ogap[k] = nonfin ? 0 : g;
         F[j] = bad ? bad
                    : ((clamped ? CTI_NR_F(OUTSIDE) : 0) | (par ? CTI_NR_F(PARALLEL) : 0));
     }
+}
+
+void cti_ee_block(ct_idx nb, const ct_real *restrict G,
+                  const ct_real (*restrict C)[2 * CTI_EE_BLOCK], const ct_edge_geo *out,
+                  ct_idx k0, cti_nr_int *restrict F)
+{
+    if (out->pax)
+        cti_ee_block_loop(nb, G, C, out, k0, F, 1);
+    else
+        cti_ee_block_loop(nb, G, C, out, k0, F, 0);
 }

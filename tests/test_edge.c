@@ -258,26 +258,57 @@ Test(edge, degenerate_and_nonfinite)
     egeo_free(&o);
 }
 
+/* Random edge pairs: nn nodes in the unit cube, edges (2 e, 2 e + 1), n
+ * pairs over them (ct_free the six arrays). */
+typedef struct epairs {
+    ct_real *x, *y, *z;
+    ct_idx *e1, *e2, *ea, *eb;
+} epairs;
+
+static epairs random_pairs(int n, int nn)
+{
+    epairs p;
+    p.x = ct_calloc((size_t)nn, sizeof(ct_real));
+    p.y = ct_calloc((size_t)nn, sizeof(ct_real));
+    p.z = ct_calloc((size_t)nn, sizeof(ct_real));
+    p.e1 = ct_calloc((size_t)nn / 2, sizeof(ct_idx));
+    p.e2 = ct_calloc((size_t)nn / 2, sizeof(ct_idx));
+    p.ea = ct_calloc((size_t)n, sizeof(ct_idx));
+    p.eb = ct_calloc((size_t)n, sizeof(ct_idx));
+    cr_assert(p.x && p.y && p.z && p.e1 && p.e2 && p.ea && p.eb);
+    for (int i = 0; i < nn; i++) {
+        p.x[i] = (ct_real)urand();
+        p.y[i] = (ct_real)urand();
+        p.z[i] = (ct_real)urand();
+    }
+    for (int e = 0; e < nn / 2; e++) {
+        p.e1[e] = 2 * e;
+        p.e2[e] = 2 * e + 1;
+    }
+    for (int k = 0; k < n; k++) {
+        p.ea[k] = (ct_idx)(k % (nn / 2));
+        p.eb[k] = (ct_idx)((k * 31 + 7) % (nn / 2));
+    }
+    return p;
+}
+
+static void epairs_free(epairs *p)
+{
+    ct_free(p->x);
+    ct_free(p->y);
+    ct_free(p->z);
+    ct_free(p->e1);
+    ct_free(p->e2);
+    ct_free(p->ea);
+    ct_free(p->eb);
+}
+
 Test(edge, threads_identical)
 {
     int n = ctt_checking() ? 2000 : 20000, nn = 4000;
-    ct_real *x = ct_calloc((size_t)nn, sizeof(ct_real)), *y = ct_calloc((size_t)nn, sizeof(ct_real)),
-            *z = ct_calloc((size_t)nn, sizeof(ct_real));
-    for (int i = 0; i < nn; i++) {
-        x[i] = (ct_real)urand();
-        y[i] = (ct_real)urand();
-        z[i] = (ct_real)urand();
-    }
-    ct_idx *e1 = ct_calloc((size_t)nn / 2, sizeof(ct_idx)), *e2 = ct_calloc((size_t)nn / 2, sizeof(ct_idx));
-    for (int e = 0; e < nn / 2; e++) {
-        e1[e] = 2 * e;
-        e2[e] = 2 * e + 1;
-    }
-    ct_idx *ea = ct_calloc((size_t)n, sizeof(ct_idx)), *eb = ct_calloc((size_t)n, sizeof(ct_idx));
-    for (int k = 0; k < n; k++) {
-        ea[k] = (ct_idx)(k % (nn / 2));
-        eb[k] = (ct_idx)((k * 31 + 7) % (nn / 2));
-    }
+    epairs p = random_pairs(n, nn);
+    ct_real *x = p.x, *y = p.y, *z = p.z;
+    ct_idx *e1 = p.e1, *e2 = p.e2, *ea = p.ea, *eb = p.eb;
     egeo a, b;
     egeo_init(&a, n);
     egeo_init(&b, n);
@@ -289,7 +320,48 @@ Test(edge, threads_identical)
     cr_assert_eq(memcmp(a.g.flag, b.g.flag, (size_t)n), 0);
     egeo_free(&a);
     egeo_free(&b);
-    ct_free(x); ct_free(y); ct_free(z); ct_free(e1); ct_free(e2); ct_free(ea); ct_free(eb);
+    epairs_free(&p);
+}
+
+/* The closest points are optional: with all six arrays NULL the other
+ * results are the same bits, and the points' memory is not written; one
+ * NULL of the six is an argument error. */
+Test(edge, closest_points_optional)
+{
+    const int n = 3000;
+    epairs p = random_pairs(n, 400);
+    egeo a, b;
+    egeo_init(&a, n);
+    egeo_init(&b, n);
+    const size_t stride = (size_t)n + CT_PAD;
+    for (size_t i = 0; i < 14 * stride; i++)
+        b.buf[i] = 7; /* a sentinel the kernel must leave in the points */
+    ct_real *pts[6] = {b.g.pax, b.g.pay, b.g.paz, b.g.pbx, b.g.pby, b.g.pbz};
+    b.g.pax = b.g.pay = b.g.paz = b.g.pbx = b.g.pby = b.g.pbz = NULL;
+    ct_narrow_stats sa, sb;
+    cr_assert_eq(ct_narrow_edge_edge(n, p.ea, p.eb, p.e1, p.e2, p.x, p.y, p.z, NULL,
+                                     (ct_real)0.05, 0, &a.g, &sa),
+                 CT_OK);
+    cr_assert_eq(ct_narrow_edge_edge(n, p.ea, p.eb, p.e1, p.e2, p.x, p.y, p.z, NULL,
+                                     (ct_real)0.05, 0, &b.g, &sb),
+                 CT_OK);
+    cr_assert_gt(sa.active, 0);
+    cr_assert_eq(sa.active, sb.active);
+    const ct_real *ra[8] = {a.g.dist, a.g.pen, a.g.nx, a.g.ny, a.g.nz, a.g.sa, a.g.sb, a.g.gap};
+    const ct_real *rb[8] = {b.g.dist, b.g.pen, b.g.nx, b.g.ny, b.g.nz, b.g.sa, b.g.sb, b.g.gap};
+    for (int i = 0; i < 8; i++)
+        cr_assert_eq(memcmp(ra[i], rb[i], (size_t)n * sizeof(ct_real)), 0, "array %d", i);
+    cr_assert_eq(memcmp(a.g.flag, b.g.flag, (size_t)n), 0);
+    for (int i = 0; i < 6; i++)
+        for (int k = 0; k < n; k++)
+            cr_assert_eq(pts[i][k], 7, "point array %d written at pair %d", i, k);
+    b.g.pbz = pts[5]; /* five NULL, one not */
+    cr_assert_eq(ct_narrow_edge_edge(n, p.ea, p.eb, p.e1, p.e2, p.x, p.y, p.z, NULL,
+                                     (ct_real)0.05, 0, &b.g, NULL),
+                 CT_ERR_ARG);
+    egeo_free(&a);
+    egeo_free(&b);
+    epairs_free(&p);
 }
 
 /* Lane independence: the same pairs shifted by one (so each lands in

@@ -64,8 +64,8 @@ int ctdi_epass_grow(ctdi_epass *e, size_t n)
     }
     e->cap = c;
     ct_real **r = e->r;
-    ct_edge_geo g = {r[E_DIST], r[E_PEN], r[E_NX],  r[E_NY],  r[E_NZ],  r[E_SA],  r[E_SB],
-                     r[E_PAX],  r[E_PAY], r[E_PAZ], r[E_PBX], r[E_PBY], r[E_PBZ], r[E_GAP],
+    ct_edge_geo g = {r[E_DIST], r[E_PEN], r[E_NX], r[E_NY], r[E_NZ], r[E_SA], r[E_SB],
+                     NULL,      NULL,     NULL,    NULL,    NULL,    NULL,    r[E_GAP],
                      e->flag};
     e->geo = g;
     return CT_OK;
@@ -333,8 +333,8 @@ int ctdi_type11_setup(ctd_iface *it, const ctd_iface_data *d, ct_diag *diag)
     if (!(e->fflag = ct_calloc(CTDI_FCHUNK, 1)))
         return CT_ERR_NOMEM;
     ct_real **f = e->fr;
-    ct_edge_geo fg = {f[0], f[1], f[2], f[3], f[4], f[5], f[6], f[7], f[8], f[9], f[10], f[11],
-                      f[12], f[13], e->fflag};
+    ct_edge_geo fg = {f[0], f[1], f[2], f[3], f[4], f[5], f[6], NULL,
+                      NULL, NULL, NULL, NULL, NULL, f[7], e->fflag};
     e->fgeo = fg;
     rc = ct_assemble_ws_init(&e->ws);
     e->ws_ok = rc == CT_OK;

@@ -8,9 +8,8 @@
 
 #include "iface_internal.h"
 
-/* Per-pair reals. */
-enum { E_DIST = 0, E_PEN, E_NX, E_NY, E_NZ, E_SA, E_SB, E_PAX, E_PAY, E_PAZ, E_PBX, E_PBY,
-       E_PBZ, E_GAP, E_K0, E_FEL, E_KTAN, E_EN, E_VN, E_MS, E_MM, E_FN, E_FX, E_FY, E_FZ, E_DD,
+/* Per-pair reals (no closest points: the step needs sa and sb only). */
+enum { E_DIST = 0, E_PEN, E_NX, E_NY, E_NZ, E_SA, E_SB, E_GAP, E_K0, E_FEL, E_KTAN, E_EN, E_VN, E_MS, E_MM, E_FN, E_FX, E_FY, E_FZ, E_DD,
        E_W1, E_W2, E_W3, E_W4, E_VR2, E_N };
 
 /* The bytes of one pair in the edge pass's arrays (ctdi_epass_grow and
@@ -20,9 +19,10 @@ enum { E_DIST = 0, E_PEN, E_NX, E_NY, E_NZ, E_SA, E_SB, E_PAX, E_PAY, E_PAZ, E_P
 #define CTDI_EPAIR_ID_BYTES (2 * sizeof(ct_idx))
 
 /* The filter measures the search's pairs in chunks of this many, into
- * arrays of its own (an edge-edge geometry: 14 reals and a flag). */
+ * arrays of its own (an edge-edge geometry without the closest points: 8
+ * reals and a flag). */
 #define CTDI_FCHUNK 16384
-#define CTDI_FGEO_N 14
+#define CTDI_FGEO_N 8
 
 struct ctdi_epass {
     ct_idx na, nb, ne;     /* edges of A, of B (0: self), total */
