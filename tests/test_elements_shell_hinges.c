@@ -165,6 +165,10 @@ Test(elements_shell_hinges, mixed_mesh_energy_gradient_fd)
     mixed_make(&q, 4, 3, 1);
     ctd_shell s;
     mixed_shell(&s, &q);
+    /* Both hinge loops run: the groups of an edge between two quads, and
+     * the hinges of edges with a triangle. */
+    cr_assert_gt(s.ngroup, 0);
+    cr_assert_gt(s.nhinge, 4 * s.ngroup);
     const ct_idx n = q.m.nodes.n;
     work w;
     work_init(&w, n);

@@ -263,8 +263,9 @@ static int cti_shell_hinges(ctd_shell *s, const ct_real *x, const ct_real *y,
     }
     qsort(ed, ne, sizeof *ed, cti_shell_edge_cmp);
     int err = CT_OK;
+    int64_t ng = 0; /* the groups of four hinges (shell.h), from pass 0 */
     for (int pass = 0; pass < 2 && err == CT_OK; pass++) {
-        int64_t nh = 0;
+        int64_t nh = 0, ig = 0;
         for (size_t i = 0; i < ne && err == CT_OK;) {
             size_t j = i + 1, mid = 0; /* mid: first record of the second element */
             int nel = 1;
@@ -275,25 +276,31 @@ static int cti_shell_hinges(ctd_shell *s, const ct_real *x, const ct_real *y,
                 }
                 j++;
             }
+            const int group = nel == 2 && mid - i == 2 && j - mid == 2;
             if (nel == 2) {
                 for (size_t ia = i; ia < mid; ia++)
                     for (size_t ib = mid; ib < j; ib++) {
+                        /* The hinge's number: in its group, or after them. */
+                        const int64_t h =
+                            group ? (int64_t)(2 * (ia - i) + (ib - mid)) * ng + ig
+                                  : 4 * ng + (nh - 4 * ig);
                         if (pass == 1) {
                             ct_idx a = (ct_idx)(ed[ia].key / s->nnode);
                             ct_idx b = (ct_idx)(ed[ia].key % s->nnode);
-                            s->h1[nh] = a;
-                            s->h2[nh] = b;
-                            s->h3[nh] = cti_shell_third(s, ed[ia].tri, a, b);
-                            s->h4[nh] = cti_shell_third(s, ed[ib].tri, a, b);
-                            s->hta[nh] = ed[ia].tri;
-                            s->htb[nh] = ed[ib].tri;
-                            s->hsa[nh] = cti_shell_follows(s, ed[ia].tri, a, b) ? 1 : -1;
-                            s->hsb[nh] = cti_shell_follows(s, ed[ib].tri, a, b) ? -1 : 1;
-                            err = cti_shell_hinge_ref(s, (ct_idx)nh, ed[ia].tri, ed[ib].tri,
+                            s->h1[h] = a;
+                            s->h2[h] = b;
+                            s->h3[h] = cti_shell_third(s, ed[ia].tri, a, b);
+                            s->h4[h] = cti_shell_third(s, ed[ib].tri, a, b);
+                            s->hta[h] = ed[ia].tri;
+                            s->htb[h] = ed[ib].tri;
+                            s->hsa[h] = cti_shell_follows(s, ed[ia].tri, a, b) ? 1 : -1;
+                            s->hsb[h] = cti_shell_follows(s, ed[ib].tri, a, b) ? -1 : 1;
+                            err = cti_shell_hinge_ref(s, (ct_idx)h, ed[ia].tri, ed[ib].tri,
                                                       x, y, z, r);
                         }
                         nh++;
                     }
+                ig += group;
             }
             i = j;
         }
@@ -303,6 +310,8 @@ static int cti_shell_hinges(ctd_shell *s, const ct_real *x, const ct_real *y,
                 break;
             }
             s->nhinge = (ct_idx)nh;
+            s->ngroup = (ct_idx)ig;
+            ng = ig;
             ct_idx **ids[4] = {&s->h1, &s->h2, &s->h3, &s->h4};
             for (int k = 0; k < 4; k++)
                 if (!(*ids[k] = ct_calloc((size_t)nh + 1, sizeof(ct_idx))))
@@ -482,8 +491,9 @@ int ctd_shell_init(ctd_shell *s, ct_idx nnode, const ct_real *x, const ct_real *
     s->sz = ct_calloc((size_t)nslot + 1, sizeof(ct_real));
     s->slot = ct_calloc((size_t)nslot + 1, sizeof(ct_idx));
     s->slot_off = ct_calloc(nn + 1, sizeof(ct_idx));
-    size_t nblk = ((size_t)s->ntri + CTD_SHELL_BLOCK - 1) / CTD_SHELL_BLOCK +
-                  ((size_t)s->nhinge + CTD_SHELL_BLOCK - 1) / CTD_SHELL_BLOCK;
+    ct_idx nbt, nbg, nbr;
+    ctd_shell_blocks(s, &nbt, &nbg, &nbr);
+    size_t nblk = (size_t)nbt + (size_t)nbg + (size_t)nbr;
     s->e_blk = ct_calloc(nblk + 1, sizeof(double));
     if (!s->sx || !s->sy || !s->sz || !s->slot || !s->slot_off || !s->e_blk) {
         free(r);

@@ -51,8 +51,17 @@ typedef struct ctd_shell {
     ct_real *b11, *b12, *b22; /* inverse of the reference edge matrix, local frame */
     ct_real *elem_t;        /* thickness per input element */
 
-    /* Hinges: edge h1-h2, opposite nodes h3 (triangle A) and h4 (triangle B). */
+    /* Hinges: edge h1-h2, opposite nodes h3 (triangle A) and h4 (triangle B).
+     * An edge between two quads has four hinges (each of the two triangles
+     * of one quad holding the edge against each of the other's): those
+     * come first, as ngroup groups of four, hinge j of group g being
+     * h = j ngroup + g, its triangles A = hta[g] for j = 0, 1 and
+     * hta[2 ngroup + g] for j = 2, 3, B = htb[g] for j = 0, 2 and
+     * htb[ngroup + g] for j = 1, 3 (so the forces' loop over the groups reads
+     * the edge once for four hinges, and each of its four triangles once
+     * for two); the other hinges follow, from 4 ngroup on. */
     ct_idx *h1, *h2, *h3, *h4;
+    ct_idx ngroup;
     ct_real *theta0; /* rest dihedral angle */
     ct_real *hk;     /* k_h = (D / 2) |e0|^2 / (A_A + A_B) */
     /* The hinge's triangles A and B, and the signs (+1 or -1) that turn
@@ -80,7 +89,9 @@ typedef struct ctd_shell {
     ct_idx nsnode;
     ct_idx *snode;
     ct_idx *slot_off, *slot; /* set node -> its slots, increasing (CSR, nsnode + 1) */
-    double *e_blk; /* energy per block of CTD_SHELL_BLOCK triangles, then of hinges */
+    /* Energy per block of CTD_SHELL_BLOCK triangles, then of hinge groups,
+     * then of the other hinges (ctd_shell_blocks). */
+    double *e_blk;
 
     /* Results of the last ctd_shell_forces call. */
     double e_membrane, e_bending;
@@ -131,6 +142,16 @@ void ctd_shell_node_stiffness(const ctd_shell *s, ct_real *k);
 /* The rest angles theta0 of the hinges from reference positions, by the
  * same arithmetic as the forces (a shell at rest has theta = theta0 to the
  * bit). For ctd_shell_init; CT_ERR_DEGENERATE when an angle is not finite. */
+/* The blocks of the forces' loops: of triangles, of hinge groups, of
+ * the other hinges. */
+static inline void ctd_shell_blocks(const ctd_shell *s, ct_idx *nbt, ct_idx *nbg, ct_idx *nbr)
+{
+    const ct_idx B = CTD_SHELL_BLOCK, nr = s->nhinge - 4 * s->ngroup;
+    *nbt = (s->ntri + B - 1) / B;
+    *nbg = (s->ngroup + B - 1) / B;
+    *nbr = (nr + B - 1) / B;
+}
+
 int ctd_shell_rest_angles(ctd_shell *s, const ct_real *x, const ct_real *y, const ct_real *z);
 
 /* The vectorisable atan2 of the forces (shell_forces.c); exposed for tests. */

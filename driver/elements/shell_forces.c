@@ -47,7 +47,9 @@
  * on that edge (at most two) times |e| / (2 A) times the weights above,
  * all along n_A. Three passes, each a vector loop: every triangle's unit
  * normal; every hinge's angle (from the two normals and the edge, with
- * cti_atan2), energy and signed numbers; every triangle's membrane force
+ * cti_atan2; the four hinges of an edge between two quads together, the
+ * edge and the normals read once), energy and signed numbers; every
+ * triangle's membrane force
  * plus its bending force into its three slots. A hinge costs no slots
  * and no scatter: a node sums only its triangles' corners (12 on a quad
  * mesh, not 44 with the hinges' own slots). The energy is summed per
@@ -280,15 +282,38 @@ static void cti_shell_normals(ctd_shell *s, const ct_real *restrict x, const ct_
 #define CTI_SHELL_ANGLE(h, theta)                                                               \
     do {                                                                                        \
         ct_idx a_ = h1[h], b_ = h2[h], ta_ = hta[h], tb_ = htb[h];                              \
-        ct_real sa_ = hsa[h], sb_ = hsb[h];                                                     \
         ct_real ex_ = x[b_] - x[a_], ey_ = y[b_] - y[a_], ez_ = z[b_] - z[a_];                  \
-        ct_real ax_ = sa_ * nx[ta_], ay_ = sa_ * ny[ta_], az_ = sa_ * nz[ta_];                  \
-        ct_real bx_ = sb_ * nx[tb_], by_ = sb_ * ny[tb_], bz_ = sb_ * nz[tb_];                  \
+        ct_real le_ = CTI_SQRT(ex_ * ex_ + ey_ * ey_ + ez_ * ez_);                              \
+        CTI_SHELL_THETA(hsa[h], hsb[h], ta_, tb_, theta);                                       \
+    } while (0)
+
+/* theta of a hinge from the edge vector ex_, ey_, ez_ and its length le_
+ * (locals of the caller) and the unit normals of its triangles ta and tb
+ * with their signs sa and sb; the arithmetic of CTI_SHELL_ANGLE, to the
+ * bit (the rest angles and the groups' angles agree). */
+#define CTI_SHELL_THETA(sa, sb, ta, tb, theta)                                                  \
+    do {                                                                                        \
+        ct_real sa_ = (sa), sb_ = (sb);                                                         \
+        ct_real ax_ = sa_ * nx[ta], ay_ = sa_ * ny[ta], az_ = sa_ * nz[ta];                     \
+        ct_real bx_ = sb_ * nx[tb], by_ = sb_ * ny[tb], bz_ = sb_ * nz[tb];                     \
         ct_real wx_ = ay_ * bz_ - az_ * by_, wy_ = az_ * bx_ - ax_ * bz_;                       \
         ct_real wz_ = ax_ * by_ - ay_ * bx_;                                                    \
-        ct_real le_ = CTI_SQRT(ex_ * ex_ + ey_ * ey_ + ez_ * ez_);                              \
         (theta) = cti_atan2(wx_ * ex_ + wy_ * ey_ + wz_ * ez_,                                  \
                             le_ * (ax_ * bx_ + ay_ * by_ + az_ * bz_));                         \
+    } while (0)
+
+/* Hinge h's energy (into eb), its coefficient c = -2 k_h (theta - theta0)
+ * signed for each side's triangle (sa, sb; into hc), and whether c is
+ * finite (into bad), from its angle theta; over the caller's hk, th0, hc,
+ * nhinge. */
+#define CTI_SHELL_HINGE_OUT(h, sa, sb, theta)                                                   \
+    do {                                                                                        \
+        ct_real dth_ = (theta)-th0[h];                                                          \
+        ct_real c_ = -2 * hk[h] * dth_;                                                         \
+        eb += (double)hk[h] * dth_ * dth_;                                                      \
+        bad |= !(CTI_FABS(c_) < (ct_real)HUGE_VAL);                                             \
+        hc[h] = c_ * (sa);                                                                      \
+        hc[nhinge + h] = c_ * (sb);                                                             \
     } while (0)
 
 /* The hinge arrays CTI_SHELL_ANGLE reads, as restrict locals. */
@@ -333,9 +358,10 @@ int ctd_shell_forces(ctd_shell *s, const ct_real *x, const ct_real *y, const ct_
     CTI_SHELL_ANGLE_ARRAYS(s);
     ct_real *restrict sx = s->sx, *restrict sy = s->sy, *restrict sz = s->sz;
     double *restrict e_blk = s->e_blk;
-    const ct_idx nbt = (ntri + CTD_SHELL_BLOCK - 1) / CTD_SHELL_BLOCK;
-    const ct_idx nbh = (nhinge + CTD_SHELL_BLOCK - 1) / CTD_SHELL_BLOCK;
-    int bad_h = 0, bad_t = 0; /* shared: the loops' reductions */
+    const ct_idx ng = s->ngroup;
+    ct_idx nbt, nbg, nbr;
+    ctd_shell_blocks(s, &nbt, &nbg, &nbr);
+    int bad_g = 0, bad_h = 0, bad_t = 0; /* shared: the loops' reductions */
     /* Small shells run serially (a parallel region costs more than them). */
     const int par = (int64_t)ntri + nhinge >= CTI_SHELL_PAR_MIN;
 
@@ -344,24 +370,50 @@ int ctd_shell_forces(ctd_shell *s, const ct_real *x, const ct_real *y, const ct_
         cti_shell_normals(s, x, y, z);
 
         /* Hinges: the angle, the energy, and the coefficient
-         * c = -2 k_h (theta - theta0) signed for each side's triangle. */
+         * c = -2 k_h (theta - theta0) signed for each side's triangle. The
+         * groups of four first (shell.h): one edge vector and four normals
+         * read for four hinges, 4.5 gathers a hinge where a hinge alone
+         * takes 12 (the gathers are most of this loop's time). No barrier
+         * between the two loops: they write different hinges. */
+#pragma omp for schedule(static) reduction(| : bad_g) nowait
+        for (ct_idx b = 0; b < nbg; b++) {
+            const ct_idx g0 = b * CTD_SHELL_BLOCK, g1 = cti_block_end(b, ng);
+            double eb = 0;
+            int bad = 0;
+#pragma omp simd reduction(+ : eb) reduction(| : bad)
+            for (ct_idx g = g0; g < g1; g++) {
+                ct_idx a_ = h1[g], b_ = h2[g];
+                ct_idx A1 = hta[g], A2 = hta[2 * ng + g], B1 = htb[g], B2 = htb[ng + g];
+                ct_real ex_ = x[b_] - x[a_], ey_ = y[b_] - y[a_], ez_ = z[b_] - z[a_];
+                ct_real le_ = CTI_SQRT(ex_ * ex_ + ey_ * ey_ + ez_ * ez_);
+                /* The signs are the triangles' (hsa[ng + g] = hsa[g], ...). */
+                ct_real sA1 = hsa[g], sA2 = hsa[2 * ng + g], sB1 = hsb[g], sB2 = hsb[ng + g];
+                ct_real th_0, th_1, th_2, th_3;
+                CTI_SHELL_THETA(sA1, sB1, A1, B1, th_0);
+                CTI_SHELL_THETA(sA1, sB2, A1, B2, th_1);
+                CTI_SHELL_THETA(sA2, sB1, A2, B1, th_2);
+                CTI_SHELL_THETA(sA2, sB2, A2, B2, th_3);
+                CTI_SHELL_HINGE_OUT(g, sA1, sB1, th_0);
+                CTI_SHELL_HINGE_OUT(ng + g, sA1, sB2, th_1);
+                CTI_SHELL_HINGE_OUT(2 * ng + g, sA2, sB1, th_2);
+                CTI_SHELL_HINGE_OUT(3 * ng + g, sA2, sB2, th_3);
+            }
+            e_blk[nbt + b] = eb;
+            bad_g |= bad;
+        }
 #pragma omp for schedule(static) reduction(| : bad_h)
-        for (ct_idx b = 0; b < nbh; b++) {
-            const ct_idx j0 = b * CTD_SHELL_BLOCK, j1 = cti_block_end(b, nhinge);
+        for (ct_idx b = 0; b < nbr; b++) {
+            const ct_idx j0 = 4 * ng + b * CTD_SHELL_BLOCK,
+                         j1 = 4 * ng + cti_block_end(b, nhinge - 4 * ng);
             double eb = 0;
             int bad = 0;
 #pragma omp simd reduction(+ : eb) reduction(| : bad)
             for (ct_idx h = j0; h < j1; h++) {
                 ct_real theta;
                 CTI_SHELL_ANGLE(h, theta);
-                ct_real dth = theta - th0[h];
-                ct_real c = -2 * hk[h] * dth;
-                eb += (double)hk[h] * dth * dth;
-                bad |= !(CTI_FABS(c) < (ct_real)HUGE_VAL);
-                hc[h] = c * hsa[h];
-                hc[nhinge + h] = c * hsb[h];
+                CTI_SHELL_HINGE_OUT(h, hsa[h], hsb[h], theta);
             }
-            e_blk[nbt + b] = eb;
+            e_blk[nbt + nbg + b] = eb;
             bad_h |= bad;
         }
 
@@ -443,7 +495,7 @@ int ctd_shell_forces(ctd_shell *s, const ct_real *x, const ct_real *y, const ct_
             bad_t |= bad;
         }
     }
-    if (bad_h | bad_t)
+    if (bad_g | bad_h | bad_t)
         return CT_ERR_NONFINITE;
 
     /* Gather: each node sums its slots in increasing slot order, so the
@@ -469,7 +521,7 @@ int ctd_shell_forces(ctd_shell *s, const ct_real *x, const ct_real *y, const ct_
     double em = 0, eb = 0;
     for (ct_idx b = 0; b < nbt; b++)
         em += e_blk[b];
-    for (ct_idx b = 0; b < nbh; b++)
+    for (ct_idx b = 0; b < nbg + nbr; b++)
         eb += e_blk[nbt + b];
     s->e_membrane = em;
     s->e_bending = eb;
