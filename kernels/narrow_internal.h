@@ -73,20 +73,25 @@ typedef int64_t cti_nr_int;
  * 32 vector registers). */
 #define CTI_NR_SIMD _Pragma("omp simd")
 
-/* Newton: iterations done for every pair in the vector loop (from the
- * linear start, see project_newton.c), then the cap for the pairs that have
- * not converged yet (further vector rounds of as many steps over those
- * pairs alone). With the linear start, 3 (single) or 4 (double) steps
- * converge all but a few in 1e5 pairs of realistic meshes (plates warped by
- * 5% of the element size), but about half of a crumpled sheet's candidates
- * (nodes off the quadrangle); a step costs about 35 instructions per pair
- * in double with AVX2, 15 in single. */
+/* Newton (project_newton.c): CTI_NR_NEWTON_A_IT steps from the linear start
+ * for every pair of a block; up to CTI_NR_NEWTON_VEC_IT steps for the whole
+ * block when more than 1 / CTI_NR_NEWTON_MORE_DEN of it has not converged
+ * (a converged pair keeps its values); then the cap for the pairs still
+ * not converged (further vector rounds of CTI_NR_NEWTON_VEC_IT steps over
+ * those pairs alone). A flat or smooth plate converges in 2 steps; 3
+ * (single) or 4 (double) steps converge all but a few in 1e5 pairs of
+ * plates warped by 5% of the element size, but about half of a crumpled
+ * sheet's candidates need more (nodes off the quadrangle); a step costs
+ * about 35 instructions per pair in double with AVX2, 15 in single. */
 #ifdef CT_SINGLE
 #define CTI_NR_NEWTON_VEC_IT 3
 #else
 #define CTI_NR_NEWTON_VEC_IT 4
 #endif
 #define CTI_NR_NEWTON_MAX_IT 30
+#define CTI_NR_NEWTON_A_IT 2
+/* 3 and 24 measured the same as 8 on warped and crumpled quadrangles. */
+#define CTI_NR_NEWTON_MORE_DEN 8
 
 /* Everything a node-segment block kernel needs (internal; the public API
  * takes the arrays one by one). */
@@ -124,6 +129,9 @@ typedef struct cti_nr_blk {
     _Alignas(64) ct_real z01[2 * CTI_NR_BLOCK], z23[2 * CTI_NR_BLOCK];
     _Alignas(64) ct_real z4[CTI_NR_BLOCK];
     _Alignas(64) cti_nr_int flag[CTI_NR_BLOCK];
+    /* Newton: whether the last block ran its second fixed loop (a guess
+     * for the next one, see cti_nr_block_newton; 0 at the start). */
+    int newton_more;
 } cti_nr_blk;
 
 void cti_nr_gather(const cti_nr_args *a, ct_idx k0, ct_idx n, cti_nr_blk *b);

@@ -167,12 +167,14 @@ static int cti_narrow_run(const cti_nr_args *ap, ct_idx npair, ct_quad_method me
         {
             /* One block scratch per thread, on its stack. */
             cti_nr_blk blk;
+            blk.newton_more = 0;
 #pragma omp for schedule(static)
             for (ct_idx bi = 0; bi < nblock; bi++)
                 cti_nr_one_block(&a, quad, npair, bi, &blk);
         }
     } else { /* no team at all (see CTI_PAR_FOR) */
         cti_nr_blk blk;
+        blk.newton_more = 0;
         for (ct_idx bi = 0; bi < nblock; bi++)
             cti_nr_one_block(&a, quad, npair, bi, &blk);
     }

@@ -1,9 +1,9 @@
 /*
  * project_newton.c -- node-quadrangle projection by Newton on the bilinear
  * (s, t) (DESIGN.md section 6; ct_quad_method in ct_narrow.h): a linear
- * start, a fixed number of steps in one vector loop for every pair, further
- * vector rounds for the pairs not converged yet, and the boundary rule of
- * narrow_quad.h.
+ * start, two steps in one vector loop for every pair, two more for the whole
+ * block when enough of it has not converged, further vector rounds for the
+ * pairs still not converged, and the boundary rule of narrow_quad.h.
  */
 #include "narrow_quad.h"
 
@@ -55,12 +55,12 @@ static inline void cti_newton_start(CTI_QPARAMS, ct_real *s, ct_real *t)
     *t = T < -3 ? -3 : (T > 3 ? 3 : T);
 }
 
-/* Bilinear projection by Newton: one vector loop does a fixed number of
- * steps for every pair and writes the outputs; pairs not converged then
- * (last step above the tolerance, NaN included) continue to the cap in
- * further vector rounds over those pairs alone (newton_redo). Which pairs
- * continue, and for how many steps, depends on the pair only, so the
- * results do not depend on lanes or threads. */
+/* Bilinear projection by Newton: fixed vector loops over the block
+ * (cti_nr_block_newton) write the outputs; pairs not converged then (last
+ * step above the tolerance, NaN included) continue to the cap in further
+ * vector rounds over those pairs alone (newton_redo). Which steps a pair
+ * takes depends on the pair only, so the results do not depend on lanes,
+ * blocks or threads. */
 
 /* The two SIMD loops of the redo stay functions of their own: inlined into
  * newton_redo, whose compact scratch is a local aggregate, gcc 12 does not
@@ -175,11 +175,12 @@ CTI_NR_NOINLINE static void newton_finish(const cti_nr_args *a, ct_idx m, cti_nr
 }
 
 /*
- * The pairs of block k0 that the vector steps left unconverged (redo[j];
- * their iterates in sv, tv) take further steps in SIMD lanes, a round of
- * one step and then rounds of CTI_NR_NEWTON_VEC_IT steps over those still
- * iterating, up to CTI_NR_NEWTON_MAX_IT steps in all; then their outputs
- * are computed. A lane keeps its values from the step that converged, or
+ * The pairs of block k0 that the fixed loops left unconverged (redo[j];
+ * their iterates in sv, tv, their last step sizes in stv, after `steps`
+ * steps) take further steps in SIMD lanes: rounds of CTI_NR_NEWTON_VEC_IT
+ * steps over those still iterating (the first of one step when the block
+ * took CTI_NR_NEWTON_VEC_IT already), up to CTI_NR_NEWTON_MAX_IT steps in
+ * all; then their outputs are computed. A lane keeps its values from the step that converged, or
  * from the step that returned its (s, t) unchanged, so each pair gets the
  * values of a scalar loop that stops at convergence or at the cap (and the
  * same bytes: a pair's arithmetic does not depend on its lane). Each round and
@@ -190,7 +191,8 @@ CTI_NR_NOINLINE static void newton_finish(const cti_nr_args *a, ct_idx m, cti_nr
  * scalar loop over them took four fifths of the kernel's time.
  */
 static void newton_redo(const cti_nr_args *a, ct_idx k0, ct_idx n, cti_nr_blk *b,
-                        const cti_nr_int *redo, const ct_real *sv, const ct_real *tv)
+                        const cti_nr_int *redo, const ct_real *sv, const ct_real *tv,
+                        const ct_real *stv, int steps)
 {
     ct_idx rq[CTI_NR_BLOCK], live[CTI_NR_BLOCK], pos[CTI_NR_BLOCK];
     ct_real s[CTI_NR_BLOCK], t[CTI_NR_BLOCK], st[CTI_NR_BLOCK];
@@ -209,11 +211,11 @@ static void newton_redo(const cti_nr_args *a, ct_idx k0, ct_idx n, cti_nr_blk *b
         pos[q] = q;
         s[q] = sv[rq[q]];
         t[q] = tv[rq[q]];
-        st[q] = 1;
+        st[q] = stv[rq[q]];
     }
     ct_idx nl = nr;
     ct_real ls[CTI_NR_BLOCK], lt[CTI_NR_BLOCK], lst[CTI_NR_BLOCK], lfin[CTI_NR_BLOCK];
-    for (int it0 = CTI_NR_NEWTON_VEC_IT; nl > 0 && it0 < CTI_NR_NEWTON_MAX_IT;
+    for (int it0 = steps; nl > 0 && it0 < CTI_NR_NEWTON_MAX_IT;
          it0 += it0 == CTI_NR_NEWTON_VEC_IT ? 1 : CTI_NR_NEWTON_VEC_IT) {
         newton_pick(b, live, nl, &c);
         for (ct_idx q = 0; q < nl; q++) {
@@ -255,27 +257,121 @@ static void newton_redo(const cti_nr_args *a, ct_idx k0, ct_idx n, cti_nr_blk *b
         b->flag[rq[q]] = c.flag[q];
 }
 
-void cti_nr_block_newton(const cti_nr_args *a, ct_idx k0, ct_idx n, cti_nr_blk *b)
+/* The second fixed loop (cti_nr_block_newton): steps CTI_NR_NEWTON_A_IT + 1
+ * to CTI_NR_NEWTON_VEC_IT of block pairs [k0, k0 + n), for every pair of the
+ * block; a pair that had converged keeps its values, as in the rounds. The
+ * outputs of every pair are written again (a converged pair's are the same
+ * bytes), fin[j] says whether pair j is done. */
+static void newton_block_more(const cti_nr_args *a, ct_idx k0, ct_idx n, cti_nr_blk *b,
+                              ct_real *restrict sv, ct_real *restrict tv,
+                              ct_real *restrict stv, ct_real *restrict fin)
 {
     CTI_NR_OUTPTRS(a, k0);
     CTI_NR_INPTRS(a, k0);
     int two = a->two_sided;
-    ct_real sv[CTI_NR_BLOCK], tv[CTI_NR_BLOCK];
-    cti_nr_int redo[CTI_NR_BLOCK];
     CTI_NR_SIMD
+    for (ct_idx j = 0; j < n; j++) {
+        CTI_QUAD_LOAD(j);
+        ct_real s = sv[j], t = tv[j], st = stv[j];
+        ct_real done = st <= CTI_NR_NEWTON_TOL ? 1 : 0;
+        _Pragma("GCC unroll 8")
+        for (int i = CTI_NR_NEWTON_A_IT; i < CTI_NR_NEWTON_VEC_IT; i++) {
+            ct_real s2 = s, t2 = t, st2;
+            cti_newton_step(CTI_QARGS, &s2, &t2, &st2);
+            ct_real same = cti_same_bits(s2, s) & cti_same_bits(t2, t) ? 1 : 0;
+            cti_nr_int keep = done != 0;
+            s = keep ? s : s2;
+            t = keep ? t : t2;
+            st = keep ? st : st2;
+            done = st <= CTI_NR_NEWTON_TOL ? 1 : done;
+            done = same != 0 ? 1 : done;
+        }
+        sv[j] = s;
+        tv[j] = t;
+        stv[j] = st;
+        fin[j] = done;
+        CTI_QUAD_STORE(j, s, t, 1, 0);
+    }
+}
+
+/* The first fixed loop of cti_nr_block_newton: the start and
+ * CTI_NR_NEWTON_A_IT steps of block pairs [k0, k0 + n) into sv, tv and stv,
+ * and their outputs when store (a constant: the two forms are two loops).
+ * Returns the number of pairs not converged. */
+CTI_NR_INLINE ct_idx newton_block_first(const cti_nr_args *a, ct_idx k0, ct_idx n,
+                                        cti_nr_blk *b, ct_real *restrict sv,
+                                        ct_real *restrict tv, ct_real *restrict stv,
+                                        const int store)
+{
+    CTI_NR_OUTPTRS(a, k0);
+    CTI_NR_INPTRS(a, k0);
+    int two = a->two_sided;
+    ct_idx nun = 0;
+    _Pragma("omp simd reduction(+ : nun)")
     for (ct_idx j = 0; j < n; j++) {
         CTI_QUAD_LOAD(j);
         ct_real s, t, st = 0;
         cti_newton_start(CTI_QARGS, &s, &t);
         _Pragma("GCC unroll 8")
-        for (int it = 0; it < CTI_NR_NEWTON_VEC_IT; it++)
+        for (int it = 0; it < CTI_NR_NEWTON_A_IT; it++)
             cti_newton_step(CTI_QARGS, &s, &t, &st);
-        cti_nr_int conv = st <= CTI_NR_NEWTON_TOL;
         sv[j] = s;
         tv[j] = t;
-        redo[j] = !conv;
-        CTI_QUAD_STORE(j, s, t, 1, 0);
+        stv[j] = st;
+        nun += !(st <= CTI_NR_NEWTON_TOL);
+        if (store)
+            CTI_QUAD_STORE(j, s, t, 1, 0);
     }
-    newton_redo(a, k0, n, b, redo, sv, tv);
+    return nun;
+}
+
+/*
+ * Newton for block pairs [k0, k0 + n): the start and CTI_NR_NEWTON_A_IT steps
+ * for every pair; when more than 1 / CTI_NR_NEWTON_MORE_DEN of the block has
+ * not converged, the steps up to CTI_NR_NEWTON_VEC_IT for the whole block
+ * (newton_block_more); the pairs still not converged then go on in the
+ * compacted rounds of newton_redo. Every pair takes steps until one
+ * converges (the first CTI_NR_NEWTON_A_IT always), so its result does not
+ * depend on which of these paths it took, nor on the block's other pairs.
+ * Smooth meshes converge in two steps and take the first loop alone;
+ * warped or crumpled ones take both loops, as compacting half a block costs
+ * more than two more steps for all of it.
+ *
+ * Where the outputs are written follows a guess from the block before
+ * (b->newton_more): the first loop writes them when the second is not
+ * expected, the second rewrites them for every pair when it runs, and
+ * a plain loop writes them when the guess was wrong the other way. The
+ * guess changes the time only, never a byte.
+ */
+void cti_nr_block_newton(const cti_nr_args *a, ct_idx k0, ct_idx n, cti_nr_blk *b)
+{
+    CTI_NR_OUTPTRS(a, k0);
+    CTI_NR_INPTRS(a, k0);
+    int two = a->two_sided;
+    ct_real sv[CTI_NR_BLOCK], tv[CTI_NR_BLOCK], stv[CTI_NR_BLOCK], fin[CTI_NR_BLOCK];
+    cti_nr_int redo[CTI_NR_BLOCK];
+    const int guess = b->newton_more;
+    ct_idx nun = guess ? newton_block_first(a, k0, n, b, sv, tv, stv, 0)
+                       : newton_block_first(a, k0, n, b, sv, tv, stv, 1);
+    const int more = nun * CTI_NR_NEWTON_MORE_DEN > n;
+    int steps = CTI_NR_NEWTON_A_IT;
+    if (more) {
+        newton_block_more(a, k0, n, b, sv, tv, stv, fin);
+        steps = CTI_NR_NEWTON_VEC_IT;
+        for (ct_idx j = 0; j < n; j++)
+            redo[j] = fin[j] == 0;
+    } else {
+        if (guess) {
+            CTI_NR_SIMD
+            for (ct_idx j = 0; j < n; j++) {
+                CTI_QUAD_LOAD(j);
+                CTI_QUAD_STORE(j, sv[j], tv[j], 1, 0);
+            }
+        }
+        for (ct_idx j = 0; j < n; j++)
+            redo[j] = !(stv[j] <= CTI_NR_NEWTON_TOL);
+    }
+    b->newton_more = more;
+    newton_redo(a, k0, n, b, redo, sv, tv, stv, steps);
     cti_nr_flags_out(b->flag, a->out->flag + k0, n);
 }

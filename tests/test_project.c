@@ -661,6 +661,73 @@ Test(project, threads_and_lanes_give_identical_results)
     ct_free(node); ct_free(seg);
 }
 
+/* Newton's path through a block (the second fixed loop for the whole block,
+ * or compacted rounds for its few slow pairs) depends on the block's other
+ * pairs; a pair's result must not. Blocks of 64 pairs: two with 60 easy
+ * pairs (nodes over a flat parallelogram, where the start is exact) and 4
+ * slow ones (nodes off a warped quadrangle), others the other way round, in
+ * an order that takes every path on one thread (the kernel guesses a block's
+ * path from the block before); every pair's outputs in the batch, on 1 and
+ * 2 threads, are compared byte for byte with the pair computed alone. */
+Test(project, newton_result_does_not_depend_on_the_block)
+{
+    enum { NP = 512 };
+    const char *kind = "SFFSSFFS"; /* block b: S mostly slow, F mostly fast */
+    double F[4][3] = {{-1, -1, 0}, {1.2, -1, 0}, {1.5, 1, 0}, {-0.7, 1, 0}}, W[4][3];
+    rand_quad(W, 0.4, 1.0);
+    ct_real x[8 + NP], y[8 + NP], z[8 + NP];
+    for (int i = 0; i < 4; i++) {
+        x[i] = (ct_real)F[i][0], y[i] = (ct_real)F[i][1], z[i] = (ct_real)F[i][2];
+        x[4 + i] = (ct_real)W[i][0], y[4 + i] = (ct_real)W[i][1], z[4 + i] = (ct_real)W[i][2];
+    }
+    ct_idx n1[2] = {0, 4}, n2[2] = {1, 5}, n3[2] = {2, 6}, n4[2] = {3, 7};
+    ct_idx node[NP], seg[NP];
+    for (int k = 0; k < NP; k++) {
+        int few_slow = kind[k / 64] == 'F', slow = ((k % 16) == 5) == few_slow;
+        double p[3];
+        if (slow) {
+            /* Off the quadrangle's extension, as in the batch test above. */
+            double s = 6 * urand() - 3, t = 6 * urand() - 3, c[3], a[3], b[3];
+            bil(W, s, t, c, a, b);
+            double h = 2.4 * urand() - 1.2;
+            for (int d = 0; d < 3; d++)
+                p[d] = c[d] + h * (d == 2 ? 1 : 0.3);
+        } else {
+            p[0] = 2 * urand() - 1, p[1] = 2 * urand() - 1, p[2] = 0.2 * urand() - 0.1;
+        }
+        x[8 + k] = (ct_real)p[0], y[8 + k] = (ct_real)p[1], z[8 + k] = (ct_real)p[2];
+        node[k] = 8 + k;
+        seg[k] = slow;
+    }
+    geo a, b;
+    geo_init(&a, NP);
+    geo_init(&b, 1);
+    for (int run = 0; run < 4; run++) {
+        int two = run & 1;
+        ctt_threads(1 + run / 2);
+        cr_assert_eq(ct_narrow_node_segment(NP, node, seg, n1, n2, n3, n4, x, y, z, NULL, NULL,
+                                            (ct_real)0.3, 0, 0, CT_QUAD_NEWTON, two, &a.g, NULL),
+                     CT_OK);
+        ct_real *fa[13] = {a.g.dist, a.g.pen, a.g.nx, a.g.ny, a.g.nz, a.g.cx, a.g.cy,
+                           a.g.cz,   a.g.h1,  a.g.h2, a.g.h3, a.g.h4, a.g.gap};
+        ct_real *fb[13] = {b.g.dist, b.g.pen, b.g.nx, b.g.ny, b.g.nz, b.g.cx, b.g.cy,
+                           b.g.cz,   b.g.h1,  b.g.h2, b.g.h3, b.g.h4, b.g.gap};
+        for (int k = 0; k < NP; k++) {
+            cr_assert_eq(ct_narrow_node_segment(1, node + k, seg + k, n1, n2, n3, n4, x, y, z,
+                                                NULL, NULL, (ct_real)0.3, 0, 0, CT_QUAD_NEWTON,
+                                                two, &b.g, NULL),
+                         CT_OK);
+            for (int f = 0; f < 13; f++)
+                cr_assert_eq(memcmp(fa[f] + k, fb[f], sizeof(ct_real)), 0,
+                             "pair %d field %d: %.17g in the block, %.17g alone", k, f,
+                             (double)fa[f][k], (double)fb[f][0]);
+            cr_assert_eq(a.g.flag[k], b.g.flag[0], "pair %d", k);
+        }
+    }
+    geo_free(&a);
+    geo_free(&b);
+}
+
 Test(project, bad_arguments)
 {
     geo o;
