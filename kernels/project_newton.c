@@ -294,6 +294,14 @@ static void newton_block_more(const cti_nr_args *a, ct_idx k0, ct_idx n, cti_nr_
     }
 }
 
+/* clang 14 interleaves the first loop's form without outputs 4 vectors deep
+ * in single (64 pairs at a time, spilling; see CTI_NR_SIMD). */
+#if defined(__clang__)
+#define CTI_NR_ONE_VECTOR _Pragma("clang loop interleave_count(1)")
+#else
+#define CTI_NR_ONE_VECTOR
+#endif
+
 /* The first fixed loop of cti_nr_block_newton: the start and
  * CTI_NR_NEWTON_A_IT steps of block pairs [k0, k0 + n) into sv, tv and stv,
  * and their outputs when store (a constant: the two forms are two loops).
@@ -307,7 +315,7 @@ CTI_NR_INLINE ct_idx newton_block_first(const cti_nr_args *a, ct_idx k0, ct_idx 
     CTI_NR_INPTRS(a, k0);
     int two = a->two_sided;
     ct_idx nun = 0;
-    _Pragma("omp simd reduction(+ : nun)")
+    _Pragma("omp simd reduction(+ : nun)") CTI_NR_ONE_VECTOR
     for (ct_idx j = 0; j < n; j++) {
         CTI_QUAD_LOAD(j);
         ct_real s, t, st = 0;
