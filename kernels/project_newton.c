@@ -103,6 +103,27 @@ static inline cti_nr_int cti_same_bits(ct_real a, ct_real b)
     return ua.i == ub.i;
 }
 
+/* A Newton step of a lane that is not done; a lane that is done keeps s,
+ * t and its last step size st. done becomes 1 when the step converges, or
+ * when the step left the bits of s and t as they were: a step is a function
+ * of those bits, so every later step would be that same step, and the cap
+ * would end there too, with this step's size (whether the lane was done
+ * already does not matter: done stays 1). done is a real rather than a
+ * mask: gcc 12 does not vectorise a select between masks. */
+CTI_NR_INLINE void cti_newton_step_unless_done(CTI_QPARAMS, ct_real *s, ct_real *t,
+                                               ct_real *st, ct_real *done)
+{
+    ct_real s2 = *s, t2 = *t, st2;
+    cti_newton_step(CTI_QARGS, &s2, &t2, &st2);
+    ct_real same = cti_same_bits(s2, *s) & cti_same_bits(t2, *t) ? 1 : 0;
+    cti_nr_int keep = *done != 0;
+    *s = keep ? *s : s2;
+    *t = keep ? *t : t2;
+    *st = keep ? *st : st2;
+    *done = *st <= CTI_NR_NEWTON_TOL ? 1 : *done;
+    *done = same != 0 ? 1 : *done;
+}
+
 /* A round of further steps of the m compacted pairs of b (see
  * newton_redo): the first `left` of NSTEP steps (a constant: both compilers
  * vectorise only a constant inner count); s, t and the last step size st
@@ -123,15 +144,7 @@ static inline cti_nr_int cti_same_bits(ct_real a, ct_real b)
             _Pragma("GCC unroll 8")                                                       \
             for (int i = 0; i < (NSTEP); i++) {                                           \
                 done = i >= left ? 1 : done;                                              \
-                ct_real s2 = s, t2 = t, st2;                                              \
-                cti_newton_step(CTI_QARGS, &s2, &t2, &st2);                               \
-                ct_real same = cti_same_bits(s2, s) & cti_same_bits(t2, t) ? 1 : 0;        \
-                cti_nr_int keep = done != 0;                                              \
-                s = keep ? s : s2;                                                        \
-                t = keep ? t : t2;                                                        \
-                st = keep ? st : st2;                                                     \
-                done = st <= CTI_NR_NEWTON_TOL ? 1 : done;                                \
-                done = same != 0 ? 1 : done;                                              \
+                cti_newton_step_unless_done(CTI_QARGS, &s, &t, &st, &done);               \
             }                                                                             \
             sv[q] = s;                                                                    \
             tv[q] = t;                                                                    \
@@ -139,13 +152,10 @@ static inline cti_nr_int cti_same_bits(ct_real a, ct_real b)
             fin[q] = done;                                                                \
         }                                                                                 \
     }
-/* done: 1 once a step converged or the steps ran out, a real rather than a
- * mask (gcc 12 does not vectorise a select between masks). same: a step
- * that left the bits of s and t as they were will be that same step every
- * time after (it is a function of those bits), so the cap would end there
- * too, with this step's size (whether the lane was done already does not
- * matter: done stays 1). The first round is one step (most pairs of a
- * crumpled sheet converge at the fifth), the others CTI_NR_NEWTON_VEC_IT. */
+/* done: 1 once a step converged or the steps ran out
+ * (cti_newton_step_unless_done). The first round is one step when the block
+ * took CTI_NR_NEWTON_VEC_IT steps already (most pairs of a crumpled sheet
+ * converge at the fifth), the others CTI_NR_NEWTON_VEC_IT. */
 CTI_NEWTON_ROUND(newton_round1, 1)
 CTI_NEWTON_ROUND(newton_round, CTI_NR_NEWTON_VEC_IT)
 
@@ -276,15 +286,7 @@ static void newton_block_more(const cti_nr_args *a, ct_idx k0, ct_idx n, cti_nr_
         ct_real done = st <= CTI_NR_NEWTON_TOL ? 1 : 0;
         _Pragma("GCC unroll 8")
         for (int i = CTI_NR_NEWTON_A_IT; i < CTI_NR_NEWTON_VEC_IT; i++) {
-            ct_real s2 = s, t2 = t, st2;
-            cti_newton_step(CTI_QARGS, &s2, &t2, &st2);
-            ct_real same = cti_same_bits(s2, s) & cti_same_bits(t2, t) ? 1 : 0;
-            cti_nr_int keep = done != 0;
-            s = keep ? s : s2;
-            t = keep ? t : t2;
-            st = keep ? st : st2;
-            done = st <= CTI_NR_NEWTON_TOL ? 1 : done;
-            done = same != 0 ? 1 : done;
+            cti_newton_step_unless_done(CTI_QARGS, &s, &t, &st, &done);
         }
         sv[j] = s;
         tv[j] = t;
