@@ -1,7 +1,7 @@
 /*
  * test_geo.h -- the narrow phase's output arrays (ct_contact_geo) for n
- * pairs, allocated and freed by the tests that compare two narrow-phase
- * paths array by array (test_project_slots.c, test_narrow_packed.c).
+ * pairs, allocated and freed by the narrow-phase tests (test_project*.c,
+ * test_narrow_packed.c).
  */
 #ifndef TEST_GEO_H
 #define TEST_GEO_H

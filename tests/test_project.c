@@ -8,40 +8,15 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "test_util.h"
+#include "test_geo.h"
+#include "test_project.h"
 
 /* ---- A small harness: one segment set, many pairs ---------------------- */
-
-typedef struct geo {
-    ct_contact_geo g;
-    ct_real *buf;
-    ct_idx n;
-} geo;
-
-static void geo_init(geo *o, ct_idx n)
-{
-    o->n = n;
-    ct_real **f[] = {&o->g.dist, &o->g.pen, &o->g.nx, &o->g.ny, &o->g.nz,
-                     &o->g.cx,   &o->g.cy,  &o->g.cz, &o->g.h1, &o->g.h2,
-                     &o->g.h3,   &o->g.h4,  &o->g.gap};
-    size_t stride = (size_t)n + CT_PAD;
-    o->buf = ct_calloc(stride * 13, sizeof(ct_real));
-    cr_assert_not_null(o->buf);
-    for (int i = 0; i < 13; i++)
-        *f[i] = o->buf + stride * (size_t)i;
-    o->g.flag = ct_calloc((size_t)n, 1);
-}
-
-static void geo_free(geo *o)
-{
-    ct_free(o->buf);
-    ct_free(o->g.flag);
-}
 
 /* One pair: node 0 at p against the segment of nodes 1..4 (a triangle when
  * tri != 0, using n4 = n3). */
 static void one(ct_quad_method m, int two, const double X[4][3], const double p[3],
-                double gap, int tri, geo *o)
+                double gap, int tri, ctt_geo *o)
 {
     ct_real x[5], y[5], z[5];
     x[0] = (ct_real)p[0]; y[0] = (ct_real)p[1]; z[0] = (ct_real)p[2];
@@ -56,31 +31,7 @@ static void one(ct_quad_method m, int two, const double X[4][3], const double p[
     cr_assert_eq(rc, CT_OK);
 }
 
-static unsigned rng_state = 12345u;
-static double urand(void)
-{
-    rng_state = rng_state * 1664525u + 1013904223u;
-    return (rng_state >> 8) / 16777216.0;
-}
-
 /* ---- Independent reference for the bilinear quad ----------------------- */
-
-static void bil(const double X[4][3], double s, double t, double x[3], double xs[3],
-                double xt[3])
-{
-    double H[4] = {(1 - s) * (1 - t) / 4, (1 + s) * (1 - t) / 4, (1 + s) * (1 + t) / 4,
-                   (1 - s) * (1 + t) / 4};
-    double Hs[4] = {-(1 - t) / 4, (1 - t) / 4, (1 + t) / 4, -(1 + t) / 4};
-    double Ht[4] = {-(1 - s) / 4, -(1 + s) / 4, (1 + s) / 4, (1 - s) / 4};
-    for (int d = 0; d < 3; d++) {
-        x[d] = xs[d] = xt[d] = 0;
-        for (int i = 0; i < 4; i++) {
-            x[d] += H[i] * X[i][d];
-            xs[d] += Hs[i] * X[i][d];
-            xt[d] += Ht[i] * X[i][d];
-        }
-    }
-}
 
 static double f2(const double X[4][3], const double p[3], double s, double t)
 {
@@ -150,17 +101,6 @@ static void truth_quad(const double X[4][3], const double p[3], double c[3], dou
     *dist = sqrt(f2(X, p, bs, bt));
 }
 
-/* A random warped quad around the unit square [-1,1]^2 scaled by L. */
-static void rand_quad(double X[4][3], double warp, double L)
-{
-    double base[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
-    for (int i = 0; i < 4; i++) {
-        X[i][0] = L * (base[i][0] + 0.3 * (urand() - 0.5));
-        X[i][1] = L * (base[i][1] + 0.3 * (urand() - 0.5));
-        X[i][2] = L * warp * (i & 1 ? 1 : -1) * (0.5 + 0.5 * urand());
-    }
-}
-
 /* A point near the quad: (s, t) in [-1.6, 1.6]^2, then off the surface
  * along its normal by h in [-0.4, 0.4] L (above, below, beyond edges and
  * corners). */
@@ -183,7 +123,7 @@ static double dist3(const double a[3], double bx, double by, double bz)
 }
 
 /* Outputs always finite, weights summing to 1 and reproducing the point. */
-static void check_consistent(const geo *o, const double X[4][3], const double p[3], int tri)
+static void check_consistent(const ctt_geo *o, const double X[4][3], const double p[3], int tri)
 {
     const ct_contact_geo *g = &o->g;
     double h[4] = {g->h1[0], g->h2[0], g->h3[0], g->h4[0]};
@@ -205,8 +145,8 @@ static void check_consistent(const geo *o, const double X[4][3], const double p[
 
 Test(project, newton_matches_dense_search_on_warped_quads)
 {
-    geo o;
-    geo_init(&o, 1);
+    ctt_geo o;
+    ctt_geo_init(&o, 1);
     double err[3] = {0, 0, 0};
     int nq = ctt_checking() ? 8 : 40, np = 12;
     for (int q = 0; q < nq; q++) {
@@ -240,7 +180,7 @@ Test(project, newton_matches_dense_search_on_warped_quads)
     printf("project: max |D - D_true| on warped quads: 4tri %.3e newton %.3e closed %.3e\n",
            err[0], err[1], err[2]);
     cr_assert(isfinite(err[0]) && isfinite(err[2]));
-    geo_free(&o);
+    ctt_geo_free(&o);
 }
 
 /* Newton over a batch of pairs, as the vector loop sees them: warped quads
@@ -289,8 +229,8 @@ Test(project, newton_batch_with_far_nodes_matches_dense_search)
         node[k] = i;
         seg[k] = (ct_idx)q;
     }
-    geo o;
-    geo_init(&o, npair);
+    ctt_geo o;
+    ctt_geo_init(&o, npair);
     cr_assert_eq(ct_narrow_node_segment(npair, node, seg, n1, n2, n3, n4, x, y, z, NULL, NULL,
                                         (ct_real)0.01, 0, 0, CT_QUAD_NEWTON, 1, &o.g, NULL),
                  CT_OK);
@@ -309,7 +249,7 @@ Test(project, newton_batch_with_far_nodes_matches_dense_search)
                   "pair %d: point off by %g", k, dist3(c, o.g.cx[k], o.g.cy[k], o.g.cz[k]));
         cr_assert_eq(o.g.flag[k] & (CT_NARROW_FALLBACK | CT_NARROW_DEGENERATE), 0);
     }
-    geo_free(&o);
+    ctt_geo_free(&o);
     free(X);
     free(P);
     ct_free(x); ct_free(y); ct_free(z); ct_free(node); ct_free(seg);
@@ -318,8 +258,8 @@ Test(project, newton_batch_with_far_nodes_matches_dense_search)
 
 Test(project, all_methods_exact_on_flat_parallelograms)
 {
-    geo o;
-    geo_init(&o, 1);
+    ctt_geo o;
+    ctt_geo_init(&o, 1);
     for (int q = 0; q < 20; q++) {
         /* A skewed, rotated, flat parallelogram. */
         double u[3] = {1 + urand(), 0.3 * urand(), 0.2 * urand()};
@@ -346,13 +286,13 @@ Test(project, all_methods_exact_on_flat_parallelograms)
             }
         }
     }
-    geo_free(&o);
+    ctt_geo_free(&o);
 }
 
 Test(project, triangle_against_brute_force_sampling)
 {
-    geo o;
-    geo_init(&o, 1);
+    ctt_geo o;
+    ctt_geo_init(&o, 1);
     int N = ctt_checking() ? 150 : 400;
     for (int q = 0; q < 12; q++) {
         double X[4][3];
@@ -385,7 +325,7 @@ Test(project, triangle_against_brute_force_sampling)
             cr_assert(o.g.h1[0] >= 0 && o.g.h2[0] >= 0 && o.g.h3[0] >= 0);
         }
     }
-    geo_free(&o);
+    ctt_geo_free(&o);
 }
 
 /* Two segments sharing the edge x = 0, flat or folded into a ridge; a node
@@ -394,8 +334,8 @@ Test(project, triangle_against_brute_force_sampling)
  * and a node on the surface gets each segment's own normal). */
 Test(project, shared_edge_and_vertex_same_answer)
 {
-    geo o;
-    geo_init(&o, 1);
+    ctt_geo o;
+    ctt_geo_init(&o, 1);
     for (int fold = 0; fold < 3; fold++) {
         double f = 0.3 * fold;
         double A[4][3] = {{-1, -1, -f}, {0, -1, 0}, {0, 1, 0}, {-1, 1, -f}};
@@ -427,7 +367,7 @@ Test(project, shared_edge_and_vertex_same_answer)
             cr_assert_float_eq(nz, o.g.nz[0], CTT_TOL(1e-12, 1e-5));
         }
     }
-    geo_free(&o);
+    ctt_geo_free(&o);
 }
 
 /* A node sliding across the shared edge: its penetration (the largest over
@@ -435,8 +375,8 @@ Test(project, shared_edge_and_vertex_same_answer)
  * apart it changes by at most h (times 1 + 1e-9). */
 Test(project, sliding_across_edge_is_continuous)
 {
-    geo o;
-    geo_init(&o, 1);
+    ctt_geo o;
+    ctt_geo_init(&o, 1);
     double A[4][3] = {{-1, -1, 0.2}, {0, -1, 0}, {0, 1, 0}, {-1, 1, 0.2}};
     double B[4][3] = {{0, -1, 0}, {1, -1, -0.1}, {1, 1, -0.1}, {0, 1, 0}};
     int n = 2001;
@@ -457,13 +397,13 @@ Test(project, sliding_across_edge_is_continuous)
             cr_assert(maxjump <= h * (1 + 1e-9) + CTT_TOL(1e-14, 1e-6),
                       "method %d two %d: jump %g > step %g", m, two, maxjump, h);
         }
-    geo_free(&o);
+    ctt_geo_free(&o);
 }
 
 Test(project, one_sided_and_two_sided)
 {
-    geo o;
-    geo_init(&o, 1);
+    ctt_geo o;
+    ctt_geo_init(&o, 1);
     double Q[4][3] = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
     for (int m = 0; m < 3; m++) {
         double below[3] = {0.2, 0.3, -0.1}, above[3] = {0.2, 0.3, 0.05};
@@ -509,13 +449,13 @@ Test(project, one_sided_and_two_sided)
     one(CT_QUAD_4TRI, 0, T, p, 0.05, 1, &o);
     cr_assert_float_eq(o.g.pen[0], 0.15, CTT_TOL(1e-14, 1e-6));
     cr_assert_float_eq(o.g.dist[0], -0.1, CTT_TOL(1e-14, 1e-6));
-    geo_free(&o);
+    ctt_geo_free(&o);
 }
 
 Test(project, gap_per_node_and_segment_with_caps)
 {
-    geo o;
-    geo_init(&o, 3);
+    ctt_geo o;
+    ctt_geo_init(&o, 3);
     ct_real x[6] = {0.2, 0.2, 0.2, -1, 1, 0}, y[6] = {0.1, 0.1, 0.1, -1, -1, 1},
             z[6] = {0.3, 0.3, 0.3, 0, 0, 0};
     ct_idx node[3] = {0, 1, 2}, seg[3] = {0, 1, 0};
@@ -541,10 +481,10 @@ Test(project, gap_per_node_and_segment_with_caps)
                                 (ct_real)0.35, 0, 0, CT_QUAD_4TRI, 1, &o.g, NULL);
     cr_assert_float_eq(o.g.gap[2], 0.35, CTT_TOL(1e-15, 1e-7));
     cr_assert_float_eq(o.g.pen[2], 0.05, CTT_TOL(1e-14, 1e-6));
-    geo_free(&o);
+    ctt_geo_free(&o);
 }
 
-static void assert_skipped(const geo *o, int bit)
+static void assert_skipped(const ctt_geo *o, int bit)
 {
     const ct_contact_geo *g = &o->g;
     cr_assert(g->flag[0] & bit, "flag %d lacks %d", g->flag[0], bit);
@@ -557,8 +497,8 @@ static void assert_skipped(const geo *o, int bit)
 
 Test(project, degenerate_and_nonfinite_are_skipped)
 {
-    geo o;
-    geo_init(&o, 1);
+    ctt_geo o;
+    ctt_geo_init(&o, 1);
     double p[3] = {0.1, 0.1, 0.05};
     double zero[4][3] = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {3, 0, 0}};       /* collinear */
     double needle[4][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1e-14, 0}, {0, 1e-14, 0}};
@@ -586,152 +526,16 @@ Test(project, degenerate_and_nonfinite_are_skipped)
             one((ct_quad_method)m, two, Q, p, 0.1, 1, &o);
             assert_skipped(&o, CT_NARROW_NONFINITE);
         }
-    geo_free(&o);
+    ctt_geo_free(&o);
 }
 
 /* A mixed list of triangles and warped quads: identical outputs for 1 and
  * 2 threads, and for the list shifted by one pair (other vector lanes and
  * block boundaries). */
-Test(project, threads_and_lanes_give_identical_results)
-{
-    int ns = 200, nn = 600, np = ctt_checking() ? 3000 : 20000;
-    ct_real *x = ct_calloc((size_t)(4 * ns + nn), sizeof(ct_real));
-    ct_real *y = ct_calloc((size_t)(4 * ns + nn), sizeof(ct_real));
-    ct_real *z = ct_calloc((size_t)(4 * ns + nn), sizeof(ct_real));
-    ct_idx *n1 = ct_calloc((size_t)ns, sizeof(ct_idx)), *n2 = ct_calloc((size_t)ns, sizeof(ct_idx));
-    ct_idx *n3 = ct_calloc((size_t)ns, sizeof(ct_idx)), *n4 = ct_calloc((size_t)ns, sizeof(ct_idx));
-    for (int s = 0; s < ns; s++) {
-        double X[4][3];
-        rand_quad(X, 0.1, 1.0);
-        for (int i = 0; i < 4; i++) {
-            x[4 * s + i] = (ct_real)(X[i][0] + 3 * (s % 10));
-            y[4 * s + i] = (ct_real)X[i][1];
-            z[4 * s + i] = (ct_real)X[i][2];
-        }
-        n1[s] = 4 * s;
-        n2[s] = 4 * s + 1;
-        n3[s] = 4 * s + 2;
-        n4[s] = (s % 3 == 0) ? 4 * s + 2 : 4 * s + 3;
-    }
-    for (int i = 0; i < nn; i++) {
-        x[4 * ns + i] = (ct_real)(30 * urand() - 1);
-        y[4 * ns + i] = (ct_real)(3 * urand() - 1.5);
-        z[4 * ns + i] = (ct_real)(urand() - 0.5);
-    }
-    ct_idx *node = ct_calloc((size_t)np + 1, sizeof(ct_idx));
-    ct_idx *seg = ct_calloc((size_t)np + 1, sizeof(ct_idx));
-    for (int k = 0; k < np; k++) {
-        node[k] = 4 * ns + (ct_idx)(k / 7 % nn);
-        seg[k] = (ct_idx)((k * 37 + k / 5) % ns);
-    }
-    geo a, b;
-    geo_init(&a, np);
-    geo_init(&b, np);
-    for (int m = 0; m < 3; m++)
-        for (int two = 0; two < 2; two++) {
-            ct_narrow_stats sa, sb;
-            ctt_threads(1);
-            cr_assert_eq(ct_narrow_node_segment(np, node, seg, n1, n2, n3, n4, x, y, z, NULL,
-                                                NULL, (ct_real)0.3, 0, 0, (ct_quad_method)m, two,
-                                                &a.g, &sa),
-                         CT_OK);
-            ctt_threads(2);
-            cr_assert_eq(ct_narrow_node_segment(np, node, seg, n1, n2, n3, n4, x, y, z, NULL,
-                                                NULL, (ct_real)0.3, 0, 0, (ct_quad_method)m, two,
-                                                &b.g, &sb),
-                         CT_OK);
-            size_t stride = (size_t)np + CT_PAD;
-            cr_assert_eq(memcmp(a.buf, b.buf, stride * 13 * sizeof(ct_real)), 0);
-            cr_assert_eq(memcmp(a.g.flag, b.g.flag, (size_t)np), 0);
-            cr_assert_eq(memcmp(&sa, &sb, sizeof sa), 0);
-            cr_assert(sa.active > 0);
-            /* Shifted by one. */
-            cr_assert_eq(ct_narrow_node_segment(np - 1, node + 1, seg + 1, n1, n2, n3, n4, x, y,
-                                                z, NULL, NULL, (ct_real)0.3, 0, 0,
-                                                (ct_quad_method)m, two, &b.g, NULL),
-                         CT_OK);
-            cr_assert_eq(memcmp(a.g.dist + 1, b.g.dist, (size_t)(np - 1) * sizeof(ct_real)), 0);
-            cr_assert_eq(memcmp(a.g.nx + 1, b.g.nx, (size_t)(np - 1) * sizeof(ct_real)), 0);
-            cr_assert_eq(memcmp(a.g.h3 + 1, b.g.h3, (size_t)(np - 1) * sizeof(ct_real)), 0);
-        }
-    geo_free(&a);
-    geo_free(&b);
-    ct_free(x); ct_free(y); ct_free(z);
-    ct_free(n1); ct_free(n2); ct_free(n3); ct_free(n4);
-    ct_free(node); ct_free(seg);
-}
-
-/* Newton's path through a block (the second fixed loop for the whole block,
- * or compacted rounds for its few slow pairs) depends on the block's other
- * pairs; a pair's result must not. Blocks of 64 pairs: two with 60 easy
- * pairs (nodes over a flat parallelogram, where the start is exact) and 4
- * slow ones (nodes off a warped quadrangle), others the other way round, in
- * an order that takes every path on one thread (the kernel guesses a block's
- * path from the block before); every pair's outputs in the batch, on 1 and
- * 2 threads, are compared byte for byte with the pair computed alone. */
-Test(project, newton_result_does_not_depend_on_the_block)
-{
-    enum { NP = 512 };
-    const char *kind = "SFFSSFFS"; /* block b: S mostly slow, F mostly fast */
-    double F[4][3] = {{-1, -1, 0}, {1.2, -1, 0}, {1.5, 1, 0}, {-0.7, 1, 0}}, W[4][3];
-    rand_quad(W, 0.4, 1.0);
-    ct_real x[8 + NP], y[8 + NP], z[8 + NP];
-    for (int i = 0; i < 4; i++) {
-        x[i] = (ct_real)F[i][0], y[i] = (ct_real)F[i][1], z[i] = (ct_real)F[i][2];
-        x[4 + i] = (ct_real)W[i][0], y[4 + i] = (ct_real)W[i][1], z[4 + i] = (ct_real)W[i][2];
-    }
-    ct_idx n1[2] = {0, 4}, n2[2] = {1, 5}, n3[2] = {2, 6}, n4[2] = {3, 7};
-    ct_idx node[NP], seg[NP];
-    for (int k = 0; k < NP; k++) {
-        int few_slow = kind[k / 64] == 'F', slow = ((k % 16) == 5) == few_slow;
-        double p[3];
-        if (slow) {
-            /* Off the quadrangle's extension, as in the batch test above. */
-            double s = 6 * urand() - 3, t = 6 * urand() - 3, c[3], a[3], b[3];
-            bil(W, s, t, c, a, b);
-            double h = 2.4 * urand() - 1.2;
-            for (int d = 0; d < 3; d++)
-                p[d] = c[d] + h * (d == 2 ? 1 : 0.3);
-        } else {
-            p[0] = 2 * urand() - 1, p[1] = 2 * urand() - 1, p[2] = 0.2 * urand() - 0.1;
-        }
-        x[8 + k] = (ct_real)p[0], y[8 + k] = (ct_real)p[1], z[8 + k] = (ct_real)p[2];
-        node[k] = 8 + k;
-        seg[k] = slow;
-    }
-    geo a, b;
-    geo_init(&a, NP);
-    geo_init(&b, 1);
-    for (int run = 0; run < 4; run++) {
-        int two = run & 1;
-        ctt_threads(1 + run / 2);
-        cr_assert_eq(ct_narrow_node_segment(NP, node, seg, n1, n2, n3, n4, x, y, z, NULL, NULL,
-                                            (ct_real)0.3, 0, 0, CT_QUAD_NEWTON, two, &a.g, NULL),
-                     CT_OK);
-        ct_real *fa[13] = {a.g.dist, a.g.pen, a.g.nx, a.g.ny, a.g.nz, a.g.cx, a.g.cy,
-                           a.g.cz,   a.g.h1,  a.g.h2, a.g.h3, a.g.h4, a.g.gap};
-        ct_real *fb[13] = {b.g.dist, b.g.pen, b.g.nx, b.g.ny, b.g.nz, b.g.cx, b.g.cy,
-                           b.g.cz,   b.g.h1,  b.g.h2, b.g.h3, b.g.h4, b.g.gap};
-        for (int k = 0; k < NP; k++) {
-            cr_assert_eq(ct_narrow_node_segment(1, node + k, seg + k, n1, n2, n3, n4, x, y, z,
-                                                NULL, NULL, (ct_real)0.3, 0, 0, CT_QUAD_NEWTON,
-                                                two, &b.g, NULL),
-                         CT_OK);
-            for (int f = 0; f < 13; f++)
-                cr_assert_eq(memcmp(fa[f] + k, fb[f], sizeof(ct_real)), 0,
-                             "pair %d field %d: %.17g in the block, %.17g alone", k, f,
-                             (double)fa[f][k], (double)fb[f][0]);
-            cr_assert_eq(a.g.flag[k], b.g.flag[0], "pair %d", k);
-        }
-    }
-    geo_free(&a);
-    geo_free(&b);
-}
-
 Test(project, bad_arguments)
 {
-    geo o;
-    geo_init(&o, 1);
+    ctt_geo o;
+    ctt_geo_init(&o, 1);
     ct_idx i = 0;
     ct_real v = 0;
     cr_assert_eq(ct_narrow_node_segment(-1, &i, &i, &i, &i, &i, &i, &v, &v, &v, NULL, NULL, 0, 0,
@@ -745,5 +549,5 @@ Test(project, bad_arguments)
                  CT_ERR_ARG);
     cr_assert_eq(ct_quad_method_from_name("newton"), CT_QUAD_NEWTON);
     cr_assert_eq(ct_quad_method_from_name("nope"), -1);
-    geo_free(&o);
+    ctt_geo_free(&o);
 }
