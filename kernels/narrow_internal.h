@@ -136,10 +136,13 @@ typedef struct cti_nr_blk {
 
 void cti_nr_gather(const cti_nr_args *a, ct_idx k0, ct_idx n, cti_nr_blk *b);
 
-/* The coordinates of pairs [k0, k0 + n) into b->px.. b->z4, from x, y, z
- * or from the packed xyzw (the same values); the fourth corner only when
- * quad != 0 (a triangle kernel does not read it). */
-void cti_nr_fetch(const cti_nr_args *a, ct_idx k0, ct_idx n, int quad, cti_nr_blk *b);
+/* The coordinates of the pairs from k0 on into b->px.. b->z4, from x, y, z
+ * or from the packed xyzw (the same values), up to n pairs or to the first
+ * pair whose segment is not of the kind `quad` says (a triangle: n3 ==
+ * n4); returns how many it copied (at least 1 when the pair at k0 is of
+ * that kind). The fourth corner only when quad != 0 (a triangle kernel
+ * does not read it). */
+ct_idx cti_nr_fetch(const cti_nr_args *a, ct_idx k0, ct_idx n, int quad, cti_nr_blk *b);
 
 /* Block kernels: pairs [k0, k0 + n), n <= CTI_NR_BLOCK, all triangles or all
  * quadrangles, gaps in b->g (b->flag is their scratch). */
