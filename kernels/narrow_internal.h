@@ -40,6 +40,7 @@ typedef int32_t cti_nr_int;
 #define CTI_NR_IN_TOL 1.0e-5f    /* footprint tolerance in parameter space */
 #define CTI_NR_ON_TOL 1.0e-6f    /* on the surface: D <= tol * segment size */
 #define CTI_NR_NEWTON_TOL 1.0e-5f
+#define CTI_NR_NEWTON_OFF_TOL 1.0e-4f
 #define CTI_NR_EDGE_TOL 1.0e-6f  /* edge-edge: degenerate edge length ratio */
 #else
 typedef int64_t cti_nr_int;
@@ -47,6 +48,7 @@ typedef int64_t cti_nr_int;
 #define CTI_NR_IN_TOL 1.0e-10
 #define CTI_NR_ON_TOL 1.0e-14
 #define CTI_NR_NEWTON_TOL 1.0e-12
+#define CTI_NR_NEWTON_OFF_TOL 1.0e-9
 #define CTI_NR_EDGE_TOL 1.0e-12
 #endif
 
@@ -89,6 +91,12 @@ typedef int64_t cti_nr_int;
 #define CTI_NR_NEWTON_VEC_IT 4
 #endif
 #define CTI_NR_NEWTON_MAX_IT 30
+/* From step CTI_NR_NEWTON_VEC_IT on, the iterations of a pair end when |s|
+ * or |t| exceeds CTI_NR_NEWTON_FAR and no point inside the quadrangle is
+ * nearer the node than its boundary, by the bound of cti_quad_hull_q
+ * (within a relative CTI_NR_NEWTON_OFF_TOL of the squared distance): its
+ * answer is then the boundary's, as it would be at the cap. */
+#define CTI_NR_NEWTON_FAR 1.5
 #define CTI_NR_NEWTON_A_IT 2
 /* 3 and 24 measured the same as 8 on warped and crumpled quadrangles. */
 #define CTI_NR_NEWTON_MORE_DEN 8

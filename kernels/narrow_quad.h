@@ -125,6 +125,50 @@ CTI_NR_INLINE void cti_quad_boundary(CTI_QPARAMS, ct_real *s, ct_real *t, ct_rea
     *q = bq;
 }
 
+/* Squared distance from p to the triangle (A, B, C) (cti_nr_tri_k's q). */
+CTI_NR_INLINE ct_real cti_quad_tri_q(cti_v3 A, cti_v3 B, cti_v3 C, cti_v3 p)
+{
+    cti_v3 ab = v3_sub(B, A), ac = v3_sub(C, A), ap = v3_sub(p, A);
+    cti_v3 kb = v3_cross(ab, ap), kc = v3_cross(ac, ap);
+    ct_real q, u, v, w, nx, ny, nz, nn, l2;
+    cti_nr_int in;
+    cti_nr_tri_k(ab.x, ab.y, ab.z, ac.x, ac.y, ac.z, ap.x, ap.y, ap.z, kb.x, kb.y, kb.z, kc.x,
+                 kc.y, kc.z, &q, &u, &v, &w, &nx, &ny, &nz, &nn, &l2, &in);
+    return q;
+}
+
+/* Whether p lies strictly on the other side of the plane of face (A, B, C)
+ * than the tetrahedron's fourth corner D, or off that plane when D is in it
+ * (a flat tetrahedron). */
+CTI_NR_INLINE cti_nr_int cti_quad_face_out(cti_v3 A, cti_v3 B, cti_v3 C, cti_v3 D, cti_v3 p)
+{
+    cti_v3 n = v3_cross(v3_sub(B, A), v3_sub(C, A));
+    ct_real o = v3_dot(n, v3_sub(D, A)), w = v3_dot(n, v3_sub(p, A));
+    return ((o > 0) & (w < 0)) | ((o < 0) & (w > 0)) | ((o == 0) & (w != 0));
+}
+
+/*
+ * A lower bound of the squared distance from P to the quadrangle: the
+ * squared distance to the tetrahedron of its corners, which holds the
+ * bilinear surface (every point of it is a mean of the corners with the
+ * weights H1..H4 >= 0): the least over its four faces when P is outside
+ * it, 0 when P is inside (or the test cannot tell). Newton uses it to end
+ * the iterations of a node off the quadrangle: when this bound reaches the
+ * boundary's squared distance, no point inside beats the boundary.
+ */
+CTI_NR_INLINE ct_real cti_quad_hull_q(CTI_QPARAMS)
+{
+    CTI_QUNUSED;
+    cti_v3 A = v3(0, 0, 0);
+    cti_nr_int out = cti_quad_face_out(A, X2, X3, X4, P) | cti_quad_face_out(A, X3, X4, X2, P) |
+                     cti_quad_face_out(A, X2, X4, X3, P) | cti_quad_face_out(X2, X3, X4, A, P);
+    ct_real q1 = cti_quad_tri_q(A, X2, X3, P), q2 = cti_quad_tri_q(A, X3, X4, P);
+    ct_real q3 = cti_quad_tri_q(A, X2, X4, P), q4 = cti_quad_tri_q(X2, X3, X4, P);
+    ct_real q12 = q1 < q2 ? q1 : q2, q34 = q3 < q4 ? q3 : q4;
+    ct_real q = q12 < q34 ? q12 : q34;
+    return out ? q : 0;
+}
+
 /* Corner triangle A, B, D (relative vectors e = B - A, f = D - A): keep the
  * smallest squared |e x f| and the longest squared edge |e|^2. */
 static inline void cti_quad_corner(cti_v3 e, cti_v3 f, ct_real *amin, ct_real *lmax)

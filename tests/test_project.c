@@ -256,6 +256,88 @@ Test(project, newton_batch_with_far_nodes_matches_dense_search)
     ct_free(n1); ct_free(n2); ct_free(n3); ct_free(n4);
 }
 
+/* Nodes whose Newton iterate leaves the square by more than
+ * CTI_NR_NEWTON_FAR (kernels/narrow_internal.h) and comes back to the
+ * nearest point, inside: strongly warped quadrangles (a corner lifted by
+ * about the quadrangle's size), found by a random search. The iterations
+ * of a far iterate may end only where the interior cannot beat the
+ * boundary; ending them on the distance alone gave the boundary here,
+ * 0.0004 to 0.04 farther. Each case alone (its block takes the second
+ * fixed loop) and in a block of nodes that converge at once (it goes to the
+ * rounds from step 2), against the dense search. */
+Test(project, newton_iterate_that_leaves_the_square_and_comes_back)
+{
+    static const double C[][5][3] = {
+        {{0.095535358503886211, 0.075940254107380298, -0.12709048314133087},
+         {0.9432114134866717, -0.053684904353022443, 0.066025454120059446},
+         {1.143430745470793, 0.93845457275885946, -1.1716514811737087},
+         {0.10166635061036507, 0.85415904039853474, 1.1982012986497257},
+         {0.54742219113944746, 0.18824097892477654, -0.67050196965546061}},
+        {{-0.11929564336333531, 0.072910077514325614, 1.2720425791730006},
+         {1.12876205648529, -0.07698065676039581, 0.8722685811282489},
+         {0.90497914541440438, 0.88511742023922679, 1.0376501277349799},
+         {0.093798577339251815, 1.096440996233327, -1.0007884921022114},
+         {0.031411838053859498, 0.93096221042418126, 0.035529970189610571}},
+        {{0.1462625289345679, 0.034907960791679446, -1.159375342814337},
+         {0.96754098540480338, -0.10458492326078912, 0.53216539106064664},
+         {0.9412475761280279, 0.8503252051895881, -0.81822718031181374},
+         {-0.10811372026423043, 1.0217110735232411, 0.12183820687900115},
+         {0.29072753882573688, 0.8015765209883845, -0.67859326393972563}},
+        {{0.147717171558332, -0.072565698879427334, -0.42992519689276176},
+         {1.1308220641073345, 0.1316471341908185, 0.49474629481094712},
+         {0.94298346973353586, 0.89689041459639429, -0.45850476245496929},
+         {-0.1470452903872205, 0.95817195964053015, 0.16235308924869596},
+         {0.61431593046553146, 0.74184721968753409, 0.76950789647029927}},
+        {{-0.032549415743435513, -0.082005082327190351, 0.47404262479023507},
+         {0.89526963184397379, -0.083259134057116116, -0.43243873743299155},
+         {1.0243351147336028, 0.9426524483427221, 0.31967039294574229},
+         {0.071250615505703788, 0.99851397654779184, -0.10010803591265427},
+         {-0.020880460587320737, 0.22875872356439975, -0.72764241053690992}},
+    };
+    enum { NB = 64, AT = 5 };
+    ctt_geo o;
+    ctt_geo_init(&o, NB);
+    for (size_t c = 0; c < sizeof C / sizeof C[0]; c++) {
+        /* Nodes 0-3 the warped quadrangle, 4-7 a flat one, 8.. the nodes. */
+        ct_real x[8 + NB], y[8 + NB], z[8 + NB];
+        double Xr[4][3], pr[3], cp[3], d;
+        for (int i = 0; i < 4; i++) {
+            x[i] = (ct_real)C[c][i][0], y[i] = (ct_real)C[c][i][1], z[i] = (ct_real)C[c][i][2];
+            Xr[i][0] = x[i], Xr[i][1] = y[i], Xr[i][2] = z[i];
+            x[4 + i] = (ct_real)(i == 1 || i == 2), y[4 + i] = (ct_real)(i >= 2), z[4 + i] = 0;
+        }
+        ct_idx n1[2] = {0, 4}, n2[2] = {1, 5}, n3[2] = {2, 6}, n4[2] = {3, 7};
+        ct_idx node[NB], seg[NB];
+        for (int k = 0; k < NB; k++) {
+            x[8 + k] = (ct_real)(0.1 + 0.8 * urand()), y[8 + k] = (ct_real)(0.1 + 0.8 * urand());
+            z[8 + k] = (ct_real)0.05;
+            node[k] = 8 + k;
+            seg[k] = 1;
+        }
+        x[8 + AT] = (ct_real)C[c][4][0], y[8 + AT] = (ct_real)C[c][4][1];
+        z[8 + AT] = (ct_real)C[c][4][2];
+        seg[AT] = 0;
+        pr[0] = x[8 + AT], pr[1] = y[8 + AT], pr[2] = z[8 + AT];
+        truth_quad(Xr, pr, cp, &d);
+        for (int alone = 0; alone < 2; alone++) {
+            ct_idx np = alone ? 1 : NB, *nd = alone ? node + AT : node, *sg = alone ? seg + AT : seg;
+            int k = alone ? 0 : AT;
+            cr_assert_eq(ct_narrow_node_segment(np, nd, sg, n1, n2, n3, n4, x, y, z, NULL, NULL,
+                                                (ct_real)0.01, 0, 0, CT_QUAD_NEWTON, 1, &o.g,
+                                                NULL),
+                         CT_OK);
+            cr_assert_float_eq(fabs(o.g.dist[k]), d, CTT_TOL(1e-10, 5e-5),
+                               "case %zu (alone %d): D %.12g, the dense search %.12g", c, alone,
+                               (double)o.g.dist[k], d);
+            cr_assert(dist3(cp, o.g.cx[k], o.g.cy[k], o.g.cz[k]) <= CTT_TOL(1e-9, 5e-4),
+                      "case %zu (alone %d): point off by %g", c, alone,
+                      dist3(cp, o.g.cx[k], o.g.cy[k], o.g.cz[k]));
+        }
+    }
+    ctt_geo_free(&o);
+}
+
+
 Test(project, all_methods_exact_on_flat_parallelograms)
 {
     ctt_geo o;
