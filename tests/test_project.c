@@ -31,76 +31,6 @@ static void one(ct_quad_method m, int two, const double X[4][3], const double p[
     cr_assert_eq(rc, CT_OK);
 }
 
-/* ---- Independent reference for the bilinear quad ----------------------- */
-
-static double f2(const double X[4][3], const double p[3], double s, double t)
-{
-    double x[3], a[3], b[3];
-    bil(X, s, t, x, a, b);
-    return (x[0] - p[0]) * (x[0] - p[0]) + (x[1] - p[1]) * (x[1] - p[1]) +
-           (x[2] - p[2]) * (x[2] - p[2]);
-}
-
-/* d f / d s (dir 0) or d f / d t (dir 1), f = |x - p|^2 / 2. */
-static double df(const double X[4][3], const double p[3], double s, double t, int dir)
-{
-    double x[3], a[3], b[3];
-    bil(X, s, t, x, a, b);
-    const double *e = dir ? b : a;
-    return (x[0] - p[0]) * e[0] + (x[1] - p[1]) * e[1] + (x[2] - p[2]) * e[2];
-}
-
-/* 1-D minimisation on [-1, 1] of f along one coordinate: f is a quadratic
- * in each coordinate with a positive leading term (a1 + t a3 != 0), so its
- * derivative is increasing: bisection on the sign of the derivative. */
-static double line_min(const double X[4][3], const double p[3], double s, double t, int dir)
-{
-    double lo = -1, hi = 1;
-    double dlo = df(X, p, dir ? s : lo, dir ? lo : t, dir);
-    double dhi = df(X, p, dir ? s : hi, dir ? hi : t, dir);
-    if (dlo >= 0)
-        return -1;
-    if (dhi <= 0)
-        return 1;
-    for (int it = 0; it < 200 && hi - lo > 0; it++) {
-        double mid = 0.5 * (lo + hi);
-        if (mid <= lo || mid >= hi)
-            break;
-        double dm = df(X, p, dir ? s : mid, dir ? mid : t, dir);
-        if (dm > 0)
-            hi = mid;
-        else
-            lo = mid;
-    }
-    return 0.5 * (lo + hi);
-}
-
-/* Closest point of the bilinear quad: best of a 81 x 81 grid, then
- * coordinate descent to a fixed point. */
-static void truth_quad(const double X[4][3], const double p[3], double c[3], double *dist)
-{
-    double bs = 0, bt = 0, bf = 1e300;
-    for (int i = 0; i <= 80; i++)
-        for (int j = 0; j <= 80; j++) {
-            double s = -1 + i / 40.0, t = -1 + j / 40.0, f = f2(X, p, s, t);
-            if (f < bf) {
-                bf = f;
-                bs = s;
-                bt = t;
-            }
-        }
-    for (int sweep = 0; sweep < 5000; sweep++) {
-        double s0 = bs, t0 = bt;
-        bs = line_min(X, p, bs, bt, 0);
-        bt = line_min(X, p, bs, bt, 1);
-        if (fabs(bs - s0) + fabs(bt - t0) < 1e-16)
-            break;
-    }
-    double a[3], b[3];
-    bil(X, bs, bt, c, a, b);
-    *dist = sqrt(f2(X, p, bs, bt));
-}
-
 /* A point near the quad: (s, t) in [-1.6, 1.6]^2, then off the surface
  * along its normal by h in [-0.4, 0.4] L (above, below, beyond edges and
  * corners). */
@@ -320,7 +250,8 @@ Test(project, newton_iterate_that_leaves_the_square_and_comes_back)
         pr[0] = x[8 + AT], pr[1] = y[8 + AT], pr[2] = z[8 + AT];
         truth_quad(Xr, pr, cp, &d);
         for (int alone = 0; alone < 2; alone++) {
-            ct_idx np = alone ? 1 : NB, *nd = alone ? node + AT : node, *sg = alone ? seg + AT : seg;
+            ct_idx np = alone ? 1 : NB;
+            ct_idx *nd = alone ? node + AT : node, *sg = alone ? seg + AT : seg;
             int k = alone ? 0 : AT;
             cr_assert_eq(ct_narrow_node_segment(np, nd, sg, n1, n2, n3, n4, x, y, z, NULL, NULL,
                                                 (ct_real)0.01, 0, 0, CT_QUAD_NEWTON, 1, &o.g,
