@@ -75,7 +75,19 @@ cti_asm_range_k(ct_idx lo, ct_idx hi, const int nslot, const int mode,
                 const ct_real *restrict fz, ct_real *restrict fxn, ct_real *restrict fyn,
                 ct_real *restrict fzn, const int check, const ct_idx nnode)
 {
-    const ct_idx *restrict s0 = slot[0];
+    /* The slot and weight arrays and the signs as locals: read through the
+     * caller's arrays of pointers, they were loaded again for every pair
+     * (the stores to the nodal forces could have changed them, for all
+     * the compiler knew), three loads a slot. */
+    const ct_idx *restrict sl[CT_ASM_MAXSLOT];
+    const ct_real *wl[CT_ASM_MAXSLOT];
+    ct_real sg[CT_ASM_MAXSLOT];
+    for (int s = 0; s < nslot; s++) {
+        sl[s] = slot[s];
+        wl[s] = w[s];
+        sg[s] = sign[s];
+    }
+    const ct_idx *restrict s0 = sl[0];
     ct_idx cur = -1; /* the node held in (ax, ay, az), -1: none */
     ct_real ax = 0, ay = 0, az = 0;
     int bad = 0;
@@ -87,7 +99,7 @@ cti_asm_range_k(ct_idx lo, ct_idx hi, const int nslot, const int mode,
             /* A negative node becomes a large unsigned one. */
             uint64_t out = 0;
             for (int s = 0; s < nslot; s++)
-                out |= (uint64_t)((uint64_t)(int64_t)slot[s][k] >= (uint64_t)nnode);
+                out |= (uint64_t)((uint64_t)(int64_t)sl[s][k] >= (uint64_t)nnode);
             if (out) {
                 bad = 1;
                 continue;
@@ -112,8 +124,8 @@ cti_asm_range_k(ct_idx lo, ct_idx hi, const int nslot, const int mode,
             az = fzn[cur];
         }
         for (int s = 0; s < nslot; s++) {
-            const ct_idx n = s == 0 ? n0 : slot[s][k];
-            const ct_real ww = cti_asm_weight(w, sign, s, k, mode);
+            const ct_idx n = s == 0 ? n0 : sl[s][k];
+            const ct_real ww = cti_asm_weight(wl, sg, s, k, mode);
             const ct_real cx = ww * f0, cy = ww * f1, cz = ww * f2;
             if (n == cur) {
                 ax += cx;
