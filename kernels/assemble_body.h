@@ -60,7 +60,38 @@ cti_asm_pair(ct_idx k, const int nslot, const int mode, const ct_idx *const slot
     }
 }
 
-/* Pairs lo..hi-1 in order, specialised on (nslot, mode).
+/* Whether f0, f1 and f2 all compare equal to 0 (+0 or -0): the bits of
+ * the three or-ed, the sign bit shifted out. Fewer instructions than three
+ * comparisons, each with its unordered case. */
+static inline __attribute__((always_inline)) int cti_asm_zero3(ct_real f0, ct_real f1,
+                                                               ct_real f2)
+{
+#ifdef CT_SINGLE
+    uint32_t a, b, c;
+#else
+    uint64_t a, b, c;
+#endif
+    memcpy(&a, &f0, sizeof a);
+    memcpy(&b, &f1, sizeof b);
+    memcpy(&c, &f2, sizeof c);
+    return ((a | b | c) << 1) == 0;
+}
+
+/* Whether a node-segment map's signs are the usual +1, -1, -1, -1, -1
+ * (ct_asm_map_nodeseg): mode 3 of cti_asm_range_k, which adds the force to
+ * slot 0 and subtracts the weighted force from the others. */
+static inline int cti_asm_signs_nodeseg(int nslot, const ct_real *sign)
+{
+    if (nslot != 5 || sign[0] != 1)
+        return 0;
+    for (int s = 1; s < 5; s++)
+        if (sign[s] != -1)
+            return 0;
+    return 1;
+}
+
+/* Pairs lo..hi-1 in order, specialised on (nslot, mode); mode 3 is mode 1
+ * with the signs of cti_asm_signs_nodeseg.
  *
  * The pairs come sorted by their first slot's node (the secondary node of
  * a node-segment list): that node's force is held in registers over its
@@ -108,9 +139,9 @@ cti_asm_range_k(ct_idx lo, ct_idx hi, const int nslot, const int mode,
         /* A zero force adds nothing (ct_assemble.h): skipped. In a contact
          * cycle's list the pairs in contact come in runs, so the branch is
          * well predicted. */
-        if (fx[k] == 0 && fy[k] == 0 && fz[k] == 0)
-            continue;
         const ct_real f0 = fx[k], f1 = fy[k], f2 = fz[k];
+        if (cti_asm_zero3(f0, f1, f2))
+            continue;
         const ct_idx n0 = s0[k];
         if (n0 != cur) {
             if (cur >= 0) {
@@ -125,6 +156,25 @@ cti_asm_range_k(ct_idx lo, ct_idx hi, const int nslot, const int mode,
         }
         for (int s = 0; s < nslot; s++) {
             const ct_idx n = s == 0 ? n0 : sl[s][k];
+            if (mode == 3) {
+                /* Signs +1, -1, -1, -1, -1: slot 0 adds the force (1 * f
+                 * is f), the others subtract w * f (x + (-w) * f is
+                 * x - w * f, bit for bit: negation is exact and the
+                 * rounding symmetric). */
+                const ct_real ww = s == 0 ? 1 : wl[s][k];
+                const ct_real cx = s == 0 ? f0 : ww * f0, cy = s == 0 ? f1 : ww * f1,
+                              cz = s == 0 ? f2 : ww * f2;
+                if (n == cur) {
+                    ax = s == 0 ? ax + cx : ax - cx;
+                    ay = s == 0 ? ay + cy : ay - cy;
+                    az = s == 0 ? az + cz : az - cz;
+                } else {
+                    fxn[n] = s == 0 ? fxn[n] + cx : fxn[n] - cx;
+                    fyn[n] = s == 0 ? fyn[n] + cy : fyn[n] - cy;
+                    fzn[n] = s == 0 ? fzn[n] + cz : fzn[n] - cz;
+                }
+                continue;
+            }
             const ct_real ww = cti_asm_weight(wl, sg, s, k, mode);
             const ct_real cx = ww * f0, cy = ww * f1, cz = ww * f2;
             if (n == cur) {
@@ -150,6 +200,9 @@ cti_asm_range_k(ct_idx lo, ct_idx hi, const int nslot, const int mode,
  * check and nnode as there. */
 #define CTI_ASM_RANGE_DISPATCH(check, nnode)                                                   \
     do {                                                                                       \
+        if (mode == 1 && cti_asm_signs_nodeseg(nslot, sign))                                   \
+            return cti_asm_range_k(lo, hi, 5, 3, slot, w, sign, fx, fy, fz, fxn, fyn, fzn,     \
+                                   check, nnode);                                              \
         if (nslot == 5 && mode == 1)                                                           \
             return cti_asm_range_k(lo, hi, 5, 1, slot, w, sign, fx, fy, fz, fxn, fyn, fzn,     \
                                    check, nnode);                                              \
