@@ -314,7 +314,10 @@ static void colour_block(const ct_assemble_ws *ws, ct_idx b, ct_idx npair, const
     cti_block_range(ws, b, npair, &lo, &hi);
     if (count)
         hi = lo + CTI_MAX(0, CTI_MIN(count[b], hi - lo));
-    cti_asm_range(lo, hi, ns, mode, slot, w, sign, fx, fy, fz, fxn, fyn, fzn);
+    if (count)
+        cti_asm_range_sparse(lo, hi, ns, mode, slot, w, sign, fx, fy, fz, fxn, fyn, fzn);
+    else
+        cti_asm_range(lo, hi, ns, mode, slot, w, sign, fx, fy, fz, fxn, fyn, fzn);
 }
 
 int ct_assemble_coloured(const ct_assemble_ws *ws, const ct_asm_map *map,
