@@ -93,7 +93,7 @@ static inline int cti_asm_signs_nodeseg(int nslot, const ct_real *sign)
 /* Pairs lo..hi-1 in order, specialised on (nslot, mode); mode 3 is mode 1
  * with the signs of cti_asm_signs_nodeseg; ahead > 0 (mode 3 only: slots 1
  * and 3 are corners) prefetches the nodal forces ahead pairs on
- * (cti_asm_range_sparse).
+ * (cti_asm_range with sparse).
  *
  * The pairs come sorted by their first slot's node (the secondary node of
  * a node-segment list): that node's force is held in registers over its
@@ -138,9 +138,6 @@ cti_asm_range_k(ct_idx lo, ct_idx hi, const int nslot, const int mode,
                 continue;
             }
         }
-        /* A zero force adds nothing (ct_assemble.h): skipped. In a contact
-         * cycle's list the pairs in contact come in runs, so the branch is
-         * well predicted. */
         /* ahead > 0: the first and third corners' forces of pair k + ahead
          * prefetched (a quadrangle's other two share their cache lines). */
         if (ahead > 0 && k + ahead < hi) {
@@ -152,6 +149,9 @@ cti_asm_range_k(ct_idx lo, ct_idx hi, const int nslot, const int mode,
             __builtin_prefetch(&fyn[a3], 1);
             __builtin_prefetch(&fzn[a3], 1);
         }
+        /* A zero force adds nothing (ct_assemble.h): skipped. In a contact
+         * cycle's list the pairs in contact come in runs, so the branch is
+         * well predicted. */
         const ct_real f0 = fx[k], f1 = fy[k], f2 = fz[k];
         if (cti_asm_zero3(f0, f1, f2))
             continue;
@@ -230,37 +230,26 @@ cti_asm_range_k(ct_idx lo, ct_idx hi, const int nslot, const int mode,
     } while (0)
 
 /* Pairs lo..hi-1 whose nodes are known to be in range (a prepared
- * colouring checked them); returns 0. */
+ * colouring checked them); returns 0. sparse: a list of pairs in contact (a
+ * contact cycle's compact lists, ct_assemble_coloured_prefix), whose
+ * corners' forces, with the usual node-segment signs, are prefetched
+ * CTI_ASM_AHEAD pairs ahead. Such a list touches few pairs a node, in short
+ * runs of nodes the hardware prefetcher barely locks on, and its time is
+ * the misses on the nodal forces' lines (DESIGN-CHANGES §7); on a whole
+ * list in node order the prefetches cost more than they save. The same
+ * additions in the same order either way. */
+#define CTI_ASM_AHEAD 32
 static inline int cti_asm_range(ct_idx lo, ct_idx hi, int nslot, int mode,
                                 const ct_idx *const slot[], const ct_real *const w[],
                                 const ct_real *sign, const ct_real *restrict fx,
                                 const ct_real *restrict fy, const ct_real *restrict fz,
                                 ct_real *restrict fxn, ct_real *restrict fyn,
-                                ct_real *restrict fzn)
+                                ct_real *restrict fzn, int sparse)
 {
-    CTI_ASM_RANGE_DISPATCH(0, 0);
-}
-
-/* Pairs lo..hi-1 of a list of pairs in contact (a contact cycle's compact
- * lists, ct_assemble_coloured_prefix): as cti_asm_range, with the usual
- * node-segment signs the corners' forces prefetched CTI_ASM_AHEAD pairs
- * ahead. Such a list touches few pairs a node, in short runs of nodes the
- * hardware prefetcher barely locks on, and its time is the misses on the
- * nodal forces' lines (DESIGN-CHANGES §7); on a whole list in node order
- * the prefetches cost more than they save. The same additions in the same
- * order. */
-#define CTI_ASM_AHEAD 32
-static inline int cti_asm_range_sparse(ct_idx lo, ct_idx hi, int nslot, int mode,
-                                       const ct_idx *const slot[], const ct_real *const w[],
-                                       const ct_real *sign, const ct_real *restrict fx,
-                                       const ct_real *restrict fy, const ct_real *restrict fz,
-                                       ct_real *restrict fxn, ct_real *restrict fyn,
-                                       ct_real *restrict fzn)
-{
-    if (mode == 1 && cti_asm_signs_nodeseg(nslot, sign))
+    if (sparse && mode == 1 && cti_asm_signs_nodeseg(nslot, sign))
         return cti_asm_range_k(lo, hi, 5, 3, slot, w, sign, fx, fy, fz, fxn, fyn, fzn, 0, 0,
                                CTI_ASM_AHEAD);
-    return cti_asm_range(lo, hi, nslot, mode, slot, w, sign, fx, fy, fz, fxn, fyn, fzn);
+    CTI_ASM_RANGE_DISPATCH(0, 0);
 }
 
 /* Pairs lo..hi-1, each pair's nodes checked against [0, nnode) as it

@@ -314,10 +314,7 @@ static void colour_block(const ct_assemble_ws *ws, ct_idx b, ct_idx npair, const
     cti_block_range(ws, b, npair, &lo, &hi);
     if (count)
         hi = lo + CTI_MAX(0, CTI_MIN(count[b], hi - lo));
-    if (count)
-        cti_asm_range_sparse(lo, hi, ns, mode, slot, w, sign, fx, fy, fz, fxn, fyn, fzn);
-    else
-        cti_asm_range(lo, hi, ns, mode, slot, w, sign, fx, fy, fz, fxn, fyn, fzn);
+    cti_asm_range(lo, hi, ns, mode, slot, w, sign, fx, fy, fz, fxn, fyn, fzn, count != NULL);
 }
 
 int ct_assemble_coloured(const ct_assemble_ws *ws, const ct_asm_map *map,
