@@ -59,9 +59,14 @@ static ct_real dot_normals(const ct_contact_geo *g, ct_idx a, ct_idx b)
 }
 
 /* The run of one node: pairs [a, b). Returns the carrying pairs that
- * penetrate. The closest pair is found without a branch on the data (a
- * node's pairs come in no useful order), and the search for a second
- * carrier is left out when no other pair penetrates. */
+ * penetrate. Two passes over the run: the first finds the closest pair
+ * (without a branch on the data: a node's pairs come in no useful order),
+ * counts the penetrating pairs and, for the hand-over, those that carried
+ * last step, and clears the carry flags and hand-overs; the second looks for
+ * the second carrier when another pair penetrates, clearing the
+ * penetrations as it goes (the carriers' are set again after it). A run is
+ * a few pairs: each pass's loop costs its exit's misprediction, so the
+ * passes are as few as the decision allows. */
 static inline int select_run(ct_idx a, ct_idx b, ct_real px, ct_real py, ct_real pz,
                              int two_sided, const ct_contact_geo *g, const ct_real *p_prev,
                              uint8_t *carry, ct_idx *handoff)
@@ -70,6 +75,7 @@ static inline int select_run(ct_idx a, ct_idx b, ct_real px, ct_real py, ct_real
     ct_idx best = -1, second = -1;
     ct_real bd = 0;
     int npen = 0, nprev = 0;
+    const int count_prev = handoff && p_prev;
     for (ct_idx k = a; k < b; k++) {
         const ct_real d = CTI_FABS(g->dist[k]);
         const int ok = !(g->flag[k] & skip);
@@ -77,29 +83,35 @@ static inline int select_run(ct_idx a, ct_idx b, ct_real px, ct_real py, ct_real
         best = take ? k : best;
         bd = take ? d : bd;
         npen += g->pen[k] > 0;
-    }
-    if (handoff)
-        for (ct_idx k = a; k < b; k++) {
+        carry[k] = 0;
+        if (handoff)
             handoff[k] = -1;
-            nprev += p_prev && p_prev[k] > 0;
-        }
+        if (count_prev)
+            nprev += p_prev[k] > 0;
+    }
     if (best < 0) {
-        for (ct_idx k = a; k < b; k++) {
+        for (ct_idx k = a; k < b; k++)
             g->pen[k] = 0;
-            carry[k] = 0;
-        }
         return 0;
     }
-    if (two_sided && npen > (g->pen[best] > 0))
+    const ct_real pb = carried_pen(g, best, two_sided, px, py, pz);
+    ct_real ps = 0;
+    if (two_sided && npen > (g->pen[best] > 0)) {
         for (ct_idx k = a; k < b; k++) {
-            if (k == best || (g->flag[k] & skip) || !(g->pen[k] > 0))
+            const ct_real pk = g->pen[k];
+            g->pen[k] = 0;
+            if (k == best || (g->flag[k] & skip) || !(pk > 0))
                 continue;
             if (dot_normals(g, k, best) < 0 &&
-                (second < 0 || CTI_FABS(g->dist[k]) < CTI_FABS(g->dist[second])))
+                (second < 0 || CTI_FABS(g->dist[k]) < CTI_FABS(g->dist[second]))) {
                 second = k;
+                ps = pk;
+            }
         }
-    const ct_real pb = carried_pen(g, best, two_sided, px, py, pz);
-    const ct_real ps = second >= 0 ? g->pen[second] : 0;
+    } else {
+        for (ct_idx k = a; k < b; k++)
+            g->pen[k] = 0;
+    }
     /* A pair that carried the node last step and carries it no more hands
      * its states to the new carrier on its side, the first such pair in
      * list order, when that carrier did not carry last step itself (none
@@ -113,10 +125,6 @@ static inline int select_run(ct_idx a, ct_idx b, ct_real px, ct_real py, ct_real
                 handoff[to] = k;
         }
     }
-    for (ct_idx k = a; k < b; k++) {
-        g->pen[k] = 0;
-        carry[k] = 0;
-    }
     g->pen[best] = pb;
     carry[best] = 1;
     if (second >= 0) {
@@ -124,6 +132,47 @@ static inline int select_run(ct_idx a, ct_idx b, ct_real px, ct_real py, ct_real
         carry[second] = 1;
     }
     return (pb > 0) + (ps > 0);
+}
+
+/* The runs that start in [k0, k1) of the npair pairs, each decided whole
+ * (it may end beyond k1): the carriers that penetrate, and in *unsorted
+ * whether a run is followed by a smaller node number. The runs are walked
+ * one after the other, not found by testing every pair for a run's start. */
+static int64_t select_runs(ct_idx k0, ct_idx k1, ct_idx npair, const ct_idx *node,
+                           const ct_real *x, const ct_real *y, const ct_real *z, int two_sided,
+                           const ct_contact_geo *geo, const ct_real *p_prev, uint8_t *carry,
+                           ct_idx *handoff, int *unsorted)
+{
+    int64_t act = 0;
+    int uns = 0;
+    ct_idx k = k0;
+    while (k < k1 && k > 0 && node[k - 1] == node[k])
+        k++; /* inside a run that started before k0 */
+    while (k < k1) {
+        const ct_idx nd = node[k];
+        ct_idx e = k + 1;
+        while (e < npair && node[e] == nd)
+            e++;
+        uns |= e < npair && node[e] < nd;
+        if (e == k + 1 && (two_sided || geo->pen[k] > 0)) {
+            /* A node with one pair (the common case): it carries unless
+             * skipped, and keeps its penetration (select_run's answer,
+             * without the calls; the dent rule needs one-sided pen 0). */
+            const int ok = !(geo->flag[k] & CTI_SELECT_SKIP);
+            carry[k] = (uint8_t)ok;
+            if (handoff)
+                handoff[k] = -1;
+            if (!ok)
+                geo->pen[k] = 0;
+            act += ok && geo->pen[k] > 0;
+        } else {
+            act += select_run(k, e, x[nd], y[nd], z[nd], two_sided, geo, p_prev, carry,
+                              handoff);
+        }
+        k = e;
+    }
+    *unsorted |= uns;
+    return act;
 }
 
 int ct_select_pairs(ct_idx npair, const ct_idx *node, const ct_real *x, const ct_real *y,
@@ -139,31 +188,19 @@ int ct_select_pairs(ct_idx npair, const ct_idx *node, const ct_real *x, const ct
         return CT_ERR_ARG;
     int64_t act = 0;
     int unsorted = 0;
-    CTI_PAR_FOR(npair > CTI_SELECT_PAR_MIN,
-                (schedule(static) reduction(+ : act) reduction(| : unsorted)),
-    for (ct_idx k = 0; k < npair; k++) {
-        unsorted |= k > 0 && node[k - 1] > node[k];
-        if (k > 0 && node[k - 1] == node[k])
-            continue; /* inside a run another iteration decides */
-        ct_idx e = k + 1;
-        while (e < npair && node[e] == node[k])
-            e++;
-        const ct_idx nd = node[k];
-        if (e == k + 1 && (two_sided || geo->pen[k] > 0)) {
-            /* A node with one pair (the common case): it carries unless
-             * skipped, and keeps its penetration (select_run's answer,
-             * without the calls; the dent rule needs one-sided pen 0). */
-            const int ok = !(geo->flag[k] & CTI_SELECT_SKIP);
-            carry[k] = (uint8_t)ok;
-            if (handoff)
-                handoff[k] = -1;
-            if (!ok)
-                geo->pen[k] = 0;
-            act += ok && geo->pen[k] > 0;
-            continue;
+    if (npair > CTI_SELECT_PAR_MIN && !cti_in_parallel()) {
+        /* Each thread decides the runs that start in its share of the list. */
+#pragma omp parallel reduction(+ : act) reduction(| : unsorted)
+        {
+            const int64_t nt = cti_team_size(), t = cti_thread_id();
+            const ct_idx k0 = (ct_idx)(npair * t / nt), k1 = (ct_idx)(npair * (t + 1) / nt);
+            act += select_runs(k0, k1, npair, node, x, y, z, two_sided, geo, p_prev, carry,
+                               handoff, &unsorted);
         }
-        act += select_run(k, e, x[nd], y[nd], z[nd], two_sided, geo, p_prev, carry, handoff);
-    });
+    } else {
+        act = select_runs(0, npair, npair, node, x, y, z, two_sided, geo, p_prev, carry,
+                          handoff, &unsorted);
+    }
     if (active)
         *active = unsorted ? 0 : act;
     /* A node in two runs would have been given a carrier in each. */

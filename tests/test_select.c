@@ -290,3 +290,117 @@ Test(select, bad_arguments)
                  CT_ERR_ARG);
     cr_assert_eq(active, 0);
 }
+
+/* A long list in runs of 1 to 9 pairs (synthetic narrow-phase results:
+ * random distances, penetrations, normals, skipped pairs and last
+ * penetrations), decided by one call with 1, 2 and 3 threads, against each
+ * run decided by a call of its own. The threads split the list where they
+ * like; each run must still be decided whole, once: a run cut at a split,
+ * decided twice or not at all, changes the bytes. The same list with one
+ * descent in node order right at a 2-thread split is refused. */
+enum { LONG_N = 20000 };
+
+typedef struct long_case {
+    ct_real f[NF][LONG_N];
+    uint8_t flag[LONG_N], carry[LONG_N];
+    ct_idx node[LONG_N], handoff[LONG_N];
+    ct_real p_prev[LONG_N];
+    ct_contact_geo g;
+} long_case;
+
+static void long_geo(long_case *c)
+{
+    ct_contact_geo g = {c->f[0], c->f[1], c->f[2], c->f[3],  c->f[4],  c->f[5], c->f[6],
+                        c->f[7], c->f[8], c->f[9], c->f[10], c->f[11], c->f[12], c->flag};
+    c->g = g;
+}
+
+static void long_fill(long_case *c, uint64_t seed)
+{
+    uint64_t s = seed;
+    ct_idx nd = 0;
+    for (ct_idx k = 0; k < LONG_N;) {
+        s = s * 6364136223846793005u + 1442695040888963407u;
+        ct_idx len = 1 + (ct_idx)((s >> 33) % 9);
+        for (ct_idx q = 0; q < len && k < LONG_N; q++, k++) {
+            double r[6];
+            for (int i = 0; i < 6; i++) {
+                s = s * 6364136223846793005u + 1442695040888963407u;
+                r[i] = (double)(s >> 11) / 9007199254740992.0;
+            }
+            c->node[k] = nd;
+            c->f[0][k] = (ct_real)(r[0] - 0.3);                  /* dist, either side */
+            c->f[1][k] = r[1] < 0.5 ? (ct_real)(0.3 * r[1]) : 0; /* pen */
+            const ct_real nz = r[2] < 0.5 ? 1 : -1;              /* two layers */
+            c->f[2][k] = 0, c->f[3][k] = 0, c->f[4][k] = nz;
+            for (int i = 5; i < NF; i++)
+                c->f[i][k] = (ct_real)r[3];
+            c->f[12][k] = (ct_real)0.3; /* gap */
+            c->flag[k] = r[4] < 0.1 ? CT_NARROW_DEGENERATE : (r[4] < 0.5 ? CT_NARROW_OUTSIDE : 0);
+            c->p_prev[k] = r[5] < 0.4 ? (ct_real)(0.2 * r[5]) : 0;
+        }
+        nd += 1 + (ct_idx)((s >> 40) % 3);
+    }
+    long_geo(c);
+}
+
+Test(select, runs_decided_whole_for_any_thread_count)
+{
+    static long_case base, ref, got;
+    static ct_real xyz[3][3 * LONG_N];
+    for (int two = 0; two < 2; two++) {
+        long_fill(&base, 12345 + (uint64_t)two);
+        /* Reference: each run through a call of its own (below the threaded size). */
+        ref = base;
+        long_geo(&ref);
+        int64_t act_ref = 0;
+        for (ct_idx k = 0; k < LONG_N;) {
+            ct_idx e = k + 1;
+            while (e < LONG_N && ref.node[e] == ref.node[k])
+                e++;
+            ct_contact_geo g = ref.g;
+            ct_real **fp[NF] = {&g.dist, &g.pen, &g.nx, &g.ny, &g.nz, &g.cx, &g.cy,
+                                &g.cz,   &g.h1,  &g.h2, &g.h3, &g.h4, &g.gap};
+            for (int i = 0; i < NF; i++)
+                *fp[i] += k;
+            g.flag += k;
+            int64_t a = 0;
+            cr_assert_eq(ct_select_pairs(e - k, ref.node + k, xyz[0], xyz[1], xyz[2], two, &g,
+                                         ref.p_prev + k, ref.carry + k, ref.handoff + k, &a),
+                         CT_OK);
+            /* Hand-overs are indices within the call: back to the list's. */
+            for (ct_idx q = k; q < e; q++)
+                ref.handoff[q] = ref.handoff[q] >= 0 ? ref.handoff[q] + k : -1;
+            act_ref += a;
+            k = e;
+        }
+        cr_assert_gt(act_ref, LONG_N / 20, "active %lld", (long long)act_ref);
+        for (int t = 1; t <= 3; t++) {
+            ctt_threads(t);
+            got = base;
+            long_geo(&got);
+            int64_t act = -1;
+            cr_assert_eq(ct_select_pairs(LONG_N, got.node, xyz[0], xyz[1], xyz[2], two, &got.g,
+                                         got.p_prev, got.carry, got.handoff, &act),
+                         CT_OK);
+            cr_assert_eq(act, act_ref, "two-sided %d, %d threads: active %lld against %lld",
+                         two, t, (long long)act, (long long)act_ref);
+            cr_assert(memcmp(got.f[1], ref.f[1], sizeof got.f[1]) == 0, "pen, %d threads", t);
+            cr_assert(memcmp(got.carry, ref.carry, sizeof got.carry) == 0, "carry, %d threads",
+                      t);
+            cr_assert(memcmp(got.handoff, ref.handoff, sizeof got.handoff) == 0,
+                      "handoff, %d threads", t);
+        }
+        /* One descent, at the 2-thread split. */
+        got = base;
+        long_geo(&got);
+        got.node[LONG_N / 2] = got.node[LONG_N / 2 - 1] - 1;
+        ctt_threads(2);
+        int64_t act = -1;
+        cr_assert_eq(ct_select_pairs(LONG_N, got.node, xyz[0], xyz[1], xyz[2], two, &got.g,
+                                     got.p_prev, got.carry, got.handoff, &act),
+                     CT_ERR_ARG);
+        cr_assert_eq(act, 0);
+    }
+    ctt_threads(2);
+}
