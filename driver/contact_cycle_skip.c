@@ -16,6 +16,10 @@
 
 #include <float.h>
 
+#if defined(__AVX512F__)
+#include <immintrin.h>
+#endif
+
 #ifdef CT_SINGLE
 #define CY_EPS FLT_EPSILON
 #else
@@ -65,9 +69,30 @@ ct_idx cti_skip_select(ctd_cycle *cy, ct_idx k0, ct_idx k1, ct_idx *restrict act
     const ct_real *restrict ex = cy->ex[cy->cur] + k0;
     uint8_t *restrict ev = cy->evald + k0;
     const double M = cy->motion;
+    const ct_idx n = k1 - k0;
+    ct_idx ne = 0, k = 0;
+#if defined(__AVX512F__) && defined(__AVX512BW__) && defined(__AVX512VL__)
+    /* 16 pairs a step: the test in two vectors of 8 doubles (NaN selects,
+     * as !(M < ex) does), the selected indices stored compressed. */
+    const __m512d vm = _mm512_set1_pd(M);
+    const __m512i step = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    for (; k + 16 <= n; k += 16) {
+#ifdef CT_SINGLE
+        const __m512d e0 = _mm512_cvtps_pd(_mm256_loadu_ps(ex + k));
+        const __m512d e1 = _mm512_cvtps_pd(_mm256_loadu_ps(ex + k + 8));
+#else
+        const __m512d e0 = _mm512_loadu_pd(ex + k), e1 = _mm512_loadu_pd(ex + k + 8);
+#endif
+        const __mmask16 m = (__mmask16)(_mm512_cmp_pd_mask(vm, e0, _CMP_NLT_UQ) |
+                                        (_mm512_cmp_pd_mask(vm, e1, _CMP_NLT_UQ) << 8));
+        _mm512_mask_compressstoreu_epi32(act + ne, m,
+                                         _mm512_add_epi32(_mm512_set1_epi32((int)k), step));
+        _mm_storeu_si128((__m128i *)(void *)(ev + k), _mm_maskz_set1_epi8(m, 1));
+        ne += (ct_idx)__builtin_popcount((unsigned)m);
+    }
+#endif
     /* Every index is written, the count advances by the test: no branch. */
-    ct_idx ne = 0;
-    for (ct_idx k = 0; k < k1 - k0; k++) {
+    for (; k < n; k++) {
         const int need = !(M < (double)ex[k]);
         act[ne] = k;
         ne += need;
