@@ -347,6 +347,8 @@ static void long_fill(long_case *c, uint64_t seed)
 Test(select, runs_decided_whole_for_any_thread_count)
 {
     static long_case base, ref, got;
+    /* Node coordinates (read, not used, by the two-sided rule): node numbers
+     * grow by 1 to 3 a run, so stay below 3 LONG_N. */
     static ct_real xyz[3][3 * LONG_N];
     for (int two = 0; two < 2; two++) {
         long_fill(&base, 12345 + (uint64_t)two);
