@@ -291,13 +291,15 @@ Test(select, bad_arguments)
     cr_assert_eq(active, 0);
 }
 
-/* A long list in runs of 1 to 9 pairs (synthetic narrow-phase results:
- * random distances, penetrations, normals, skipped pairs and last
- * penetrations), decided by one call with 1, 2 and 3 threads, against each
- * run decided by a call of its own. The threads split the list where they
- * like; each run must still be decided whole, once: a run cut at a split,
- * decided twice or not at all, changes the bytes. The same list with one
- * descent in node order right at a 2-thread split is refused. */
+/* A long list in runs of 1 to 12 pairs (synthetic narrow-phase results:
+ * random distances with ties and NaNs, penetrations, normals facing,
+ * opposing and across, skipped, behind and outside pairs, and last
+ * penetrations), against the rule written out plainly in the test
+ * (oracle_run): each run decided by a call of its own, and the whole list
+ * by one call with 1, 2 and 3 threads. The threads split the list where
+ * they like; each run must still be decided whole, once: a run cut at a
+ * split, decided twice or not at all, changes the bytes. The same list
+ * with one descent in node order right at a 2-thread split is refused. */
 enum { LONG_N = 20000 };
 
 typedef struct long_case {
@@ -321,7 +323,7 @@ static void long_fill(long_case *c, uint64_t seed)
     ct_idx nd = 0;
     for (ct_idx k = 0; k < LONG_N;) {
         s = s * 6364136223846793005u + 1442695040888963407u;
-        ct_idx len = 1 + (ct_idx)((s >> 33) % 9);
+        ct_idx len = 1 + (ct_idx)((s >> 33) % 12);
         for (ct_idx q = 0; q < len && k < LONG_N; q++, k++) {
             double r[6];
             for (int i = 0; i < 6; i++) {
@@ -329,14 +331,29 @@ static void long_fill(long_case *c, uint64_t seed)
                 r[i] = (double)(s >> 11) / 9007199254740992.0;
             }
             c->node[k] = nd;
-            c->f[0][k] = (ct_real)(r[0] - 0.3);                  /* dist, either side */
+            /* dist, either side; in every third run on a coarse grid, so
+             * that ties between a run's pairs occur (ties go to the first),
+             * and now and then NaN (never the closest). */
+            const int coarse = nd % 3 == 0;
+            c->f[0][k] = (ct_real)(coarse ? floor(8 * r[0]) / 8 - 0.3 : r[0] - 0.3);
+            if (r[0] < 0.01)
+                c->f[0][k] = (ct_real)NAN;
             c->f[1][k] = r[1] < 0.5 ? (ct_real)(0.3 * r[1]) : 0; /* pen */
-            const ct_real nz = r[2] < 0.5 ? 1 : -1;              /* two layers */
-            c->f[2][k] = 0, c->f[3][k] = 0, c->f[4][k] = nz;
+            /* Two layers facing each other, and some normals across them
+             * (n1.n2 = 0 exactly: neither opposed nor along). */
+            const ct_real nz = r[2] < 0.4 ? 1 : (r[2] < 0.8 ? -1 : 0);
+            c->f[2][k] = nz == 0, c->f[3][k] = 0, c->f[4][k] = nz;
             for (int i = 5; i < NF; i++)
                 c->f[i][k] = (ct_real)r[3];
             c->f[12][k] = (ct_real)0.3; /* gap */
-            c->flag[k] = r[4] < 0.1 ? CT_NARROW_DEGENERATE : (r[4] < 0.5 ? CT_NARROW_OUTSIDE : 0);
+            /* Skipped pairs of both kinds; behind and outside (the
+             * one-sided dent rule), outside, behind, neither. */
+            c->flag[k] = r[4] < 0.05   ? CT_NARROW_DEGENERATE
+                         : r[4] < 0.1  ? CT_NARROW_NONFINITE
+                         : r[4] < 0.3  ? CT_NARROW_BEHIND | CT_NARROW_OUTSIDE
+                         : r[4] < 0.5  ? CT_NARROW_OUTSIDE
+                         : r[4] < 0.6  ? CT_NARROW_BEHIND
+                                       : 0;
             c->p_prev[k] = r[5] < 0.4 ? (ct_real)(0.2 * r[5]) : 0;
         }
         nd += 1 + (ct_idx)((s >> 40) % 3);
@@ -344,15 +361,79 @@ static void long_fill(long_case *c, uint64_t seed)
     long_geo(c);
 }
 
+/* The rule of ct_select_pairs (ct_narrow.h) for the run [a, e) of c,
+ * written out plainly as the reference: the pen, carry and handoff it
+ * gives, and the run's active count. */
+static int64_t oracle_run(long_case *c, ct_idx a, ct_idx e, int two, ct_real *const xyz[3])
+{
+    const uint8_t skip = CT_NARROW_DEGENERATE | CT_NARROW_NONFINITE;
+    ct_real *dist = c->f[0], *pen = c->f[1], *nx = c->f[2], *ny = c->f[3], *nz = c->f[4];
+    /* The closest pair not skipped; ties (and anything after a NaN first
+     * pair, which no distance compares below) go to the first. */
+    ct_idx best = -1;
+    for (ct_idx k = a; k < e; k++)
+        if (!(c->flag[k] & skip) && (best < 0 || fabs(dist[k]) < fabs(dist[best])))
+            best = k;
+    ct_idx second = -1;
+    ct_real pb = 0, ps = 0;
+    if (best >= 0) {
+        pb = pen[best];
+        const uint8_t f = c->flag[best];
+        if (!two && !(pb > 0) && (f & CT_NARROW_BEHIND) && (f & CT_NARROW_OUTSIDE)) {
+            /* The dent: gap + r within 60 degrees of the inward normal. */
+            const ct_idx n = c->node[best];
+            const ct_real rx = xyz[0][n] - c->f[5][best], ry = xyz[1][n] - c->f[6][best],
+                          rz = xyz[2][n] - c->f[7][best];
+            const ct_real r = sqrt(rx * rx + ry * ry + rz * rz);
+            const ct_real along = -(rx * nx[best] + ry * ny[best] + rz * nz[best]);
+            pb = along >= (ct_real)0.5 * r ? c->f[12][best] + r : 0;
+        }
+        for (ct_idx k = a; k < e && two; k++) {
+            const ct_real dn = nx[k] * nx[best] + ny[k] * ny[best] + nz[k] * nz[best];
+            if (k != best && !(c->flag[k] & skip) && pen[k] > 0 && dn < 0 &&
+                (second < 0 || fabs(dist[k]) < fabs(dist[second])))
+                second = k;
+        }
+        if (second >= 0)
+            ps = pen[second];
+    }
+    ct_idx hb = -1, hs = -1;
+    for (ct_idx k = a; k < e && best >= 0; k++) {
+        if (k == best || k == second || !(c->p_prev[k] > 0))
+            continue;
+        const ct_real dn = second < 0 ? 0
+                                      : nx[k] * nx[second] + ny[k] * ny[second] +
+                                            nz[k] * nz[second];
+        if (second >= 0 && dn > 0) {
+            if (!(c->p_prev[second] > 0) && hs < 0)
+                hs = k;
+        } else if (!(c->p_prev[best] > 0) && hb < 0) {
+            hb = k;
+        }
+    }
+    for (ct_idx k = a; k < e; k++) {
+        pen[k] = k == best ? pb : (k == second ? ps : 0);
+        c->carry[k] = k == best || k == second;
+        c->handoff[k] = k == best ? hb : (k == second ? hs : -1);
+    }
+    return (pb > 0) + (ps > 0);
+}
+
 Test(select, runs_decided_whole_for_any_thread_count)
 {
     static long_case base, ref, got;
-    /* Node coordinates (read, not used, by the two-sided rule): node numbers
+    /* Node coordinates (the one-sided dent rule reads them): node numbers
      * grow by 1 to 3 a run, so stay below 3 LONG_N. */
     static ct_real xyz[3][3 * LONG_N];
+    uint64_t sx = 99;
+    for (int i = 0; i < 3; i++)
+        for (ct_idx n = 0; n < 3 * LONG_N; n++) {
+            sx = sx * 6364136223846793005u + 1442695040888963407u;
+            xyz[i][n] = (ct_real)((double)(sx >> 11) / 9007199254740992.0 - 0.5);
+        }
     for (int two = 0; two < 2; two++) {
         long_fill(&base, 12345 + (uint64_t)two);
-        /* Reference: each run through a call of its own (below the threaded size). */
+        /* Reference: the rule, run by run. */
         ref = base;
         long_geo(&ref);
         int64_t act_ref = 0;
@@ -360,23 +441,39 @@ Test(select, runs_decided_whole_for_any_thread_count)
             ct_idx e = k + 1;
             while (e < LONG_N && ref.node[e] == ref.node[k])
                 e++;
-            ct_contact_geo g = ref.g;
+            act_ref += oracle_run(&ref, k, e, two, (ct_real *const[3]){xyz[0], xyz[1], xyz[2]});
+            k = e;
+        }
+        /* Each run through a call of its own (below the threaded size). */
+        got = base;
+        long_geo(&got);
+        int64_t act_own = 0;
+        for (ct_idx k = 0; k < LONG_N;) {
+            ct_idx e = k + 1;
+            while (e < LONG_N && got.node[e] == got.node[k])
+                e++;
+            ct_contact_geo g = got.g;
             ct_real **fp[NF] = {&g.dist, &g.pen, &g.nx, &g.ny, &g.nz, &g.cx, &g.cy,
                                 &g.cz,   &g.h1,  &g.h2, &g.h3, &g.h4, &g.gap};
             for (int i = 0; i < NF; i++)
                 *fp[i] += k;
             g.flag += k;
             int64_t a = 0;
-            cr_assert_eq(ct_select_pairs(e - k, ref.node + k, xyz[0], xyz[1], xyz[2], two, &g,
-                                         ref.p_prev + k, ref.carry + k, ref.handoff + k, &a),
+            cr_assert_eq(ct_select_pairs(e - k, got.node + k, xyz[0], xyz[1], xyz[2], two, &g,
+                                         got.p_prev + k, got.carry + k, got.handoff + k, &a),
                          CT_OK);
             /* Hand-overs are indices within the call: back to the list's. */
             for (ct_idx q = k; q < e; q++)
-                ref.handoff[q] = ref.handoff[q] >= 0 ? ref.handoff[q] + k : -1;
-            act_ref += a;
+                got.handoff[q] = got.handoff[q] >= 0 ? got.handoff[q] + k : -1;
+            act_own += a;
             k = e;
         }
         cr_assert_gt(act_ref, LONG_N / 20, "active %lld", (long long)act_ref);
+        cr_assert_eq(act_own, act_ref);
+        cr_assert(memcmp(got.f[1], ref.f[1], sizeof got.f[1]) == 0, "pen, runs alone");
+        cr_assert(memcmp(got.carry, ref.carry, sizeof got.carry) == 0, "carry, runs alone");
+        cr_assert(memcmp(got.handoff, ref.handoff, sizeof got.handoff) == 0,
+                  "handoff, runs alone");
         for (int t = 1; t <= 3; t++) {
             ctt_threads(t);
             got = base;
