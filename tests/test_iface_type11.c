@@ -1,9 +1,11 @@
 /*
  * test_iface_type11.c -- TYPE11 edge-to-edge details beyond
  * test_iface.c's crossed rods (suite iface_type11): the nodal contact step
- * over the four edge nodes; the pair budget.
+ * over the four edge nodes; the pair budget; the filter against the test's
+ * own distances; the bucket grid's pairs against the direct search's.
  */
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "test_iface_util.h"
@@ -202,5 +204,137 @@ Test(iface_type11, filter_keeps_the_pairs_within_gap_and_margin)
                                  "direct", a, b);
         ctd_iface_destroy(it);
     }
+    tn_free(&t);
+}
+
+/* The candidate pairs of one step of a TYPE11 interface over the edges
+ * ea (and eb unless neb is 0: self), with the direct search (algo 0) or the
+ * bucket grid (1): n and the pairs (a, b), after the filter. The caller
+ * frees *pa and *pb. qbuf receives whether the bucket query took its
+ * one-pass way (room for its candidates in qbuf) rather than two passes. */
+static ct_idx edge_pairs(tnodes *t, const ct_real *gn, ct_idx nea, const ct_idx *ea1,
+                         const ct_idx *ea2, ct_idx neb, const ct_idx *eb1, const ct_idx *eb2,
+                         double margin, int algo, ct_idx **pa, ct_idx **pb, int *qbuf)
+{
+    ctd_iface_data d;
+    memset(&d, 0, sizeof d);
+    d.nnode = t->n;
+    d.nea = nea;
+    d.ea1 = ea1;
+    d.ea2 = ea2;
+    d.neb = neb;
+    d.eb1 = eb1;
+    d.eb2 = eb2;
+    d.gap_node = gn;
+    ctd_iface_cfg cfg = ctd_iface_default_cfg(11);
+    cfg.Istf = 1;
+    cfg.Stfac = 1e3;
+    cfg.margin = (ct_real)margin;
+    cfg.algo = algo ? CT_SEARCH_BUCKET : CT_SEARCH_DIRECT;
+    ctd_iface *it = NULL;
+    ct_diag diag;
+    cr_assert_eq(ctd_iface_init(&it, &cfg, &d, &diag), CT_OK, "%s", diag.msg);
+    ctd_iface_report rep;
+    tstep(it, t, 0, 1e-6, &rep);
+    const ctdi_epass *e = it->ep;
+    const ct_idx n = e->n;
+    *pa = malloc(sizeof(ct_idx) * ((size_t)n + 1));
+    *pb = malloc(sizeof(ct_idx) * ((size_t)n + 1));
+    cr_assert(*pa && *pb);
+    memcpy(*pa, e->pa, sizeof(ct_idx) * (size_t)n);
+    memcpy(*pb, e->pb, sizeof(ct_idx) * (size_t)n);
+    *qbuf = e->cap_qbuf > 0;
+    ctd_iface_destroy(it);
+    return n;
+}
+
+/* The bucket grid's pairs are the direct search's, in the same order, on
+ * three layers of a wavy grid of edges sharing their nodes (self contact,
+ * and the top layer against the two below), and on a cluster of long
+ * edges that puts hundreds in every cell (the query's two-pass way). */
+Test(iface_type11, bucket_pairs_equal_direct_on_layers_and_a_cluster)
+{
+    enum { G = 24, L = 3, NN = G * G * L, NE = 2 * G * (G - 1) * L };
+    const double h = 1, gap = 0.15 * h, margin = 0.2 * h;
+    tnodes t;
+    tn_init(&t, NN);
+    static ct_real gn[NN];
+    for (int l = 0; l < L; l++)
+        for (int i = 0; i < G; i++)
+            for (int j = 0; j < G; j++) {
+                const ct_idx v = (l * G + i) * G + j;
+                /* Layers 0.35 h apart, waved so that they cross the gap
+                 * in places. */
+                const double w = 0.12 * h * sin(0.7 * i + 1.3 * l) * cos(0.5 * j);
+                tn_set(&t, v, i * h, j * h, 0.35 * h * l + w);
+                gn[v] = (ct_real)gap;
+            }
+    static ct_idx e1[NE], e2[NE];
+    ct_idx ne = 0, nlow = 0;
+    for (int l = 0; l < L; l++) {
+        for (int i = 0; i < G; i++)
+            for (int j = 0; j < G; j++) {
+                const ct_idx v = (l * G + i) * G + j;
+                if (i + 1 < G)
+                    e1[ne] = v, e2[ne++] = v + G;
+                if (j + 1 < G)
+                    e1[ne] = v, e2[ne++] = v + 1;
+            }
+        if (l == L - 2)
+            nlow = ne;
+    }
+    cr_assert_eq(ne, NE);
+    for (int sets = 0; sets < 2; sets++) {
+        /* sets 0: all edges against themselves; 1: the two lower layers
+         * (A) against the top one (B). */
+        const ct_idx nea = sets ? nlow : NE, neb = sets ? NE - nlow : 0;
+        ct_idx *pa[2], *pb[2];
+        int qb[2];
+        ct_idx n[2];
+        for (int algo = 0; algo < 2; algo++)
+            n[algo] = edge_pairs(&t, gn, nea, e1, e2, neb, e1 + nea, e2 + nea, margin, algo,
+                                 &pa[algo], &pb[algo], &qb[algo]);
+        cr_assert_gt(n[0], 100, "sets %d: %d pairs", sets, (int)n[0]);
+        cr_assert_eq(n[1], n[0], "sets %d", sets);
+        cr_assert(memcmp(pa[1], pa[0], sizeof(ct_idx) * (size_t)n[0]) == 0, "sets %d", sets);
+        cr_assert(memcmp(pb[1], pb[0], sizeof(ct_idx) * (size_t)n[0]) == 0, "sets %d", sets);
+        cr_assert(qb[1], "sets %d: the one-pass query", sets);
+        for (int algo = 0; algo < 2; algo++)
+            free(pa[algo]), free(pb[algo]);
+    }
+    tn_free(&t);
+    /* The cluster: 600 edges of length 1 in a box of side 1.5. */
+    enum { NC = 600 };
+    tn_init(&t, 2 * NC);
+    static ct_real gc[2 * NC];
+    static ct_idx c1[NC], c2[NC];
+    uint64_t st = 7;
+    for (int e = 0; e < NC; e++) {
+        double c[3], d[3], n2 = 0;
+        for (int k = 0; k < 3; k++) {
+            c[k] = 1.5 * ((double)(ctd_splitmix64(&st) >> 11) / 9007199254740992.0);
+            d[k] = 2 * ((double)(ctd_splitmix64(&st) >> 11) / 9007199254740992.0) - 1;
+            n2 += d[k] * d[k];
+        }
+        const double s = 0.5 / sqrt(n2);
+        tn_set(&t, 2 * e, c[0] - s * d[0], c[1] - s * d[1], c[2] - s * d[2]);
+        tn_set(&t, 2 * e + 1, c[0] + s * d[0], c[1] + s * d[1], c[2] + s * d[2]);
+        c1[e] = 2 * e;
+        c2[e] = 2 * e + 1;
+        gc[2 * e] = gc[2 * e + 1] = (ct_real)0.01;
+    }
+    ct_idx *pa[2], *pb[2];
+    int qb[2];
+    ct_idx n[2];
+    for (int algo = 0; algo < 2; algo++)
+        n[algo] = edge_pairs(&t, gc, NC, c1, c2, 0, NULL, NULL, 0.02, algo, &pa[algo], &pb[algo],
+                             &qb[algo]);
+    cr_assert_gt(n[0], 100, "cluster: %d pairs", (int)n[0]);
+    cr_assert_eq(n[1], n[0]);
+    cr_assert(memcmp(pa[1], pa[0], sizeof(ct_idx) * (size_t)n[0]) == 0);
+    cr_assert(memcmp(pb[1], pb[0], sizeof(ct_idx) * (size_t)n[0]) == 0);
+    cr_assert(!qb[1], "cluster: the two-pass query");
+    for (int algo = 0; algo < 2; algo++)
+        free(pa[algo]), free(pb[algo]);
     tn_free(&t);
 }

@@ -95,6 +95,9 @@ void ctdi_type11_free(ctdi_epass *e)
     ct_free(e->cell_off);
     ct_free(e->cell_edge);
     ct_free(e->tmp_a);
+    ct_free(e->cellr);
+    ct_free(e->qoff);
+    ct_free(e->qbuf);
     ct_free(e->fd[0]);
     ct_free(e->fd[1]);
     ct_free(e->kpa);
@@ -111,7 +114,8 @@ size_t ctdi_type11_memory(const ctdi_epass *e, ct_idx nnode)
     b += e->cap_ids * 2 * sizeof(ct_idx);
     b += (size_t)CTDI_FCHUNK * (CTDI_FGEO_N * sizeof(ct_real) + 1);
     b += (size_t)e->ne * (2 * sizeof(ct_idx) + 7 * sizeof(ct_real));
-    b += (e->cap_cell + e->cap_ce + e->cap_tmp) * sizeof(ct_idx);
+    b += (e->cap_cell + e->cap_ce + e->cap_tmp + e->cap_qbuf) * sizeof(ct_idx);
+    b += e->cap_cellr * sizeof(int32_t) + e->cap_qoff * sizeof(int64_t);
     b += (e->cap_fd[0] + e->cap_fd[1]) * sizeof(ct_real) +
          (e->cap_kpa + e->cap_kpb + e->cap_o2n) * sizeof(ct_idx);
     /* The unique nodes of each side, the pair counts per A edge, the

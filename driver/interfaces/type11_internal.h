@@ -63,6 +63,11 @@ struct ctdi_epass {
     size_t cap_cell, cap_ce;
     ct_idx *tmp_a;
     size_t cap_tmp;
+    int32_t *cellr;        /* 6 per edge: its box's first and last cell per axis */
+    size_t cap_cellr;
+    int64_t *qoff;         /* per A edge: where its candidates go in qbuf (na + 1) */
+    ct_idx *qbuf;          /* the bucket query's candidates, one pass (type11_search.c) */
+    size_t cap_qoff, cap_qbuf;
     ct_assemble_ws ws;
     int ws_ok;
     /* Irem_gap 2 (type11_filter.c): 1 to build at the next search, 2
