@@ -127,6 +127,47 @@ static double seg_seg(const double a0[3], const double a1[3], const double b0[3]
                 fmin(ctt_point_seg_dist(a0, b0, b1), ctt_point_seg_dist(a1, b0, b1)));
 }
 
+/* The candidate pairs of one step of a TYPE11 interface over the edges
+ * ea (and eb unless neb is 0: self), with the direct search (algo 0) or the
+ * bucket grid (1): n and the pairs (a, b), after the filter. The caller
+ * frees *pa and *pb. qbuf receives whether the bucket query took its
+ * one-pass way (room for its candidates in qbuf) rather than two passes. */
+static ct_idx edge_pairs(tnodes *t, const ct_real *gn, ct_idx nea, const ct_idx *ea1,
+                         const ct_idx *ea2, ct_idx neb, const ct_idx *eb1, const ct_idx *eb2,
+                         double margin, int algo, ct_idx **pa, ct_idx **pb, int *qbuf)
+{
+    ctd_iface_data d;
+    memset(&d, 0, sizeof d);
+    d.nnode = t->n;
+    d.nea = nea;
+    d.ea1 = ea1;
+    d.ea2 = ea2;
+    d.neb = neb;
+    d.eb1 = eb1;
+    d.eb2 = eb2;
+    d.gap_node = gn;
+    ctd_iface_cfg cfg = ctd_iface_default_cfg(11);
+    cfg.Istf = 1;
+    cfg.Stfac = 1e3;
+    cfg.margin = (ct_real)margin;
+    cfg.algo = algo ? CT_SEARCH_BUCKET : CT_SEARCH_DIRECT;
+    ctd_iface *it = NULL;
+    ct_diag diag;
+    cr_assert_eq(ctd_iface_init(&it, &cfg, &d, &diag), CT_OK, "%s", diag.msg);
+    ctd_iface_report rep;
+    tstep(it, t, 0, 1e-6, &rep);
+    const ctdi_epass *e = it->ep;
+    const ct_idx n = e->n;
+    *pa = malloc(sizeof(ct_idx) * ((size_t)n + 1));
+    *pb = malloc(sizeof(ct_idx) * ((size_t)n + 1));
+    cr_assert(*pa && *pb);
+    memcpy(*pa, e->pa, sizeof(ct_idx) * (size_t)n);
+    memcpy(*pb, e->pb, sizeof(ct_idx) * (size_t)n);
+    *qbuf = e->cap_qbuf > 0;
+    ctd_iface_destroy(it);
+    return n;
+}
+
 /* The search lists the pairs whose inflated boxes overlap, a superset; the
  * filter (type11_filter.c) keeps exactly the pairs within their gap and the
  * margin. Random unconnected edges: the kept pairs against the test's own
@@ -169,83 +210,27 @@ Test(iface_type11, filter_keeps_the_pairs_within_gap_and_margin)
         }
     cr_assert_gt(nwant, 20);
     for (int algo = 0; algo < 2; algo++) {
-        ctd_iface_data d;
-        memset(&d, 0, sizeof d);
-        d.nnode = 2 * NE;
-        d.nea = NE;
-        d.ea1 = e1;
-        d.ea2 = e2;
-        d.gap_node = gn;
-        ctd_iface_cfg cfg = ctd_iface_default_cfg(11);
-        cfg.Istf = 1;
-        cfg.Stfac = 1e3;
-        cfg.margin = (ct_real)margin;
-        cfg.algo = algo ? CT_SEARCH_BUCKET : CT_SEARCH_DIRECT;
-        ctd_iface *it = NULL;
-        ct_diag diag;
-        cr_assert_eq(ctd_iface_init(&it, &cfg, &d, &diag), CT_OK, "%s", diag.msg);
-        ctd_iface_report rep;
-        tstep(it, &t, 0, 1e-6, &rep);
-        const ctdi_epass *e = it->ep;
+        ct_idx *pa, *pb;
+        int qb;
+        const ct_idx n = edge_pairs(&t, gn, NE, e1, e2, 0, NULL, NULL, margin, algo, &pa, &pb, &qb);
         static int got[NE][NE];
         memset(got, 0, sizeof got);
-        for (ct_idx k = 0; k < e->n; k++) {
-            cr_assert_lt(e->pa[k], e->pb[k]);
+        for (ct_idx k = 0; k < n; k++) {
+            cr_assert_lt(pa[k], pb[k]);
             if (k > 0)
-                cr_assert(e->pa[k - 1] < e->pa[k] ||
-                              (e->pa[k - 1] == e->pa[k] && e->pb[k - 1] < e->pb[k]),
+                cr_assert(pa[k - 1] < pa[k] || (pa[k - 1] == pa[k] && pb[k - 1] < pb[k]),
                           "pair %d out of order", (int)k);
-            got[e->pa[k]][e->pb[k]] = 1;
+            got[pa[k]][pb[k]] = 1;
         }
         for (int a = 0; a < NE; a++)
             for (int b = a + 1; b < NE; b++)
                 if (want[a][b] >= 0)
                     cr_expect_eq(got[a][b], want[a][b], "%s: edges %d %d", algo ? "bucket" :
                                  "direct", a, b);
-        ctd_iface_destroy(it);
+        free(pa);
+        free(pb);
     }
     tn_free(&t);
-}
-
-/* The candidate pairs of one step of a TYPE11 interface over the edges
- * ea (and eb unless neb is 0: self), with the direct search (algo 0) or the
- * bucket grid (1): n and the pairs (a, b), after the filter. The caller
- * frees *pa and *pb. qbuf receives whether the bucket query took its
- * one-pass way (room for its candidates in qbuf) rather than two passes. */
-static ct_idx edge_pairs(tnodes *t, const ct_real *gn, ct_idx nea, const ct_idx *ea1,
-                         const ct_idx *ea2, ct_idx neb, const ct_idx *eb1, const ct_idx *eb2,
-                         double margin, int algo, ct_idx **pa, ct_idx **pb, int *qbuf)
-{
-    ctd_iface_data d;
-    memset(&d, 0, sizeof d);
-    d.nnode = t->n;
-    d.nea = nea;
-    d.ea1 = ea1;
-    d.ea2 = ea2;
-    d.neb = neb;
-    d.eb1 = eb1;
-    d.eb2 = eb2;
-    d.gap_node = gn;
-    ctd_iface_cfg cfg = ctd_iface_default_cfg(11);
-    cfg.Istf = 1;
-    cfg.Stfac = 1e3;
-    cfg.margin = (ct_real)margin;
-    cfg.algo = algo ? CT_SEARCH_BUCKET : CT_SEARCH_DIRECT;
-    ctd_iface *it = NULL;
-    ct_diag diag;
-    cr_assert_eq(ctd_iface_init(&it, &cfg, &d, &diag), CT_OK, "%s", diag.msg);
-    ctd_iface_report rep;
-    tstep(it, t, 0, 1e-6, &rep);
-    const ctdi_epass *e = it->ep;
-    const ct_idx n = e->n;
-    *pa = malloc(sizeof(ct_idx) * ((size_t)n + 1));
-    *pb = malloc(sizeof(ct_idx) * ((size_t)n + 1));
-    cr_assert(*pa && *pb);
-    memcpy(*pa, e->pa, sizeof(ct_idx) * (size_t)n);
-    memcpy(*pb, e->pb, sizeof(ct_idx) * (size_t)n);
-    *qbuf = e->cap_qbuf > 0;
-    ctd_iface_destroy(it);
-    return n;
 }
 
 /* The bucket grid's pairs are the direct search's, in the same order, on

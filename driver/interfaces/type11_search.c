@@ -136,6 +136,24 @@ static int grow_idx(ct_idx **p, size_t *cap, size_t n)
     return *p ? CT_OK : CT_ERR_NOMEM;
 }
 
+/* The A edges' candidate counts (cnt[a + 1]) into offsets (cnt[0] = 0), the
+ * total into *tot, and room for that many pairs (within the budget). */
+static int counts_to_offsets(ctd_iface *it, ctdi_epass *e, int64_t *tot)
+{
+    ct_idx *cnt = e->cnt;
+    cnt[0] = 0;
+    int64_t t = 0;
+    for (ct_idx a = 0; a < e->na; a++) {
+        t += cnt[a + 1];
+        if (t > INT32_MAX)
+            return CT_ERR_TOOBIG;
+        cnt[a + 1] = (ct_idx)t;
+    }
+    *tot = t;
+    int rc = ctdi_pair_budget(it, t, e->na, CTDI_EPAIR_ID_BYTES, e->sgap);
+    return rc == CT_OK ? ctdi_epass_grow_ids(e, (size_t)t) : rc;
+}
+
 /* The bucket query in one pass: each A edge's candidates into its own
  * stretch of qbuf, as long as the entries of the cells it visits (a
  * bound of its count), then counted, and copied in order into pa, pb; the
@@ -179,17 +197,9 @@ static int bucket_one_pass(ctd_iface *it, ctdi_epass *e, const grid *g)
 #pragma omp parallel for schedule(dynamic, 64) if (na > CTDI_PAR_MIN)
     for (ct_idx a = 0; a < na; a++)
         cnt[a + 1] = query(e, g, a, bstart, qb + qo[a]);
-    cnt[0] = 0;
-    int64_t tot = 0;
-    for (ct_idx a = 0; a < na; a++) {
-        tot += cnt[a + 1];
-        if (tot > INT32_MAX)
-            return CT_ERR_TOOBIG;
-        cnt[a + 1] = (ct_idx)tot;
-    }
-    int rc;
-    if ((rc = ctdi_pair_budget(it, tot, na, CTDI_EPAIR_ID_BYTES, e->sgap)) != CT_OK ||
-        (rc = ctdi_epass_grow_ids(e, (size_t)tot)) != CT_OK)
+    int64_t tot;
+    int rc = counts_to_offsets(it, e, &tot);
+    if (rc != CT_OK)
         return rc;
     ct_idx *pa = e->pa, *pb = e->pb;
 #pragma omp parallel for schedule(static) if (na > CTDI_PAR_MIN)
@@ -313,16 +323,8 @@ static int edge_search(ctd_iface *it, ctdi_epass *e, const ct_real *x, const ct_
 #pragma omp parallel for schedule(dynamic, 64) if (na > CTDI_PAR_MIN)
     for (ct_idx a = 0; a < na; a++)
         cnt[a + 1] = query(e, &g, a, (ct_idx)bstart, NULL);
-    cnt[0] = 0;
-    int64_t tot = 0;
-    for (ct_idx a = 0; a < na; a++) {
-        tot += cnt[a + 1];
-        if (tot > INT32_MAX)
-            return CT_ERR_TOOBIG;
-        cnt[a + 1] = (ct_idx)tot;
-    }
-    if ((rc = ctdi_pair_budget(it, tot, na, CTDI_EPAIR_ID_BYTES, e->sgap)) != CT_OK ||
-        (rc = ctdi_epass_grow_ids(e, (size_t)tot)) != CT_OK)
+    int64_t tot;
+    if ((rc = counts_to_offsets(it, e, &tot)) != CT_OK)
         return rc;
     ct_idx *pa = e->pa, *pb = e->pb;
 #pragma omp parallel for schedule(dynamic, 64) if (na > CTDI_PAR_MIN)
