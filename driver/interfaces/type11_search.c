@@ -159,9 +159,12 @@ static int counts_to_offsets(ctd_iface *it, ctdi_epass *e, int64_t *tot)
  * bound of its count), then counted, and copied in order into pa, pb; the
  * two-pass way (count, then query again to fill) did the query twice.
  * QUERY_TWO_PASSES, and nothing done, when the bounds add up past
- * QBUF_MAX_PER_EDGE entries an edge (many edges in few cells): the caller
- * then takes the two passes, which need no such room. */
-enum { QBUF_MAX_PER_EDGE = 256, QUERY_TWO_PASSES = 1 };
+ * QBUF_MAX_PER_EDGE entries an edge (2 KiB; many edges in few cells) or
+ * past the interface's memory for pairs: the caller then takes the two
+ * passes, which need no such room. The folding sheet's edges visit 111
+ * entries each at --refine 4, 260 at 8 and 414 at 12 (its gap does not
+ * shrink with the cells). */
+enum { QBUF_MAX_PER_EDGE = 512, QUERY_TWO_PASSES = 1 };
 
 static int bucket_one_pass(ctd_iface *it, ctdi_epass *e, const grid *g)
 {
@@ -188,7 +191,8 @@ static int bucket_one_pass(ctd_iface *it, ctdi_epass *e, const grid *g)
     qo[0] = 0;
     for (ct_idx a = 0; a < na; a++)
         qo[a + 1] += qo[a];
-    if (qo[na] > (int64_t)QBUF_MAX_PER_EDGE * na + 65536)
+    if (qo[na] > (int64_t)QBUF_MAX_PER_EDGE * na + 65536 ||
+        qo[na] > ctdi_pair_limit(it, sizeof(ct_idx)))
         return QUERY_TWO_PASSES;
     e->qbuf = ctdi_grow_fresh(e->qbuf, &e->cap_qbuf, (size_t)qo[na] + 1, sizeof(ct_idx));
     if (!e->qbuf)
