@@ -168,6 +168,29 @@ static ct_idx edge_pairs(tnodes *t, const ct_real *gn, ct_idx nea, const ct_idx 
     return n;
 }
 
+/* 2 ne nodes and ne edges of length 1 (edge e from node 2 e to 2 e + 1),
+ * centred at random in [0, side]^3 and turned at random (seed), node gaps
+ * gap. */
+static void random_edges(tnodes *t, int ne, double side, uint64_t seed, double gap, ct_idx *e1,
+                         ct_idx *e2, ct_real *gn)
+{
+    uint64_t st = seed;
+    for (int e = 0; e < ne; e++) {
+        double c[3], d[3], n2 = 0;
+        for (int k = 0; k < 3; k++) {
+            c[k] = side * ((double)(ctd_splitmix64(&st) >> 11) / 9007199254740992.0);
+            d[k] = 2 * ((double)(ctd_splitmix64(&st) >> 11) / 9007199254740992.0) - 1;
+            n2 += d[k] * d[k];
+        }
+        const double s = 0.5 / sqrt(n2);
+        tn_set(t, 2 * e, c[0] - s * d[0], c[1] - s * d[1], c[2] - s * d[2]);
+        tn_set(t, 2 * e + 1, c[0] + s * d[0], c[1] + s * d[1], c[2] + s * d[2]);
+        e1[e] = 2 * e;
+        e2[e] = 2 * e + 1;
+        gn[2 * e] = gn[2 * e + 1] = (ct_real)gap;
+    }
+}
+
 /* The search lists the pairs whose inflated boxes overlap, a superset; the
  * filter (type11_filter.c) keeps exactly the pairs within their gap and the
  * margin. Random unconnected edges: the kept pairs against the test's own
@@ -178,23 +201,9 @@ Test(iface_type11, filter_keeps_the_pairs_within_gap_and_margin)
     const double g = 0.1, margin = 0.15, reach = 2 * g + margin;
     tnodes t;
     tn_init(&t, 2 * NE);
-    uint64_t st = 99;
     ct_idx e1[NE], e2[NE];
     ct_real gn[2 * NE];
-    for (int e = 0; e < NE; e++) {
-        double c[3], d[3], n2 = 0;
-        for (int k = 0; k < 3; k++) {
-            c[k] = 4 * ((double)(ctd_splitmix64(&st) >> 11) / 9007199254740992.0);
-            d[k] = 2 * ((double)(ctd_splitmix64(&st) >> 11) / 9007199254740992.0) - 1;
-            n2 += d[k] * d[k];
-        }
-        double s = 0.5 / sqrt(n2);
-        tn_set(&t, 2 * e, c[0] - s * d[0], c[1] - s * d[1], c[2] - s * d[2]);
-        tn_set(&t, 2 * e + 1, c[0] + s * d[0], c[1] + s * d[1], c[2] + s * d[2]);
-        e1[e] = 2 * e;
-        e2[e] = 2 * e + 1;
-        gn[2 * e] = gn[2 * e + 1] = (ct_real)g;
-    }
+    random_edges(&t, NE, 4, 99, g, e1, e2, gn);
     /* The truth, leaving out the pairs within 1e-6 of the reach. */
     static int want[NE][NE];
     int nwant = 0;
@@ -231,6 +240,28 @@ Test(iface_type11, filter_keeps_the_pairs_within_gap_and_margin)
         free(pb);
     }
     tn_free(&t);
+}
+
+/* The bucket grid's pairs (after the filter) are the direct search's, in the
+ * same order, and more than 100 (what: the case, for the messages).
+ * Returns whether the bucket query took its one-pass way. */
+static int bucket_equals_direct(tnodes *t, const ct_real *gn, ct_idx nea, const ct_idx *ea1,
+                                const ct_idx *ea2, ct_idx neb, const ct_idx *eb1,
+                                const ct_idx *eb2, double margin, const char *what)
+{
+    ct_idx *pa[2], *pb[2];
+    int qb[2];
+    ct_idx n[2];
+    for (int algo = 0; algo < 2; algo++)
+        n[algo] = edge_pairs(t, gn, nea, ea1, ea2, neb, eb1, eb2, margin, algo, &pa[algo],
+                             &pb[algo], &qb[algo]);
+    cr_assert_gt(n[0], 100, "%s: %d pairs", what, (int)n[0]);
+    cr_assert_eq(n[1], n[0], "%s", what);
+    cr_assert(memcmp(pa[1], pa[0], sizeof(ct_idx) * (size_t)n[0]) == 0, "%s", what);
+    cr_assert(memcmp(pb[1], pb[0], sizeof(ct_idx) * (size_t)n[0]) == 0, "%s", what);
+    for (int algo = 0; algo < 2; algo++)
+        free(pa[algo]), free(pb[algo]);
+    return qb[1];
 }
 
 /* The bucket grid's pairs are the direct search's, in the same order, on
@@ -273,19 +304,9 @@ Test(iface_type11, bucket_pairs_equal_direct_on_layers_and_a_cluster)
         /* sets 0: all edges against themselves; 1: the two lower layers
          * (A) against the top one (B). */
         const ct_idx nea = sets ? nlow : NE, neb = sets ? NE - nlow : 0;
-        ct_idx *pa[2], *pb[2];
-        int qb[2];
-        ct_idx n[2];
-        for (int algo = 0; algo < 2; algo++)
-            n[algo] = edge_pairs(&t, gn, nea, e1, e2, neb, e1 + nea, e2 + nea, margin, algo,
-                                 &pa[algo], &pb[algo], &qb[algo]);
-        cr_assert_gt(n[0], 100, "sets %d: %d pairs", sets, (int)n[0]);
-        cr_assert_eq(n[1], n[0], "sets %d", sets);
-        cr_assert(memcmp(pa[1], pa[0], sizeof(ct_idx) * (size_t)n[0]) == 0, "sets %d", sets);
-        cr_assert(memcmp(pb[1], pb[0], sizeof(ct_idx) * (size_t)n[0]) == 0, "sets %d", sets);
-        cr_assert(qb[1], "sets %d: the one-pass query", sets);
-        for (int algo = 0; algo < 2; algo++)
-            free(pa[algo]), free(pb[algo]);
+        cr_assert(bucket_equals_direct(&t, gn, nea, e1, e2, neb, e1 + nea, e2 + nea, margin,
+                                       sets ? "two sets" : "self"),
+                  "sets %d: the one-pass query", sets);
     }
     tn_free(&t);
     /* The cluster: 600 edges of length 1 in a box of side 1.5. */
@@ -293,33 +314,8 @@ Test(iface_type11, bucket_pairs_equal_direct_on_layers_and_a_cluster)
     tn_init(&t, 2 * NC);
     static ct_real gc[2 * NC];
     static ct_idx c1[NC], c2[NC];
-    uint64_t st = 7;
-    for (int e = 0; e < NC; e++) {
-        double c[3], d[3], n2 = 0;
-        for (int k = 0; k < 3; k++) {
-            c[k] = 1.5 * ((double)(ctd_splitmix64(&st) >> 11) / 9007199254740992.0);
-            d[k] = 2 * ((double)(ctd_splitmix64(&st) >> 11) / 9007199254740992.0) - 1;
-            n2 += d[k] * d[k];
-        }
-        const double s = 0.5 / sqrt(n2);
-        tn_set(&t, 2 * e, c[0] - s * d[0], c[1] - s * d[1], c[2] - s * d[2]);
-        tn_set(&t, 2 * e + 1, c[0] + s * d[0], c[1] + s * d[1], c[2] + s * d[2]);
-        c1[e] = 2 * e;
-        c2[e] = 2 * e + 1;
-        gc[2 * e] = gc[2 * e + 1] = (ct_real)0.01;
-    }
-    ct_idx *pa[2], *pb[2];
-    int qb[2];
-    ct_idx n[2];
-    for (int algo = 0; algo < 2; algo++)
-        n[algo] = edge_pairs(&t, gc, NC, c1, c2, 0, NULL, NULL, 0.02, algo, &pa[algo], &pb[algo],
-                             &qb[algo]);
-    cr_assert_gt(n[0], 100, "cluster: %d pairs", (int)n[0]);
-    cr_assert_eq(n[1], n[0]);
-    cr_assert(memcmp(pa[1], pa[0], sizeof(ct_idx) * (size_t)n[0]) == 0);
-    cr_assert(memcmp(pb[1], pb[0], sizeof(ct_idx) * (size_t)n[0]) == 0);
-    cr_assert(!qb[1], "cluster: the two-pass query");
-    for (int algo = 0; algo < 2; algo++)
-        free(pa[algo]), free(pb[algo]);
+    random_edges(&t, NC, 1.5, 7, 0.01, c1, c2, gc);
+    cr_assert(!bucket_equals_direct(&t, gc, NC, c1, c2, 0, NULL, NULL, 0.02, "cluster"),
+              "cluster: the two-pass query");
     tn_free(&t);
 }

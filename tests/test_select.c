@@ -361,6 +361,15 @@ static void long_fill(long_case *c, uint64_t seed)
     long_geo(c);
 }
 
+/* The end of the run of node[k] in node[0..n-1]. */
+static ct_idx run_end_of(const ct_idx *node, ct_idx k, ct_idx n)
+{
+    ct_idx e = k + 1;
+    while (e < n && node[e] == node[k])
+        e++;
+    return e;
+}
+
 /* The rule of ct_select_pairs (ct_narrow.h) for the run [a, e) of c,
  * written out plainly as the reference: the pen, carry and handoff it
  * gives, and the run's active count. */
@@ -438,9 +447,7 @@ Test(select, runs_decided_whole_for_any_thread_count)
         long_geo(&ref);
         int64_t act_ref = 0;
         for (ct_idx k = 0; k < LONG_N;) {
-            ct_idx e = k + 1;
-            while (e < LONG_N && ref.node[e] == ref.node[k])
-                e++;
+            const ct_idx e = run_end_of(ref.node, k, LONG_N);
             act_ref += oracle_run(&ref, k, e, two, (ct_real *const[3]){xyz[0], xyz[1], xyz[2]});
             k = e;
         }
@@ -449,9 +456,7 @@ Test(select, runs_decided_whole_for_any_thread_count)
         long_geo(&got);
         int64_t act_own = 0;
         for (ct_idx k = 0; k < LONG_N;) {
-            ct_idx e = k + 1;
-            while (e < LONG_N && got.node[e] == got.node[k])
-                e++;
+            const ct_idx e = run_end_of(got.node, k, LONG_N);
             ct_contact_geo g = got.g;
             ct_real **fp[NF] = {&g.dist, &g.pen, &g.nx, &g.ny, &g.nz, &g.cx, &g.cy,
                                 &g.cz,   &g.h1,  &g.h2, &g.h3, &g.h4, &g.gap};
