@@ -75,12 +75,13 @@ typedef int64_t cti_nr_int;
  * 32 vector registers). */
 #define CTI_NR_SIMD _Pragma("omp simd")
 
-/* Newton (project_newton.c): CTI_NR_NEWTON_A_IT steps from the linear start
- * for every pair of a block; up to CTI_NR_NEWTON_VEC_IT steps for the whole
- * block when more than 1 / CTI_NR_NEWTON_MORE_DEN of it has not converged
- * (a converged pair keeps its values); then the cap for the pairs still
- * not converged (further vector rounds of CTI_NR_NEWTON_VEC_IT steps over
- * those pairs alone). A flat or smooth plate converges in 2 steps; 3
+/* Newton (project_newton.c): one or two steps from the linear start for
+ * every pair of a block (cti_nr_block_newton); up to CTI_NR_NEWTON_VEC_IT
+ * steps for the whole block when more than 1 / CTI_NR_NEWTON_MORE_DEN of it
+ * has not converged (a converged pair keeps its values); then the cap for
+ * the pairs still not converged (further vector rounds of
+ * CTI_NR_NEWTON_VEC_IT steps over those pairs alone). A flat parallelogram
+ * converges in 1 step, a flat or smooth plate in 2; 3
  * (single) or 4 (double) steps converge all but a few in 1e5 pairs of
  * plates warped by 5% of the element size, but about half of a crumpled
  * sheet's candidates need more (nodes off the quadrangle); a step costs
@@ -97,7 +98,6 @@ typedef int64_t cti_nr_int;
  * (within a relative CTI_NR_NEWTON_OFF_TOL of the squared distance): its
  * answer is then the boundary's, as it would be at the cap. */
 #define CTI_NR_NEWTON_FAR 1.5
-#define CTI_NR_NEWTON_A_IT 2
 /* 3 and 24 measured the same as 8 on warped and crumpled quadrangles. */
 #define CTI_NR_NEWTON_MORE_DEN 8
 

@@ -12,8 +12,14 @@
 
 /* One Newton step on f(s,t) = |x(s,t) - p|^2 / 2: the full Hessian when it
  * is safely positive definite, Gauss-Newton otherwise. Iterates are kept in
- * [-3, 3]^2 so a wandering iteration stays finite. *step = |ds| + |dt|. */
-CTI_NR_INLINE void cti_newton_step(CTI_QPARAMS, ct_real *s, ct_real *t, ct_real *step)
+ * [-3, 3]^2 so a wandering iteration stays finite. *step = |ds| + |dt|.
+ * With hold != 0 the step leaves *s, *t and *step as they were, bit for
+ * bit (ds and dt become -0, which added to any value gives that value, and
+ * a value the last step clamped is inside the clamp): a lane's step held
+ * so keeps fewer values live than a step taken and then undone by
+ * selects, which in single precision cost a loop with it 12 %. */
+CTI_NR_INLINE void cti_newton_step_held(CTI_QPARAMS, ct_real *s, ct_real *t, ct_real *step,
+                                        cti_nr_int hold)
 {
     CTI_QUNUSED;
     ct_real S = *s, T = *t;
@@ -31,13 +37,22 @@ CTI_NR_INLINE void cti_newton_step(CTI_QPARAMS, ct_real *s, ct_real *t, ct_real 
     ct_real inv = 1 / (det > 0 ? det : 1);
     ct_real ds = -(h22 * g1 - m12 * g2) * inv;
     ct_real dt = -(h11 * g2 - m12 * g1) * inv;
+    const ct_real st = CTI_FABS(ds) + CTI_FABS(dt);
+    ds = hold ? (ct_real)-0.0 : ds;
+    dt = hold ? (ct_real)-0.0 : dt;
     S += ds;
     T += dt;
     S = S < -3 ? -3 : (S > 3 ? 3 : S);
     T = T < -3 ? -3 : (T > 3 ? 3 : T);
     *s = S;
     *t = T;
-    *step = CTI_FABS(ds) + CTI_FABS(dt);
+    *step = hold ? *step : st;
+}
+
+/* cti_newton_step_held, never held. */
+CTI_NR_INLINE void cti_newton_step(CTI_QPARAMS, ct_real *s, ct_real *t, ct_real *step)
+{
+    cti_newton_step_held(CTI_QARGS, s, t, step, 0);
 }
 
 /* Start of Newton: the least-squares (s, t) of the quadrangle's affine part
@@ -250,7 +265,7 @@ static ct_idx newton_end_off(const cti_nr_args *a, const cti_nr_blk *b, cti_nr_b
  * their iterates in sv, tv, their last step sizes in stv, after `steps`
  * steps) take further steps in SIMD lanes: rounds over those still
  * iterating, the first to step CTI_NR_NEWTON_VEC_IT when the block stopped
- * at CTI_NR_NEWTON_A_IT, then one step, then CTI_NR_NEWTON_VEC_IT at a
+ * before it, then one step, then CTI_NR_NEWTON_VEC_IT at a
  * time, up to CTI_NR_NEWTON_MAX_IT steps in all; then their outputs are
  * computed. A lane keeps its values from the step that converged, or from
  * the step that returned its (s, t) unchanged, so each pair gets the values
@@ -353,35 +368,6 @@ static void newton_redo(const cti_nr_args *a, ct_idx k0, ct_idx n, cti_nr_blk *b
         b->flag[rq[q]] = c.flag[q];
 }
 
-/* The second fixed loop (cti_nr_block_newton): steps CTI_NR_NEWTON_A_IT + 1
- * to CTI_NR_NEWTON_VEC_IT of block pairs [k0, k0 + n), for every pair of the
- * block; a pair that had converged keeps its values, as in the rounds. The
- * outputs of every pair are written again (a converged pair's are the same
- * bytes), fin[j] says whether pair j is done. */
-static void newton_block_more(const cti_nr_args *a, ct_idx k0, ct_idx n, cti_nr_blk *b,
-                              ct_real *restrict sv, ct_real *restrict tv,
-                              ct_real *restrict stv, ct_real *restrict fin)
-{
-    CTI_NR_OUTPTRS(a, k0);
-    CTI_NR_INPTRS(a, k0);
-    int two = a->two_sided;
-    CTI_NR_SIMD
-    for (ct_idx j = 0; j < n; j++) {
-        CTI_QUAD_LOAD(j);
-        ct_real s = sv[j], t = tv[j], st = stv[j];
-        ct_real done = st <= CTI_NR_NEWTON_TOL ? 1 : 0;
-        _Pragma("GCC unroll 8")
-        for (int i = CTI_NR_NEWTON_A_IT; i < CTI_NR_NEWTON_VEC_IT; i++) {
-            cti_newton_step_unless_done(CTI_QARGS, &s, &t, &st, &done);
-        }
-        sv[j] = s;
-        tv[j] = t;
-        stv[j] = st;
-        fin[j] = done;
-        CTI_QUAD_STORE(j, s, t, 1, 0);
-    }
-}
-
 /* Left to itself, clang 14 interleaves one of the first loop's two forms 4
  * vectors deep in single (64 pairs at a time; see CTI_NR_SIMD), and the
  * plates ran 0.74-0.86x of the one-vector loop at 10^6 pairs. */
@@ -391,27 +377,33 @@ static void newton_block_more(const cti_nr_args *a, ct_idx k0, ct_idx n, cti_nr_
 #define CTI_NR_ONE_VECTOR
 #endif
 
-/* The first fixed loop of cti_nr_block_newton: the start and
- * CTI_NR_NEWTON_A_IT steps of block pairs [k0, k0 + n) into sv, tv and stv,
- * and their outputs when store (a constant: the two forms are two loops).
- * Returns the number of pairs not converged. */
+/* The first fixed loop of cti_nr_block_newton: the start and nstep steps
+ * (1 or 2, a constant) of block pairs [k0, k0 + n) into sv, tv and stv, and
+ * their outputs when store (a constant: the forms are separate loops); the
+ * first step for every pair, the second for those the first did not
+ * converge (as cti_newton_step_unless_done). Returns the number of pairs not
+ * converged; *nun1, those the first step did not converge. */
 CTI_NR_INLINE ct_idx newton_block_first(const cti_nr_args *a, ct_idx k0, ct_idx n,
                                         cti_nr_blk *b, ct_real *restrict sv,
                                         ct_real *restrict tv, ct_real *restrict stv,
-                                        const int store)
+                                        ct_idx *nun1, const int store, const int nstep)
 {
     CTI_NR_OUTPTRS(a, k0);
     CTI_NR_INPTRS(a, k0);
     int two = a->two_sided;
-    ct_idx nun = 0;
-    _Pragma("omp simd reduction(+ : nun)") CTI_NR_ONE_VECTOR
+    ct_idx nun = 0, n1 = 0;
+    _Pragma("omp simd reduction(+ : nun, n1)") CTI_NR_ONE_VECTOR
     for (ct_idx j = 0; j < n; j++) {
         CTI_QUAD_LOAD(j);
         ct_real s, t, st = 0;
         cti_newton_start(CTI_QARGS, &s, &t);
-        _Pragma("GCC unroll 8")
-        for (int it = 0; it < CTI_NR_NEWTON_A_IT; it++)
-            cti_newton_step(CTI_QARGS, &s, &t, &st);
+        cti_newton_step(CTI_QARGS, &s, &t, &st);
+        n1 += !(st <= CTI_NR_NEWTON_TOL);
+        /* The second step as cti_newton_step_unless_done, without its
+         * fixed-point test, which matters only to the steps after this one
+         * (clang 14 does not vectorise this loop with it). */
+        if (nstep > 1)
+            cti_newton_step_held(CTI_QARGS, &s, &t, &st, st <= CTI_NR_NEWTON_TOL);
         sv[j] = s;
         tv[j] = t;
         stv[j] = st;
@@ -419,26 +411,85 @@ CTI_NR_INLINE ct_idx newton_block_first(const cti_nr_args *a, ct_idx k0, ct_idx 
         if (store)
             CTI_QUAD_STORE(j, s, t, 1, 0);
     }
+    *nun1 = n1;
     return nun;
 }
 
+/* The forms of the two fixed loops, each a function of its own: with the
+ * forms' calls side by side in one function, clang 14 merged them into one
+ * call with its constant arguments selected at run time, and then could
+ * not vectorise the loop (it writes the outputs only when `store`). The
+ * names say the steps of the first loop, s when it stores the outputs. */
+#define CTI_NEWTON_FIRST(NAME, STORE, NSTEP)                                                  \
+    CTI_NR_NOINLINE static ct_idx NAME(const cti_nr_args *a, ct_idx k0, ct_idx n,             \
+                                       cti_nr_blk *b, ct_real *restrict sv,                   \
+                                       ct_real *restrict tv, ct_real *restrict stv,           \
+                                       ct_idx *nun1)                                          \
+    {                                                                                         \
+        return newton_block_first(a, k0, n, b, sv, tv, stv, nun1, STORE, NSTEP);              \
+    }
+CTI_NEWTON_FIRST(newton_first_1, 0, 1)
+CTI_NEWTON_FIRST(newton_first_1s, 1, 1)
+CTI_NEWTON_FIRST(newton_first_2, 0, 2)
+CTI_NEWTON_FIRST(newton_first_2s, 1, 2)
+/* The second fixed loop: steps FROM + 1 to CTI_NR_NEWTON_VEC_IT of block
+ * pairs [k0, k0 + n) (FROM: the first loop's steps), for every pair of the
+ * block; a pair that had converged keeps its values, as in the rounds. The
+ * outputs of every pair are written again (a converged pair's are the same
+ * bytes), fin[j] says whether pair j is done. A constant FROM in each form
+ * (the inner loop is vectorised only with a constant count). */
+#define CTI_NEWTON_MORE(NAME, FROM)                                                           \
+    CTI_NR_NOINLINE static void NAME(const cti_nr_args *a, ct_idx k0, ct_idx n,               \
+                                     cti_nr_blk *b, ct_real *restrict sv,                     \
+                                     ct_real *restrict tv, ct_real *restrict stv,             \
+                                     ct_real *restrict fin)                                   \
+    {                                                                                         \
+        CTI_NR_OUTPTRS(a, k0);                                                                \
+        CTI_NR_INPTRS(a, k0);                                                                 \
+        int two = a->two_sided;                                                               \
+        CTI_NR_SIMD                                                                           \
+        for (ct_idx j = 0; j < n; j++) {                                                      \
+            CTI_QUAD_LOAD(j);                                                                 \
+            ct_real s = sv[j], t = tv[j], st = stv[j];                                        \
+            ct_real done = st <= CTI_NR_NEWTON_TOL ? 1 : 0;                                   \
+            _Pragma("GCC unroll 8")                                                           \
+            for (int i = (FROM); i < CTI_NR_NEWTON_VEC_IT; i++) {                             \
+                cti_newton_step_unless_done(CTI_QARGS, &s, &t, &st, &done);                   \
+            }                                                                                 \
+            sv[j] = s;                                                                        \
+            tv[j] = t;                                                                        \
+            stv[j] = st;                                                                      \
+            fin[j] = done;                                                                    \
+            CTI_QUAD_STORE(j, s, t, 1, 0);                                                    \
+        }                                                                                     \
+    }
+CTI_NEWTON_MORE(newton_more_from_1, 1)
+CTI_NEWTON_MORE(newton_more_from_2, 2)
+
 /*
- * Newton for block pairs [k0, k0 + n): the start and CTI_NR_NEWTON_A_IT steps
- * for every pair; when more than 1 / CTI_NR_NEWTON_MORE_DEN of the block has
- * not converged, the steps up to CTI_NR_NEWTON_VEC_IT for the whole block
+ * Newton for block pairs [k0, k0 + n): the start and one or two steps for
+ * every pair (the second for the pairs the first did not converge); when
+ * more than 1 / CTI_NR_NEWTON_MORE_DEN of the block has not converged then,
+ * the steps up to CTI_NR_NEWTON_VEC_IT for the whole block
  * (newton_block_more); the pairs still not converged then go on in the
  * compacted rounds of newton_redo. Every pair takes steps until one
- * converges (the first CTI_NR_NEWTON_A_IT always), so its result does not
- * depend on which of these paths it took, nor on the block's other pairs.
- * Smooth meshes converge in two steps and take the first loop alone;
- * warped or crumpled ones take both loops, as compacting half a block costs
- * more than two more steps for all of it.
+ * converges (the first always), so its result does not depend on which of
+ * these paths it took, nor on the block's other pairs. A flat
+ * parallelogram's start is exact and its first step converges; smooth
+ * meshes converge in two steps and take the first loop alone; warped or
+ * crumpled ones take both loops, as compacting half a block costs more
+ * than two more steps for all of it.
  *
- * Where the outputs are written follows a guess from the block before
- * (b->newton_more): the first loop writes them when the second is not
- * expected, the second rewrites them for every pair when it runs, and
- * a plain loop writes them when the guess was wrong the other way. The
- * guess changes the time only, never a byte.
+ * The block before gives two guesses (b->newton_more), which change the
+ * time only, never a byte:
+ *  - bit 1: whether its first step left more than 1 / CTI_NR_NEWTON_MORE_DEN
+ *    of it unconverged; if so the first loop takes two steps, else one (a
+ *    second step in the same loop costs less than a second loop, and on a
+ *    flat parallelogram it is a step for nothing: 1.2 times the time);
+ *  - bit 0: whether it ran the second loop: the first loop writes the
+ *    outputs when the second is not expected, the second rewrites them for
+ *    every pair when it runs, and a plain loop writes them when the guess
+ *    was wrong the other way.
  */
 void cti_nr_block_newton(const cti_nr_args *a, ct_idx k0, ct_idx n, cti_nr_blk *b)
 {
@@ -447,13 +498,15 @@ void cti_nr_block_newton(const cti_nr_args *a, ct_idx k0, ct_idx n, cti_nr_blk *
     int two = a->two_sided;
     ct_real sv[CTI_NR_BLOCK], tv[CTI_NR_BLOCK], stv[CTI_NR_BLOCK], fin[CTI_NR_BLOCK];
     cti_nr_int redo[CTI_NR_BLOCK];
-    const int guess = b->newton_more;
-    ct_idx nun = guess ? newton_block_first(a, k0, n, b, sv, tv, stv, 0)
-                       : newton_block_first(a, k0, n, b, sv, tv, stv, 1);
+    const int guess = b->newton_more & 1, nf = b->newton_more & 2 ? 2 : 1;
+    ct_idx nun1;
+    const ct_idx nun = (nf == 2 ? (guess ? newton_first_2 : newton_first_2s)
+                                : (guess ? newton_first_1 : newton_first_1s))(
+        a, k0, n, b, sv, tv, stv, &nun1);
     const int more = nun * CTI_NR_NEWTON_MORE_DEN > n;
-    int steps = CTI_NR_NEWTON_A_IT;
+    int steps = nf;
     if (more) {
-        newton_block_more(a, k0, n, b, sv, tv, stv, fin);
+        (nf == 2 ? newton_more_from_2 : newton_more_from_1)(a, k0, n, b, sv, tv, stv, fin);
         steps = CTI_NR_NEWTON_VEC_IT;
         for (ct_idx j = 0; j < n; j++)
             redo[j] = fin[j] == 0;
@@ -468,7 +521,7 @@ void cti_nr_block_newton(const cti_nr_args *a, ct_idx k0, ct_idx n, cti_nr_blk *
         for (ct_idx j = 0; j < n; j++)
             redo[j] = !(stv[j] <= CTI_NR_NEWTON_TOL);
     }
-    b->newton_more = more;
+    b->newton_more = more | (nun1 * CTI_NR_NEWTON_MORE_DEN > n ? 2 : 0);
     newton_redo(a, k0, n, b, redo, sv, tv, stv, steps);
     cti_nr_flags_out(b->flag, a->out->flag + k0, n);
 }

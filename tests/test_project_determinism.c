@@ -79,29 +79,42 @@ Test(project, threads_and_lanes_give_identical_results)
     ct_free(node); ct_free(seg);
 }
 
-/* Newton's path through a block (the second fixed loop for the whole block,
- * or compacted rounds for its few slow pairs) depends on the block's other
- * pairs; a pair's result must not. Blocks of 64 pairs: two with 60 easy
- * pairs (nodes over a flat parallelogram, where the start is exact) and 4
- * slow ones (nodes off a warped quadrangle), others the other way round, in
- * an order that takes every path on one thread (the kernel guesses a block's
- * path from the block before); every pair's outputs in the batch, on 1 and
- * 2 threads, are compared byte for byte with the pair computed alone. */
+/* Newton's path through a block (one or two steps in the first loop, the
+ * second fixed loop for the whole block, or compacted rounds for its few
+ * slow pairs) depends on the block's other pairs; a pair's result must not.
+ * Blocks of 64 pairs: F with 60 fast pairs (nodes over a flat
+ * parallelogram, where the start is exact and the first step converges)
+ * and 4 slow ones (nodes off a warped quadrangle), S the other way round,
+ * M with 60 medium pairs (over a parallelogram with a corner raised by
+ * 1e-6: the second step converges) and 4 slow ones, in an order that takes
+ * every path on one thread (the kernel guesses a block's path from the
+ * block before: first loop of one step or two, writing the outputs or not,
+ * second loop or not; traced, the order takes each of the six that occur);
+ * every pair's outputs in the batch, on 1 and 2 threads, are compared byte
+ * for byte with the pair computed alone. */
 Test(project, newton_result_does_not_depend_on_the_block)
 {
-    enum { NP = 512 };
-    const char *kind = "SFFSSFFS"; /* block b: S mostly slow, F mostly fast */
+    /* Block b: S mostly slow, F mostly fast, M mostly medium. */
+    const char *kind = "SFFSSFFSMMSMF";
+    enum { NP = 13 * 64, NC = 12 };
     double F[4][3] = {{-1, -1, 0}, {1.2, -1, 0}, {1.5, 1, 0}, {-0.7, 1, 0}}, W[4][3];
     rand_quad(W, 0.4, 1.0);
-    ct_real x[8 + NP], y[8 + NP], z[8 + NP];
+    /* Medium: F with a corner raised by 1e-6, whose linear start is close
+     * enough for the first step not to converge and the second to. */
+    double M[4][3];
+    memcpy(M, F, sizeof M);
+    M[2][2] = 1e-6;
+    ct_real x[NC + NP], y[NC + NP], z[NC + NP];
     for (int i = 0; i < 4; i++) {
         x[i] = (ct_real)F[i][0], y[i] = (ct_real)F[i][1], z[i] = (ct_real)F[i][2];
         x[4 + i] = (ct_real)W[i][0], y[4 + i] = (ct_real)W[i][1], z[4 + i] = (ct_real)W[i][2];
+        x[8 + i] = (ct_real)M[i][0], y[8 + i] = (ct_real)M[i][1], z[8 + i] = (ct_real)M[i][2];
     }
-    ct_idx n1[2] = {0, 4}, n2[2] = {1, 5}, n3[2] = {2, 6}, n4[2] = {3, 7};
+    ct_idx n1[3] = {0, 4, 8}, n2[3] = {1, 5, 9}, n3[3] = {2, 6, 10}, n4[3] = {3, 7, 11};
     ct_idx node[NP], seg[NP];
     for (int k = 0; k < NP; k++) {
-        int few_slow = kind[k / 64] == 'F', slow = ((k % 16) == 5) == few_slow;
+        const char kb = kind[k / 64];
+        int few_slow = kb != 'S', slow = ((k % 16) == 5) == few_slow;
         double p[3];
         if (slow) {
             /* Off the quadrangle's extension, as in the batch test above. */
@@ -113,9 +126,9 @@ Test(project, newton_result_does_not_depend_on_the_block)
         } else {
             p[0] = 2 * urand() - 1, p[1] = 2 * urand() - 1, p[2] = 0.2 * urand() - 0.1;
         }
-        x[8 + k] = (ct_real)p[0], y[8 + k] = (ct_real)p[1], z[8 + k] = (ct_real)p[2];
-        node[k] = 8 + k;
-        seg[k] = slow;
+        x[NC + k] = (ct_real)p[0], y[NC + k] = (ct_real)p[1], z[NC + k] = (ct_real)p[2];
+        node[k] = NC + k;
+        seg[k] = slow ? 1 : kb == 'M' ? 2 : 0;
     }
     ctt_geo a, b;
     ctt_geo_init(&a, NP);
