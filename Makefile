@@ -322,6 +322,24 @@ bench-full: deps
 plots:
 	python3 bench/plots.py $(BENCH_OUT).json $(wildcard $(BENCH_OUT)-single.json) --out docs/
 
+# The narrow phase taken apart: each part of a block's work (the block
+# kernel, the copy of the coordinates, the gaps) alone on one block in L1
+# (bench/parts/narrow_parts.c; docs/TARGETS.md quotes it). It reads the library's
+# internal header, so it links the library of the same build (and the
+# driver's for the benchmark's meshes); run it again with PRECISION=single
+# for single precision.
+PARTS_BIN = $(BUILD)/bin/narrow_parts
+$(BUILD)/bench/parts/narrow_parts.o: bench/parts/narrow_parts.c
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_ALL) $(INC) -MMD -MP -c $< -o $@
+$(PARTS_BIN): $(BUILD)/bench/parts/narrow_parts.o $(LIBDRIVER) $(LIBCONTACT)
+	@mkdir -p $(dir $@)
+	$(CC) $(LINK_CFLAGS) $^ -o $@ -lm $(OMP_LIBS)
+.PHONY: bench-parts
+bench-parts: deps
+	@$(MAKE) --no-print-directory $(PARTS_BIN)
+	$(BENCH_ENV) $(PARTS_BIN)
+
 # The harness's own correctness: every peer's pair set against the direct
 # search on small meshes (no timing).
 bench-test: deps
