@@ -4,6 +4,7 @@
 #   make run        run the showcase scene (SCENE=path for another)
 #   make test       build and run the tests (Criterion)
 #   make bench      build and run the benchmarks (Google Benchmark)
+#   make bench-parts the narrow phase's parts timed each alone in L1
 #   make check      tests under ASan+UBSan, then under ThreadSanitizer
 #   make validation the validation cases with their plots (docs/VALIDATION.md)
 #   make install    libcontact, its headers and contact.pc under PREFIX
